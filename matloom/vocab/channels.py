@@ -1,0 +1,48 @@
+"""Layer channels (methods) in the reference's fixed order (reference-engine.md §1.2, §3.1)."""
+
+from __future__ import annotations
+
+from matloom.vocab.spec import ChannelSpec
+
+C = ChannelSpec
+
+CHANNELS: dict[str, ChannelSpec] = {
+    c.name: c
+    for c in (
+        C("alpha", ("alpha",), (1.0,), "coverage 0..1",
+          "coverage of the layer; overrides the Layer(...) argument", ".alpha(0.5)", search=(0, 1)),
+        C("basecolor", ("r", "g", "b"), (0.0, 0.0, 0.0), "sRGB 0..255",
+          "base colour; each component may be an expression", ".basecolor(200, 120, 80)",
+          clamp_lo=0, clamp_hi=255, search=(0, 255), colour_args=(0, 1, 2)),
+        C("metallic", ("value",), (0.0,), "0..1", "metalness (1 = metal)", ".metallic(1)",
+          search=(0, 1)),
+        C("roughness", ("value",), (0.0,), "0..1",
+          "micro-surface roughness (0 = mirror, the default; 1 = fully matte)", ".roughness(0.6)",
+          search=(0, 1)),
+        C("sheen", ("value",), (0.0,), "0..1", "cloth-like grazing sheen", ".sheen(0.4)",
+          search=(0, 1)),
+        C("coat", ("value",), (0.0,), "0..1", "clear-coat layer weight", ".coat(0.9)",
+          search=(0, 1)),
+        C("transmission", ("value",), (0.0,), "0..1", "see-through transmission (glass, ice)",
+          ".transmission(0.9)", search=(0, 1)),
+        C("ior", ("value",), (1.5,), ">= 1", "index of refraction (no upper clamp)", ".ior(1.45)",
+          clamp_lo=1.0, clamp_hi=None, search=(1, 3)),
+        C("subsurface", ("value",), (0.0,), "0..1",
+          "subsurface scattering weight (scatter colour = base colour)", ".subsurface(0.3)",
+          search=(0, 1)),
+        C("anisotropy", ("value",), (0.0,), "0..1",
+          "anisotropic highlight stretch along x (brushed metal)", ".anisotropy(0.6)",
+          search=(0, 1)),
+        C("emissive", ("r", "g", "b", "strength"), (0.0, 0.0, 0.0, 0.0),
+          "sRGB 0..255 and strength >= 0", "emitted light colour and strength",
+          ".emissive(255, 180, 60, 2)", clamp_lo=0, clamp_hi=255, search=(0, 255),
+          colour_args=(0, 1, 2)),
+        C("height", ("value",), (0.0,), "coordinate units (unclamped, may be negative)",
+          "surface relief; the composite is the max over covered layers", ".height(0.01)",
+          clamp_lo=None, clamp_hi=None, search=(-0.5, 0.5)),
+    )
+}
+"""Name -> channel spec, in evaluation (and seed-drawing) order; alpha first."""
+
+PRINT_ORDER: tuple[str, ...] = tuple(n for n in CHANNELS if n != "alpha")
+"""Canonical order of the chained methods (alpha is printed as the Layer argument)."""

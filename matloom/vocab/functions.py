@@ -1,0 +1,315 @@
+"""Every function of the language, declared once (reference-engine.md §1.6, §2)."""
+
+from __future__ import annotations
+
+import math
+
+from matloom.vocab.spec import Kind, ParamSpec, PrintStyle, Returns, FunctionSpec
+
+P = ParamSpec
+_FREQ_SEARCH = (0.1, 50.0)
+
+
+def _expr(name: str, doc: str) -> ParamSpec:
+    return P(name, Kind.EXPR, doc)
+
+
+def _freq(name: str, doc: str, default: float | None, positive: bool) -> ParamSpec:
+    return P(
+        name,
+        Kind.FLOAT,
+        doc,
+        default=default,
+        nullable=True,
+        lo=0.0 if positive else None,
+        lo_open=positive,
+        nonzero=not positive,
+        is_frequency=True,
+        search=_FREQ_SEARCH,
+        search_log=True,
+    )
+
+
+def _seed() -> ParamSpec:
+    return P(
+        "seed",
+        Kind.INT,
+        "noise seed (integer >= 0); omitted seeds are made explicit by canonicalisation",
+        default=None,
+        nullable=True,
+        lo=0,
+        is_seed=True,
+    )
+
+
+def _to01() -> ParamSpec:
+    return P("to_01", Kind.BOOL, "remap the output to [0, 1] instead of the raw range", False)
+
+
+_UNARY = {
+    "Abs": "absolute value |expr|",
+    "Sqrt": "square root (NaN for negative input)",
+    "Floor": "largest integer <= expr",
+    "Ceil": "smallest integer >= expr",
+    "Sin": "sine of expr in radians",
+    "Cos": "cosine of expr in radians",
+}
+
+_BINARY = {
+    "Add": ("+", ("left", "right"), "sum; prefer the `+` operator"),
+    "Sub": ("-", ("minuend", "subtrahend"), "difference; prefer the `-` operator"),
+    "Mul": ("*", ("left", "right"), "product; prefer the `*` operator"),
+    "Div": ("/", ("dividend", "divisor"), "quotient, 0 where the divisor is exactly 0"),
+    "Pow": ("**", ("base", "exponent"), "power (NaN for a negative base with fractional exponent)"),
+}
+
+
+def _math_specs() -> list[FunctionSpec]:
+    specs = [
+        FunctionSpec("X", "coord", "the x coordinate of the sample point", "X() * 4"),
+        FunctionSpec("Y", "coord", "the y coordinate of the sample point (+y is up)", "Y() * 4"),
+        FunctionSpec(
+            "Constant",
+            "coord",
+            "a uniform value (a bare number means the same)",
+            "Constant(0.5)",
+            (P("value", Kind.FLOAT, "the value", 0.0),),
+            print_style=PrintStyle.CONSTANT,
+        ),
+    ]
+    for name, doc in _UNARY.items():
+        specs.append(
+            FunctionSpec(name, "math", doc, f"{name}(X() - 0.5)", (_expr("expr", "input field"),))
+        )
+    specs.append(
+        FunctionSpec(
+            "Log",
+            "math",
+            "logarithm in the given base (natural by default); -inf at 0, NaN below 0",
+            "Log(X() + 1, 10)",
+            (_expr("expr", "input field"), P("base", Kind.FLOAT, "logarithm base", math.e, lo=0, lo_open=True)),
+        )
+    )
+    for name, doc in (("Min", "element-wise minimum (mask intersection)"),
+                      ("Max", "element-wise maximum (mask union)")):
+        specs.append(
+            FunctionSpec(
+                name, "math", doc, f"{name}(X(), Y())",
+                (_expr("expr1", "first field"), _expr("expr2", "second field")),
+            )
+        )
+    for name, (op, pnames, doc) in _BINARY.items():
+        specs.append(
+            FunctionSpec(
+                name, "math", doc, f"{name}(X(), 2)",
+                tuple(_expr(p, f"{p} operand") for p in pnames),
+                print_style=PrintStyle.OPERATOR, operator=op,
+            )
+        )
+    return specs
+
+
+def _noise_specs() -> list[FunctionSpec]:
+    fbm = FunctionSpec(
+        "fBm",
+        "noise",
+        "fractal Brownian motion of OpenSimplex noise: smooth organic variation in [-1, 1] "
+        "(or [0, 1] with to_01=True)",
+        "fBm(octaves=4, base_freq=3, to_01=True, seed=7)",
+        (
+            P("octaves", Kind.INT, "number of summed noise layers (detail)", 6, lo=1, search=(1, 8)),
+            P("lacunarity", Kind.FLOAT, "frequency multiplier per octave", 2.0, lo=0, lo_open=True,
+              search=(1.5, 3.0)),
+            P("gain", Kind.FLOAT, "amplitude multiplier per octave (roughness of the noise)", 0.5,
+              lo=0, lo_open=True, search=(0.2, 0.8)),
+            _freq("base_freq", "features per coordinate unit (negative mirrors)", 1.0, False),
+            _freq("base_freq_x", "per-axis frequency override along x", None, False),
+            _freq("base_freq_y", "per-axis frequency override along y", None, False),
+            _to01(),
+            _seed(),
+        ),
+        print_style=PrintStyle.WRITTEN_KEYWORDS,
+    )
+    worley = FunctionSpec(
+        "Worley",
+        "noise",
+        "cellular (Voronoi) noise: distance to the nearest feature points, one per unit cell",
+        'Worley(distance="euclidean", combination="F2-F1", base_freq=6, to_01=True, seed=3)',
+        (
+            P("distance", Kind.ENUM, "distance metric", "euclidean",
+              choices=("euclidean", "manhattan", "chebyshev")),
+            P("combination", Kind.ENUM, "F1 = nearest, F2 = second nearest; F2-F1 gives cell edges",
+              "F1", choices=("F1", "F2", "F2-F1", "F2+F1")),
+            _freq("base_freq", "cells per coordinate unit (negative mirrors)", 1.0, False),
+            _freq("base_freq_x", "per-axis frequency override along x", None, False),
+            _freq("base_freq_y", "per-axis frequency override along y", None, False),
+            _to01(),
+            _seed(),
+        ),
+        print_style=PrintStyle.WRITTEN_KEYWORDS,
+    )
+    return [fbm, worley]
+
+
+def _pattern_specs() -> list[FunctionSpec]:
+    feather = P("feather", Kind.FLOAT, "edge softening width (0 = hard edge)", 0.0, lo=0,
+                search=(0.0, 0.2))
+    bricks = FunctionSpec(
+        "Bricks",
+        "pattern",
+        "brick/tile mask: 1 on bricks, 0 in mortar; rows start at the origin",
+        "Bricks(brick_width=0.5, brick_height=0.25, mortar=0.02)",
+        (
+            P("brick_width", Kind.FLOAT, "brick size along x", 1.0, lo=0, lo_open=True, search=(0.05, 5)),
+            P("brick_height", Kind.FLOAT, "brick size along y", 0.5, lo=0, lo_open=True, search=(0.05, 5)),
+            P("offset", Kind.FLOAT, "shift of each successive row (column) in brick widths; 0 = stacked",
+              0.5, search=(0.0, 1.0)),
+            P("mortar", Kind.FLOAT, "gap width between bricks", 0.05, lo=0, search=(0.0, 1.0)),
+            P("axis", Kind.ENUM, "courses run along rows or columns", "row", choices=("row", "column")),
+            feather,
+        ),
+        print_style=PrintStyle.NONDEFAULT_KEYWORDS,
+    )
+    weave = FunctionSpec(
+        "Weave",
+        "pattern",
+        "woven thread mask: 1 on whichever thread is on top, 0 in the gaps",
+        "Weave(over=2, under=1, base_freq=16, warp_width=0.8, feather=0.1)",
+        (
+            P("over", Kind.INT, "cells the warp passes over", 1, lo=1, search=(1, 4)),
+            P("under", Kind.INT, "cells the warp passes under", 1, lo=1, search=(1, 4)),
+            P("shift", Kind.INT, "step of the draft per row (twill diagonal)", 1, search=(0, 3)),
+            _freq("base_freq", "thread cells per coordinate unit", 8.0, True),
+            _freq("base_freq_x", "per-axis cell frequency along x", None, True),
+            _freq("base_freq_y", "per-axis cell frequency along y", None, True),
+            P("warp_width", Kind.FLOAT, "thread width as a fraction of the cell", 0.5, lo=0,
+              lo_open=True, hi=1, search=(0.05, 1.0)),
+            feather,
+        ),
+        print_style=PrintStyle.NONDEFAULT_KEYWORDS,
+    )
+    threshold = FunctionSpec(
+        "Threshold",
+        "mask",
+        "clamp or binarise a field: values >= above_at become above_to, values <= below_at become "
+        "below_to, with an optional smooth ramp of transition_width inside the band",
+        "Threshold(fBm(to_01=True, seed=1), below_at=0.5, below_to=0, above_at=0.5, above_to=1)",
+        (
+            _expr("expr", "input field"),
+            P("below_at", Kind.FLOAT, "lower cutoff", None, nullable=True, search=(0.0, 1.0)),
+            P("below_to", Kind.FLOAT, "value below the lower cutoff (default: below_at)", None,
+              nullable=True, search=(0.0, 1.0)),
+            P("above_at", Kind.FLOAT, "upper cutoff", None, nullable=True, search=(0.0, 1.0)),
+            P("above_to", Kind.FLOAT, "value above the upper cutoff (default: above_at)", None,
+              nullable=True, search=(0.0, 1.0)),
+            P("transition_width", Kind.FLOAT, "width of the smooth ramp inside the band", 0.0, lo=0,
+              search=(0.0, 1.0)),
+        ),
+        print_style=PrintStyle.THRESHOLD,
+    )
+    return [bricks, weave, threshold]
+
+
+def _transform_specs() -> list[FunctionSpec]:
+    body = _expr("expr", "field to transform (noise included)")
+    return [
+        FunctionSpec(
+            "Translate", "transform", "move a field by (dx, dy)", "Translate(X(), 0.5, 0)",
+            (body, P("dx", Kind.FLOAT, "offset along x", 0.0, search=(-100, 100)),
+             P("dy", Kind.FLOAT, "offset along y", 0.0, search=(-100, 100))),
+        ),
+        FunctionSpec(
+            "Scale", "transform", "scale a field about the origin (negative mirrors)",
+            "Scale(Bricks(), 2, 1)",
+            (body, P("sx", Kind.FLOAT, "factor along x", 1.0, nonzero=True, search=(0.1, 10)),
+             P("sy", Kind.FLOAT, "factor along y", 1.0, nonzero=True, search=(0.1, 10))),
+        ),
+        FunctionSpec(
+            "Rotate", "transform", "rotate a field counter-clockwise about the origin",
+            "Rotate(Bricks(), 45)",
+            (body, P("degrees", Kind.FLOAT, "angle in degrees", 0.0, search=(-360, 360))),
+        ),
+    ]
+
+
+def _shape_specs() -> list[FunctionSpec]:
+    f = Kind.FLOAT
+    pos = {"lo": 0.0, "lo_open": True}
+    seg_x = P("x", f, "end point x")
+    seg_y = P("y", f, "end point y")
+    return [
+        FunctionSpec(
+            "Rect", "shape", "rectangle with optional rounded corners, (x, y) = bottom-left",
+            "Fill(Rect(0.1, 0.1, 0.8, 0.3, 0.05))",
+            (P("x", f, "left edge"), P("y", f, "bottom edge"),
+             P("width", f, "width", search=(0.01, 5), **pos),
+             P("height", f, "height", search=(0.01, 5), **pos),
+             P("radius", f, "corner radius (clamped to half the smaller side)", 0.0, lo=0)),
+            returns=Returns.SHAPE,
+        ),
+        FunctionSpec(
+            "Ellipse", "shape", "ellipse centred at (cx, cy) with radii rx, ry",
+            "Fill(Ellipse(0.5, 0.5, 0.3, 0.2))",
+            (P("cx", f, "centre x"), P("cy", f, "centre y"),
+             P("rx", f, "radius along x", search=(0.01, 5), **pos),
+             P("ry", f, "radius along y", search=(0.01, 5), **pos)),
+            returns=Returns.SHAPE,
+        ),
+        FunctionSpec(
+            "Path", "shape", "polyline/curve starting at (start_x, start_y); Fill closes it",
+            "Fill(Path(0, 0, LineTo(1, 0), LineTo(0.5, 1)))",
+            (P("start_x", f, "start point x"), P("start_y", f, "start point y")),
+            returns=Returns.SHAPE,
+            variadic=P("segments", Kind.SEGMENT, "LineTo/CubicTo segments"),
+            min_variadic=1,
+        ),
+        FunctionSpec(
+            "LineTo", "segment", "straight segment to (x, y); only inside Path",
+            "Path(0, 0, LineTo(1, 1))", (seg_x, seg_y), returns=Returns.SEGMENT,
+        ),
+        FunctionSpec(
+            "CubicTo", "segment", "cubic Bezier segment with controls c1, c2 to (x, y); only inside Path",
+            "Path(0, 0, CubicTo(0.3, 1, 0.7, 1, 1, 0))",
+            (P("c1x", f, "first control x"), P("c1y", f, "first control y"),
+             P("c2x", f, "second control x"), P("c2y", f, "second control y"), seg_x, seg_y),
+            returns=Returns.SEGMENT,
+        ),
+        FunctionSpec(
+            "Fill", "shape", "coverage of a shape's interior: 1 inside, 0 outside",
+            "Fill(Ellipse(0.5, 0.5, 0.3, 0.3), feather=0.01)",
+            (P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
+             P("mode", Kind.ENUM, "fill rule for self-intersecting paths", "NonZero",
+               choices=("NonZero", "EvenOdd")),
+             P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2))),
+            print_style=PrintStyle.SHAPE_OP,
+        ),
+        FunctionSpec(
+            "Stroke", "shape", "coverage of a band of the given width along a shape's outline",
+            "Stroke(Path(0, 0.5, LineTo(1, 0.5)), 0.02)",
+            (P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
+             P("width", f, "stroke width", search=(0.001, 10), **pos),
+             P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2))),
+            print_style=PrintStyle.SHAPE_OP,
+        ),
+    ]
+
+
+FUNCTIONS: dict[str, FunctionSpec] = {
+    spec.name: spec
+    for spec in (
+        *_math_specs(),
+        *_noise_specs(),
+        *_pattern_specs(),
+        *_transform_specs(),
+        *_shape_specs(),
+    )
+}
+"""Name -> spec for every callable of the language."""
+
+CONSTANTS: dict[str, float] = {"pi": math.pi, "e": math.e}
+"""Named numeric constants."""
+
+LITERALS: dict[str, bool | None] = {
+    "True": True, "true": True, "False": False, "false": False, "None": None, "null": None,
+}
+"""Literal words accepted where a bool or an omitted value is expected."""

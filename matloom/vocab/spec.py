@@ -1,0 +1,182 @@
+"""Typed specifications of the language vocabulary: functions, parameters and layer channels.
+
+Everything that needs to know the vocabulary (parser, checker, printer, evaluator, docs, LLM
+prompt text, parameter-search ranges) reads these specs; nothing writes the vocabulary twice.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from typing import Any
+
+
+class Kind(enum.Enum):
+    """What a parameter accepts."""
+
+    EXPR = "expr"  # a spatial field expression
+    FLOAT = "float"  # a static real number (an expression is evaluated once at (0, 0))
+    INT = "int"  # a static integer
+    BOOL = "bool"
+    ENUM = "enum"  # one of a fixed set of strings
+    SHAPE = "shape"  # an inline Rect/Ellipse/Path
+    SEGMENT = "segment"  # LineTo/CubicTo, only inside Path
+
+
+class Returns(enum.Enum):
+    """What a call produces."""
+
+    FIELD = "field"
+    SHAPE = "shape"
+    SEGMENT = "segment"
+
+
+class PrintStyle(enum.Enum):
+    """How the canonical printer writes a call (reference-engine.md §5.1)."""
+
+    OPERATOR = "operator"  # Add/Sub/Mul/Div/Pow -> infix
+    POSITIONAL = "positional"  # every parameter positionally (transforms, shapes, math)
+    WRITTEN_KEYWORDS = "written_keywords"  # fBm/Worley: keywords the author wrote, seed always
+    NONDEFAULT_KEYWORDS = "nondefault_keywords"  # Bricks/Weave: keywords whose value != default
+    THRESHOLD = "threshold"
+    SHAPE_OP = "shape_op"  # Fill/Stroke: required positionally, options as non-default keywords
+    CONSTANT = "constant"  # Constant(v) -> v
+
+
+REQUIRED: Any = object()
+"""Sentinel default of a parameter that must be given."""
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One parameter of a function."""
+
+    name: str
+    kind: Kind
+    doc: str
+    default: Any = REQUIRED
+    #: Inclusive/exclusive numeric bounds; ``None`` means unbounded on that side.
+    lo: float | None = None
+    lo_open: bool = False
+    hi: float | None = None
+    hi_open: bool = False
+    nonzero: bool = False
+    nullable: bool = False  # ``None`` is an accepted value
+    choices: tuple[str, ...] = ()
+    is_seed: bool = False
+    is_frequency: bool = False
+    #: Range used by parameter search, and whether to search it on a log scale.
+    search: tuple[float, float] | None = None
+    search_log: bool = False
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+    def constraint_text(self) -> str:
+        """Human-readable constraint, e.g. ``> 0``, ``in [0, 1]``, ``one of "row", "column"``."""
+        if self.choices:
+            return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+        parts: list[str] = []
+        if self.lo is not None and self.hi is not None:
+            lb = "(" if self.lo_open else "["
+            rb = ")" if self.hi_open else "]"
+            parts.append(f"in {lb}{_num(self.lo)}, {_num(self.hi)}{rb}")
+        elif self.lo is not None:
+            parts.append(f"{'>' if self.lo_open else '>='} {_num(self.lo)}")
+        elif self.hi is not None:
+            parts.append(f"{'<' if self.hi_open else '<='} {_num(self.hi)}")
+        if self.nonzero:
+            parts.append("non-zero")
+        return ", ".join(parts)
+
+    def check_value(self, value: float) -> str | None:
+        """Return a violation message for a static numeric value, or ``None`` if it is valid."""
+        if self.nonzero and value == 0:
+            return f"{self.name} must be non-zero, got {_num(value)}"
+        if self.lo is not None and (value < self.lo or (self.lo_open and value == self.lo)):
+            return f"{self.name} must be {self.constraint_text()}, got {_num(value)}"
+        if self.hi is not None and (value > self.hi or (self.hi_open and value == self.hi)):
+            return f"{self.name} must be {self.constraint_text()}, got {_num(value)}"
+        return None
+
+
+@dataclass(frozen=True)
+class FunctionSpec:
+    """One callable of the language."""
+
+    name: str
+    family: str  # coord, math, noise, pattern, shape, segment, transform, mask
+    doc: str
+    example: str
+    params: tuple[ParamSpec, ...] = ()
+    returns: Returns = Returns.FIELD
+    print_style: PrintStyle = PrintStyle.POSITIONAL
+    operator: str | None = None  # infix operator for PrintStyle.OPERATOR
+    #: Extra trailing positional arguments (Path segments).
+    variadic: ParamSpec | None = None
+    min_variadic: int = 0
+
+    def param(self, name: str) -> ParamSpec | None:
+        for p in self.params:
+            if p.name == name:
+                return p
+        return None
+
+    @property
+    def param_names(self) -> tuple[str, ...]:
+        return tuple(p.name for p in self.params)
+
+    @property
+    def is_noise(self) -> bool:
+        return any(p.is_seed for p in self.params)
+
+    def signature(self) -> str:
+        """Signature text for docs and prompts, e.g. ``Bricks(brick_width=1, ...)``."""
+        parts = []
+        for p in self.params:
+            if p.required:
+                parts.append(p.name)
+            else:
+                parts.append(f"{p.name}={format_default(p.default)}")
+        if self.variadic is not None:
+            parts.append(f"{self.variadic.name}...")
+        return f"{self.name}({', '.join(parts)})"
+
+
+@dataclass(frozen=True)
+class ChannelSpec:
+    """One layer method (channel) and how its values are clamped and defaulted."""
+
+    name: str
+    arg_names: tuple[str, ...]
+    defaults: tuple[float, ...]
+    units: str
+    doc: str
+    example: str
+    clamp_lo: float | None = 0.0
+    clamp_hi: float | None = 1.0
+    search: tuple[float, float] | None = None
+    #: Arguments on the 0..255 sRGB scale (colour channels).
+    colour_args: tuple[int, ...] = field(default_factory=tuple)
+
+    @property
+    def arity(self) -> int:
+        return len(self.arg_names)
+
+
+def _num(v: float) -> str:
+    if isinstance(v, float) and v.is_integer():
+        return str(int(v))
+    return repr(v)
+
+
+def format_default(v: Any) -> str:
+    """Text of a default value as it would be written in a program."""
+    if v is None:
+        return "None"
+    if isinstance(v, bool):
+        return "True" if v else "False"
+    if isinstance(v, str):
+        return f'"{v}"'
+    return _num(v)
