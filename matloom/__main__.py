@@ -1,0 +1,3 @@
+from matloom.cli.main import main
+
+main()

@@ -1,0 +1,135 @@
+"""`matloom check`, `matloom fmt`, `matloom seeds`."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from matloom.lang.api import analyse
+from matloom.lang.diagnostics import format_diagnostics
+
+
+def _read(path: str) -> str:
+    if path == "-":
+        return sys.stdin.read()
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except OSError as e:
+        raise click.ClickException(f"cannot read {path}: {e.strerror}") from None
+    except UnicodeDecodeError:
+        raise click.ClickException(f"{path} is not UTF-8 text") from None
+
+
+@click.command("check")
+@click.argument("files", nargs=-1, required=True)
+@click.option("--strict", is_flag=True, help="Exit 1 when there are warnings (and no errors).")
+@click.option("--json", "as_json", is_flag=True, help="Print diagnostics as JSON on stdout.")
+def check_cmd(files: tuple[str, ...], strict: bool, as_json: bool) -> None:
+    """Check program FILES. Exit 0 clean, 1 warnings only (with --strict), 2 errors."""
+    import json
+
+    worst = 0
+    report = []
+    for f in files:
+        _, diags = analyse(_read(f))
+        if diags:
+            click.echo(format_diagnostics(diags, f), err=True)
+        errors = sum(d.is_error for d in diags)
+        warnings = len(diags) - errors
+        report.append({"file": f, "errors": errors, "warnings": warnings,
+                       "diagnostics": [d.to_dict() for d in diags]})
+        if errors:
+            worst = 2
+        elif warnings and strict:
+            worst = max(worst, 1)
+    if as_json:
+        click.echo(json.dumps(report, indent=2))
+    total_e = sum(r["errors"] for r in report)
+    total_w = sum(r["warnings"] for r in report)
+    click.echo(f"{len(files)} file(s): {total_e} error(s), {total_w} warning(s)", err=True)
+    sys.exit(worst)
+
+
+@click.command("fmt")
+@click.argument("file")
+@click.option("--inline", is_flag=True, help="Replace Define references by their expressions.")
+@click.option("--check", "check_only", is_flag=True,
+              help="Exit 1 if FILE is not already canonical; print nothing.")
+@click.option("--write", is_flag=True, help="Rewrite FILE in place (atomically).")
+@click.option("--seed", type=int, default=None,
+              help="Make omitted noise seeds explicit, derived from this program seed.")
+def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | None) -> None:
+    """Print FILE in canonical form."""
+    from matloom.lang.inline import inline_defines
+    from matloom.lang.printer import format_program
+    from matloom.lang.seeds import canonicalize_seeds
+
+    text = _read(file)
+    program, diags = analyse(text)
+    if program is None or any(d.is_error for d in diags):
+        click.echo(format_diagnostics([d for d in diags if d.is_error], file), err=True)
+        sys.exit(2)
+    if seed is not None:
+        program = canonicalize_seeds(program, seed)
+    if inline:
+        program = inline_defines(program)
+    out = format_program(program)
+    if check_only:
+        sys.exit(0 if text.strip() == out else 1)
+    if write:
+        if file == "-":
+            raise click.UsageError("--write needs a file, not stdin")
+        _atomic_write(Path(file), out + "\n")
+        click.echo(f"formatted {file}", err=True)
+        return
+    click.echo(out)
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    import os
+    import tempfile
+
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+@click.command("seeds")
+@click.argument("file")
+@click.option("--variants", "-k", type=int, required=True, help="Number of seed variants K.")
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the variant RNG.")
+@click.option("--program-seed", type=int, default=0, show_default=True,
+              help="Program seed used to make omitted noise seeds explicit first.")
+@click.option("-o", "--out", "out_dir", type=click.Path(file_okay=False), default=None,
+              help="Write variant_0000.mat (the original) ... into this folder.")
+def seeds_cmd(file: str, variants: int, seed: int, program_seed: int, out_dir: str | None) -> None:
+    """Print (or write) the original program and K seed variants of FILE."""
+    from matloom.lang.printer import format_program
+    from matloom.lang.seeds import canonicalize_seeds, seed_variants
+
+    program, diags = analyse(_read(file))
+    if program is None or any(d.is_error for d in diags):
+        click.echo(format_diagnostics([d for d in diags if d.is_error], file), err=True)
+        sys.exit(2)
+    text = format_program(canonicalize_seeds(program, program_seed))
+    texts = seed_variants(text, variants, seed)
+    if len(texts) == 1:
+        click.echo("no noise seeds in this program: only the original is produced", err=True)
+    if out_dir:
+        d = Path(out_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        for i, t in enumerate(texts):
+            _atomic_write(d / f"variant_{i:04d}.mat", t + "\n")
+        click.echo(f"wrote {len(texts)} program(s) to {d}", err=True)
+        return
+    for i, t in enumerate(texts):
+        click.echo(f"# variant {i}" + (" (original)" if i == 0 else ""))
+        click.echo(t)
+        click.echo("")
