@@ -8,6 +8,7 @@ from matloom.vocab.spec import Kind, ParamSpec, PrintStyle, Returns, FunctionSpe
 
 P = ParamSpec
 _FREQ_SEARCH = (0.1, 50.0)
+_COORD_SEARCH = (0.0, 5.0)
 
 
 def _expr(name: str, doc: str) -> ParamSpec:
@@ -73,7 +74,7 @@ def _math_specs() -> list[FunctionSpec]:
             "coord",
             "a uniform value (a bare number means the same)",
             "Constant(0.5)",
-            (P("value", Kind.FLOAT, "the value", 0.0),),
+            (P("value", Kind.FLOAT, "the value", 0.0, search=(-10, 10)),),
             print_style=PrintStyle.CONSTANT,
         ),
     ]
@@ -87,7 +88,8 @@ def _math_specs() -> list[FunctionSpec]:
             "math",
             "logarithm in the given base (natural by default); -inf at 0, NaN below 0",
             "Log(X() + 1, 10)",
-            (_expr("expr", "input field"), P("base", Kind.FLOAT, "logarithm base", math.e, lo=0, lo_open=True)),
+            (_expr("expr", "input field"), P("base", Kind.FLOAT, "logarithm base", math.e, lo=0, lo_open=True,
+                                                     search=(1.1, 10))),
         )
     )
     for name, doc in (("Min", "element-wise minimum (mask intersection)"),
@@ -233,24 +235,29 @@ def _transform_specs() -> list[FunctionSpec]:
 
 
 def _shape_specs() -> list[FunctionSpec]:
+    def f_(name: str, doc: str, **kw: object) -> ParamSpec:
+        kw.setdefault("search", _COORD_SEARCH)
+        return P(name, Kind.FLOAT, doc, **kw)  # type: ignore[arg-type]
+
     f = Kind.FLOAT
     pos = {"lo": 0.0, "lo_open": True}
-    seg_x = P("x", f, "end point x")
-    seg_y = P("y", f, "end point y")
+    seg_x = f_("x", "end point x")
+    seg_y = f_("y", "end point y")
     return [
         FunctionSpec(
             "Rect", "shape", "rectangle with optional rounded corners, (x, y) = bottom-left",
             "Fill(Rect(0.1, 0.1, 0.8, 0.3, 0.05))",
-            (P("x", f, "left edge"), P("y", f, "bottom edge"),
+            (f_("x", "left edge"), f_("y", "bottom edge"),
              P("width", f, "width", search=(0.01, 5), **pos),
              P("height", f, "height", search=(0.01, 5), **pos),
-             P("radius", f, "corner radius (clamped to half the smaller side)", 0.0, lo=0)),
+             P("radius", f, "corner radius (clamped to half the smaller side)", 0.0, lo=0,
+               search=(0.0, 1.0))),
             returns=Returns.SHAPE,
         ),
         FunctionSpec(
             "Ellipse", "shape", "ellipse centred at (cx, cy) with radii rx, ry",
             "Fill(Ellipse(0.5, 0.5, 0.3, 0.2))",
-            (P("cx", f, "centre x"), P("cy", f, "centre y"),
+            (f_("cx", "centre x"), f_("cy", "centre y"),
              P("rx", f, "radius along x", search=(0.01, 5), **pos),
              P("ry", f, "radius along y", search=(0.01, 5), **pos)),
             returns=Returns.SHAPE,
@@ -258,7 +265,7 @@ def _shape_specs() -> list[FunctionSpec]:
         FunctionSpec(
             "Path", "shape", "polyline/curve starting at (start_x, start_y); Fill closes it",
             "Fill(Path(0, 0, LineTo(1, 0), LineTo(0.5, 1)))",
-            (P("start_x", f, "start point x"), P("start_y", f, "start point y")),
+            (f_("start_x", "start point x"), f_("start_y", "start point y")),
             returns=Returns.SHAPE,
             variadic=P("segments", Kind.SEGMENT, "LineTo/CubicTo segments"),
             min_variadic=1,
@@ -270,8 +277,8 @@ def _shape_specs() -> list[FunctionSpec]:
         FunctionSpec(
             "CubicTo", "segment", "cubic Bezier segment with controls c1, c2 to (x, y); only inside Path",
             "Path(0, 0, CubicTo(0.3, 1, 0.7, 1, 1, 0))",
-            (P("c1x", f, "first control x"), P("c1y", f, "first control y"),
-             P("c2x", f, "second control x"), P("c2y", f, "second control y"), seg_x, seg_y),
+            (f_("c1x", "first control x"), f_("c1y", "first control y"),
+             f_("c2x", "second control x"), f_("c2y", "second control y"), seg_x, seg_y),
             returns=Returns.SEGMENT,
         ),
         FunctionSpec(

@@ -7,6 +7,7 @@ prompt text, parameter-search ranges) reads these specs; nothing writes the voca
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -179,4 +180,6 @@ def format_default(v: Any) -> str:
         return "True" if v else "False"
     if isinstance(v, str):
         return f'"{v}"'
+    if v == math.e:
+        return "e"
     return _num(v)

@@ -1,0 +1,76 @@
+"""Render the language reference (docs/language.md) from the registry."""
+
+from __future__ import annotations
+
+from matloom.vocab import CHANNELS, FUNCTIONS
+from matloom.vocab.spec import Kind, format_default
+
+_FAMILIES = (
+    ("coord", "Coordinates and constants"),
+    ("math", "Math"),
+    ("noise", "Noise"),
+    ("pattern", "Patterns"),
+    ("mask", "Masks"),
+    ("transform", "Transforms"),
+    ("shape", "Shapes, Fill and Stroke"),
+    ("segment", "Path segments"),
+)
+
+
+def _param_line(p) -> str:  # noqa: ANN001
+    kind = p.kind.value
+    if p.choices:
+        kind = "enum"
+    default = "required" if p.required else f"default `{format_default(p.default)}`"
+    cons = p.constraint_text()
+    extra = f"; {cons}" if cons else ""
+    seed = " (noise seed)" if p.is_seed else ""
+    return f"  - `{p.name}` ({kind}, {default}{extra}){seed}: {p.doc}"
+
+
+def render_language_reference() -> str:
+    """Markdown reference of every channel and function, straight from the registry."""
+    out = [
+        "# MatLoom language reference",
+        "",
+        "_Generated from the vocabulary registry (`matloom/vocab`) by "
+        "`python -m matloom.vocab.docs > docs/language.md`; a test keeps it in sync._",
+        "",
+        "A program is an optional `View(x1, y1, x2, y2)`, then `Define(name, expr)` lines, then "
+        "one `Material(Layer(...), ...)` with layers listed bottom first. `#` starts a comment.",
+        "",
+        "## Layer channels",
+        "",
+        "| method | arguments | default | range / units | meaning |",
+        "|---|---|---|---|---|",
+    ]
+    for c in CHANNELS.values():
+        args = ", ".join(c.arg_names)
+        default = ", ".join(format_default(v) for v in c.defaults)
+        out.append(f"| `.{c.name}` | {args} | {default} | {c.units} | {c.doc} |")
+    out += ["", "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
+            "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.", ""]
+    for family, title in _FAMILIES:
+        specs = [f for f in FUNCTIONS.values() if f.family == family]
+        if not specs:
+            continue
+        out += [f"## {title}", ""]
+        for f in specs:
+            out.append(f"### `{f.signature()}`")
+            out.append("")
+            out.append(f.doc + ".")
+            out.append("")
+            for p in f.params:
+                if p.kind is Kind.EXPR and p.name == "expr":
+                    out.append(f"  - `{p.name}` (field): {p.doc}")
+                else:
+                    out.append(_param_line(p))
+            if f.variadic is not None:
+                out.append(f"  - `{f.variadic.name}...` (at least {f.min_variadic}): "
+                           f"{f.variadic.doc}")
+            out += ["", f"Example: `{f.example}`", ""]
+    return "\n".join(out).rstrip() + "\n"
+
+
+if __name__ == "__main__":
+    print(render_language_reference(), end="")
