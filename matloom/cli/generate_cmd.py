@@ -1,0 +1,331 @@
+"""`matloom generate`, `matloom prompt`, `matloom scorer`: the LLM authoring pipeline's CLI.
+
+stdout carries only the result (the program, or JSON with ``--json``); progress, notices and
+errors go to stderr, and errors never show a traceback.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+from click.core import ParameterSource
+
+from matloom.author.config import AuthorConfig, ConfigError, ModelSettings
+
+#: Flags that map 1:1 onto AuthorConfig fields.
+_CONFIG_FLAGS: dict[str, str] = {
+    "rounds": "rounds", "variants": "variants", "scorer": "scorer",
+    "scorer_weights": "scorer_weights", "critic_signals": "critic_signals", "seed": "seed",
+    "repair_turns": "repair_turns", "sweep_jobs": "sweep_jobs", "critique_size": "critique_size",
+    "select_size": "select_size", "sweep_size": "sweep_size", "export_size": "export_size",
+    "stats_grid": "stats_grid", "playbook": "playbook", "few_shot": "few_shot",
+}
+#: Flags that override generator model settings.
+_MODEL_FLAGS: dict[str, str] = {
+    "model": "model", "base_url": "base_url", "temperature": "temperature",
+    "reasoning_effort": "reasoning_effort", "timeout": "timeout_s", "max_retries": "max_retries",
+    "images": "images", "retry_backoff": "backoff_s",
+}
+
+
+def _explicit(ctx: click.Context) -> set[str]:
+    """Names of the options the user actually gave on the command line."""
+    return {
+        name for name in ctx.params
+        if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)
+    }
+
+
+def _generator_settings(params: dict[str, Any], given: set[str],
+                        base: ModelSettings | None) -> ModelSettings | None:
+    from matloom.author.config import load_config_file, resolve_profile, with_overrides
+
+    data = load_config_file(params["config_file"])
+    if "profile" in given or (base is None and "model" not in given):
+        base = resolve_profile(data, params["profile"]) or base
+    updates = {_MODEL_FLAGS[k]: params[k] for k in _MODEL_FLAGS if k in given}
+    if params.get("extra_body"):
+        updates["extra_body"] = json.loads(params["extra_body"])
+    return with_overrides(base, **updates)
+
+
+def _critic_settings(params: dict[str, Any], given: set[str], generator: ModelSettings | None,
+                     base: ModelSettings | None) -> ModelSettings | None:
+    from matloom.author.config import load_config_file, resolve_profile, with_overrides
+
+    if "critic_profile" in given:
+        base = resolve_profile(load_config_file(params["config_file"]), params["critic_profile"])
+    if "critic_model" in given and generator is not None and base is None:
+        base = generator.model_copy(update={"images": None})
+    updates: dict[str, Any] = {}
+    if "critic_model" in given:
+        updates["model"] = params["critic_model"]
+    if "critic_base_url" in given:
+        updates["base_url"] = params["critic_base_url"]
+    if "critic_images" in given:
+        updates["images"] = params["critic_images"]
+    return with_overrides(base, **updates)
+
+
+def build_config(params: dict[str, Any], given: set[str],
+                 base: AuthorConfig | None = None) -> AuthorConfig:
+    """The frozen config from flags: explicit flags override ``base`` (a resumed run's
+    settings) or the defaults; model access comes from the profile and model flags."""
+    fresh = base is None
+    base = base or AuthorConfig()
+    update: dict[str, Any] = {
+        field: params[flag] for flag, field in _CONFIG_FLAGS.items() if fresh or flag in given
+    }
+    generator = _generator_settings(params, given, base.generator)
+    critic = _critic_settings(params, given, generator, base.critic)
+    data = {**base.model_dump(), **update, "generator": generator, "critic": critic}
+    return AuthorConfig.model_validate(data)
+
+
+def _model_options(f: Any) -> Any:
+    options = [
+        click.option("--profile", help="Model profile from matloom.toml."),
+        click.option("--config", "config_file", type=click.Path(dir_okay=False),
+                     help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
+                          "~/.config/matloom/matloom.toml)."),
+        click.option("--model", help="Generator model id (OpenAI-compatible)."),
+        click.option("--base-url", help="Chat Completions endpoint, e.g. http://localhost:8000/v1."),
+        click.option("--temperature", type=float),
+        click.option("--reasoning-effort"),
+        click.option("--extra-body", help="JSON object merged into each request body."),
+        click.option("--timeout", type=float, help="Seconds per model request."),
+        click.option("--max-retries", type=int, help="Retries on 429/5xx/timeouts."),
+        click.option("--retry-backoff", type=float,
+                     help="First retry delay in seconds (grows 1.5x per retry)."),
+        click.option("--images/--no-images", default=None,
+                     help="Whether the generator model accepts images (default: guessed)."),
+        click.option("--critic-model", help="Critic model (default: the generator's)."),
+        click.option("--critic-profile", help="Critic model profile from matloom.toml."),
+        click.option("--critic-base-url"),
+        click.option("--critic-images/--no-critic-images", default=None,
+                     help="Whether the critic accepts images; text-only critics get no render."),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+def _pipeline_options(f: Any) -> Any:
+    d = AuthorConfig()
+    options = [
+        click.option("--rounds", type=int, default=d.rounds, show_default=True),
+        click.option("--variants", type=int, default=d.variants, show_default=True,
+                     help="Seed variants per candidate in the seed search."),
+        click.option("--scorer", default=d.scorer, show_default=True,
+                     help="auto, none, mobileclip2, open_clip:MODEL:WEIGHTS, test-colour, ..."),
+        click.option("--scorer-weights", help="Local MobileCLIP2-S2 weights file."),
+        click.option("--critic-signals", default=",".join(d.critic_signals), show_default=True),
+        click.option("--seed", type=int, default=d.seed, show_default=True),
+        click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),
+        click.option("--sweep-jobs", type=int, default=d.sweep_jobs, show_default=True,
+                     help="Render processes per sweep (0 = all cores)."),
+        click.option("--critique-size", type=int, default=d.critique_size, show_default=True),
+        click.option("--select-size", type=int, default=d.select_size, show_default=True),
+        click.option("--sweep-size", type=int, default=d.sweep_size, show_default=True),
+        click.option("--export-size", type=int, default=d.export_size, show_default=True),
+        click.option("--stats-grid", type=int, default=d.stats_grid, show_default=True),
+        click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
+        click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+class ProgressView:
+    """Live progress on stderr: a rich status line on a terminal, plain lines otherwise."""
+
+    def __init__(self, enabled: bool = True) -> None:
+        from rich.console import Console
+
+        self.enabled = enabled
+        self.console = Console(stderr=True)
+        self._status: Any = None
+        self._last: str | None = None
+
+    def __enter__(self) -> ProgressView:
+        if self.enabled and self.console.is_terminal:
+            self._status = self.console.status("starting")
+            self._status.__enter__()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._status is not None:
+            self._status.__exit__(*exc)
+            self._status = None
+
+    def update(self, event: Any) -> None:
+        """Show one :class:`~matloom.author.pipeline.ProgressEvent`."""
+        if not self.enabled:
+            return
+        text = f"[{event.run}] {event.stage}: {event.message}"
+        if event.total:
+            text += f" {event.done}/{event.total}"
+        if event.eta_s is not None:
+            text += f" ETA {event.eta_s:.0f}s"
+        if self._status is not None:
+            self._status.update(text)
+        elif event.done is None or event.done == event.total:
+            line = f"[{event.run}] {event.stage}: {event.message}"
+            if line != self._last:
+                self.console.print(line, markup=False, highlight=False)
+                self._last = line
+
+    def batch_done(self, outcome: Any) -> None:
+        if self.enabled:
+            state = "done" if outcome.result else f"failed: {outcome.error}"
+            self.console.print(f"[{outcome.item.id}] {state}", markup=False, highlight=False)
+
+
+@click.command("generate")
+@click.argument("prompt", required=False)
+@click.option("-o", "--out", "out_dir", required=True, type=click.Path(file_okay=False),
+              help="Run folder (with --prompts: the parent of one folder per prompt).")
+@click.option("--prompts", "prompts_file", type=click.Path(exists=True, dir_okay=False),
+              help="JSON file of prompts to author as a batch.")
+@click.option("--jobs", type=int, default=1, show_default=True, help="Prompts authored at once.")
+@click.option("--resume", is_flag=True, help="Continue an interrupted run (or batch).")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--quiet", is_flag=True, help="No progress display.")
+@_model_options
+@_pipeline_options
+@click.pass_context
+def generate_cmd(ctx: click.Context, prompt: str | None, out_dir: str, prompts_file: str | None,
+                 jobs: int, resume: bool, as_json: bool, quiet: bool, **_: Any) -> None:
+    """Author a material program for PROMPT (text -> program -> critique -> selection -> seeds).
+
+    With no model configured (no --model, --profile or default profile) the built-in offline
+    author is used.
+    """
+    given = _explicit(ctx)
+    try:
+        base = _resumed_settings(out_dir) if resume and not prompts_file else None
+        config = build_config(ctx.params, given, base)
+    except (ConfigError, ValueError) as err:
+        raise click.ClickException(str(err)) from None
+    if prompt is None and prompts_file is None and base is None:
+        raise click.UsageError("give a PROMPT, --prompts FILE, or --resume an existing run")
+    if config.generator is None:
+        click.echo("matloom: no model configured (--model/--profile); using the built-in "
+                   "offline author", err=True)
+    view = ProgressView(enabled=not quiet)
+    if prompts_file:
+        _run_batch(prompts_file, out_dir, config, jobs, resume, as_json, view)
+    else:
+        _run_single(prompt, out_dir, config, resume, as_json, view)
+
+
+def _resumed_settings(out_dir: str) -> AuthorConfig | None:
+    from matloom.author.records import RECORD_NAME, RecordStore
+
+    if not (Path(out_dir) / RECORD_NAME).exists():
+        return None
+    return RecordStore.load(out_dir).record.settings
+
+
+def _run_single(prompt: str | None, out_dir: str, config: AuthorConfig, resume: bool,
+                as_json: bool, view: ProgressView) -> None:
+    from matloom.author.pipeline import AuthoringError, author_material
+
+    try:
+        with view:
+            result = author_material(prompt, out_dir, config, resume=resume, progress=view.update)
+    except AuthoringError as err:
+        raise click.ClickException(
+            f"{err}\n(the record is kept in {Path(err.folder) / 'record.json'}; "
+            "fix the cause and rerun with --resume)") from None
+    if as_json:
+        click.echo(json.dumps(result.summary(), indent=2))
+    else:
+        click.echo(result.program)
+    _say_scorer_note(result.record)
+
+
+def _say_scorer_note(record: Any) -> None:
+    search = record.seed_search
+    if search is not None and search.skipped:
+        click.echo(f"matloom: seed search skipped: {search.skipped}", err=True)
+
+
+def _run_batch(prompts_file: str, out_dir: str, config: AuthorConfig, jobs: int, resume: bool,
+               as_json: bool, view: ProgressView) -> None:
+    from matloom.author.batch import author_batch, read_prompts
+
+    try:
+        items = read_prompts(prompts_file)
+    except (OSError, ValueError) as err:
+        raise click.ClickException(str(err)) from None
+    with view:
+        outcomes = author_batch(items, out_dir, config, jobs=jobs, resume=resume,
+                                progress=view.update, on_done=view.batch_done)
+    rows = [{"id": o.item.id, "prompt": o.item.text, "folder": str(o.folder),
+             "status": "finished" if o.result else "failed", "error": o.error}
+            for o in outcomes]
+    if as_json:
+        click.echo(json.dumps(rows, indent=2))
+    else:
+        for row in rows:
+            click.echo(f"{row['id']}\t{row['status']}\t{row['folder']}")
+    failed = sum(o.result is None for o in outcomes)
+    if failed:
+        click.echo(f"matloom: {failed} of {len(outcomes)} prompt(s) failed", err=True)
+        sys.exit(1)
+
+
+@click.command("prompt")
+@click.option("--print", "do_print", is_flag=True, default=True, help="Print the system prompt.")
+@click.option("--playbook/--no-playbook", default=True, show_default=True)
+@click.option("--few-shot/--no-few-shot", default=True, show_default=True)
+@click.option("--critic", "critic_signals", default=None,
+              help="Print the critic system prompt for these signals instead (e.g. render,code).")
+def prompt_cmd(do_print: bool, playbook: bool, few_shot: bool, critic_signals: str | None) -> None:
+    """Print the generator system prompt (rendered from the vocabulary registry)."""
+    if critic_signals is not None:
+        from matloom.author.prompts.critic import critic_system_prompt
+
+        signals = [s.strip() for s in critic_signals.split(",") if s.strip()]
+        click.echo(critic_system_prompt(signals), nl=False)
+        return
+    from matloom.author.prompts.system import system_prompt
+
+    click.echo(system_prompt(playbook=playbook, few_shot=few_shot), nl=False)
+
+
+@click.group("scorer")
+def scorer_cmd() -> None:
+    """Text-image scorers used for selection and seed search."""
+
+
+@scorer_cmd.command("list")
+def scorer_list() -> None:
+    """List registered scorer names."""
+    from matloom.author.scorers.base import scorer_names
+
+    for name in scorer_names():
+        click.echo(name)
+
+
+@scorer_cmd.command("check")
+@click.argument("name", default="mobileclip2")
+@click.option("--text", default="red brick wall", show_default=True)
+def scorer_check(name: str, text: str) -> None:
+    """Load scorer NAME and score a grey test image (tells whether weights are available)."""
+    import numpy as np
+
+    from matloom.author.scorers.base import ScorerUnavailableError, get_scorer
+
+    try:
+        scorer = get_scorer(name)
+    except ScorerUnavailableError as err:
+        raise click.ClickException(str(err)) from None
+    image = np.full((256, 256, 3), 128, dtype=np.uint8)
+    click.echo(f"{scorer.name}\t{float(scorer.score([image], text)[0]):.3f}")

@@ -1,0 +1,131 @@
+"""`matloom preview`, `matloom stats`, `matloom sweep`."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import click
+
+from matloom.cli.engine_cmds import load_program, resolve_size, size_options
+
+
+def _parse_light(value: str | None):  # noqa: ANN202
+    from matloom.render.preview import Light
+
+    if value is None:
+        return None
+    try:
+        az, el = (float(v) for v in value.split(","))
+    except ValueError:
+        raise click.BadParameter("expected AZIMUTH,ELEVATION in degrees, e.g. 45,55") from None
+    return Light(az, el)
+
+
+def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
+    from matloom.io.atomic import atomic_write_bytes
+    from matloom.io.png import encode_png8
+
+    atomic_write_bytes(Path(path), encode_png8(img))
+
+
+@click.command("preview")
+@click.argument("file")
+@click.option("-o", "--out", "out", required=True, type=click.Path(dir_okay=False),
+              help="Output PNG path.")
+@size_options
+@click.option("--light", default=None, help="Light AZIMUTH,ELEVATION in degrees (default: reference).")
+@click.option("--tile", type=int, default=1, show_default=True, help="Tile the swatch N x N to show seams.")
+@click.option("--backend", default="auto", show_default=True)
+def preview_cmd(file: str, out: str, size: int | None, width: int | None, height: int | None,
+                light: str | None, tile: int, backend: str) -> None:
+    """Render the quick head-on shaded preview of FILE to a PNG."""
+    from matloom.render.api import preview
+
+    w, h = resolve_size(size, width, height, 512)
+    if tile < 1 or tile > 8:
+        raise click.BadParameter("--tile must be between 1 and 8")
+    program, _ = load_program(file)
+    img = preview(program, width=w, height=h, light=_parse_light(light), tile=tile, backend=backend)
+    _save_png(out, img)
+    click.echo(str(Path(out).resolve()))
+
+
+@click.command("stats")
+@click.argument("file")
+@click.option("--json", "as_json", is_flag=True, help="Machine-readable output.")
+@click.option("--grid", type=int, default=128, show_default=True, help="Evaluation grid size.")
+def stats_cmd(file: str, as_json: bool, grid: int) -> None:
+    """Print the 28 material statistics of FILE (the critic's objective scalars)."""
+    from matloom.render.api import stats
+    from matloom.render.stats import STAT_DEFINITIONS, format_stats
+
+    program, _ = load_program(file)
+    values = stats(program, grid)
+    if as_json:
+        click.echo(json.dumps({k: {"value": v, "definition": STAT_DEFINITIONS[k]}
+                               for k, v in values.items()}, indent=2))
+    else:
+        click.echo(format_stats(values))
+
+
+@click.command("sweep")
+@click.argument("file")
+@click.option("--variants", "-k", type=int, required=True, help="Number of seed variants K.")
+@click.option("--size", type=int, default=256, show_default=True)
+@click.option("--scorer", default=None, help="Registered text-image scorer name.")
+@click.option("--prompt", default=None, help="Text the scorer compares against.")
+@click.option("--seed", type=int, default=0, show_default=True, help="Variant RNG seed.")
+@click.option("--jobs", type=int, default=0, show_default=True, help="Worker processes (0 = all cores).")
+@click.option("-o", "--out", "out_dir", type=click.Path(file_okay=False), default=None,
+              help="Write best.mat, report.json and previews here.")
+@click.option("--sheet", type=click.Path(dir_okay=False), default=None,
+              help="Contact sheet PNG of the top candidates.")
+@click.option("--top", type=int, default=8, show_default=True, help="Candidates on the sheet.")
+@click.option("--json", "as_json", is_flag=True)
+def sweep_cmd(file: str, variants: int, size: int, scorer: str | None, prompt: str | None,
+              seed: int, jobs: int, out_dir: str | None, sheet: str | None, top: int,
+              as_json: bool) -> None:
+    """Render the original and K seed variants of FILE; with a scorer, keep the best."""
+    from matloom.cli.progress import LazyProgress
+    from matloom.lang.printer import format_program
+    from matloom.render.sweep import run_sweep
+
+    if scorer and not prompt:
+        raise click.UsageError("--scorer needs --prompt")
+    program, _ = load_program(file)
+    text = format_program(program)
+    with LazyProgress("sweep") as bar:
+        res = run_sweep(text, variants=variants, size=size, scorer=scorer, prompt=prompt,
+                        seed=seed, jobs=jobs, keep=top, progress=bar)
+    if res.message:
+        click.echo(res.message, err=True)
+    report = {
+        "candidates": res.n_candidates, "seconds": round(res.seconds, 3),
+        "candidates_per_second": round(res.rate, 1), "best_index": res.best_index,
+        "best_score": res.candidates[res.best_index].score, "scorer": scorer, "seed": seed,
+        "size": size, "scores": [c.score for c in res.candidates] if scorer else None,
+    }
+    if out_dir:
+        from matloom.io.atomic import atomic_write_bytes
+
+        d = Path(out_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        atomic_write_bytes(d / "best.mat", (res.best_program + "\n").encode())
+        atomic_write_bytes(d / "report.json", json.dumps(report, indent=2).encode())
+        for idx, img in res.top_images:
+            _save_png(d / f"candidate_{idx:04d}.png", img)
+    if sheet:
+        from matloom.render.sheet import contact_sheet
+
+        labels = [f"#{i}" + (f" {res.candidates[i].score:.1f}" if res.candidates[i].score is not None
+                             else "") for i, _ in res.top_images]
+        _save_png(sheet, contact_sheet([im for _, im in res.top_images], labels))
+    click.echo(f"{res.n_candidates} candidates in {res.seconds:.2f} s "
+               f"({res.rate:.0f}/s); best #{res.best_index}", err=True)
+    if as_json:
+        click.echo(json.dumps(report, indent=2))
+    else:
+        click.echo(res.best_program)
+    sys.stdout.flush()

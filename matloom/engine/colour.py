@@ -1,0 +1,54 @@
+"""sRGB transfer functions with the reference's exact piecewise formulas.
+
+The authored colour channels are sRGB on a 0..255 scale; compositing happens in linear light
+and export converts back to sRGB. Both directions use the IEC 61966-2-1 piecewise curve with the
+thresholds the reference uses (0.04045 decoding, 0.0031308 encoding).
+
+The computation dtype follows the input: the reference decodes authored colours in float64
+(its expression grids are float64) and encodes the blended float32 colour in float32, and the
+callers pass arrays of those dtypes. NaN passes through both functions unchanged.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+#: Encoded values at or below this are on the linear segment of the sRGB decode curve.
+SRGB_DECODE_THRESHOLD = 0.04045
+#: Linear values at or below this are on the linear segment of the sRGB encode curve.
+SRGB_ENCODE_THRESHOLD = 0.0031308
+
+
+def _float_array(values: ArrayLike) -> np.ndarray:
+    """Return ``values`` as a floating array, keeping float32/float64 and promoting the rest."""
+    array = np.asarray(values)
+    if array.dtype not in (np.float32, np.float64):
+        array = array.astype(np.float64)
+    return array
+
+
+def srgb_to_linear(values: ArrayLike) -> np.ndarray:
+    """Decode sRGB values in [0, 1] to linear light: v/12.92 or ((v + 0.055)/1.055)^2.4.
+
+    Computed element-wise in the input's float dtype (float64 for non-float input). NaN stays
+    NaN (it takes the power branch). Returns a new array (0-d for a scalar input).
+    """
+    encoded = _float_array(values)
+    with np.errstate(invalid="ignore"):
+        linear = np.asarray(np.power((encoded + 0.055) / 1.055, 2.4))
+    np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
+    return linear
+
+
+def linear_to_srgb(values: ArrayLike) -> np.ndarray:
+    """Encode linear values to sRGB: 12.92 v or 1.055 v^(1/2.4) - 0.055.
+
+    Computed element-wise in the input's float dtype (float64 for non-float input); values are
+    not clipped here (the PNG quantiser clips). NaN stays NaN.
+    """
+    linear = _float_array(values)
+    with np.errstate(invalid="ignore"):  # negative inputs: NaN in the discarded branch
+        encoded = np.asarray(1.055 * np.power(linear, 1 / 2.4) - 0.055)
+    np.copyto(encoded, linear * 12.92, where=linear <= SRGB_ENCODE_THRESHOLD)
+    return encoded

@@ -1,0 +1,341 @@
+"""Write a material's maps to a folder, with the reference's file names and encodings.
+
+The 13 maps (in this order, see :data:`MAP_NAMES`) and their files:
+
+* ``basecolor.png``: 8-bit RGBA; RGB = linear -> sRGB of ``basecolor_linear``, A = coverage;
+* ``metallic``, ``roughness``, ``sheen``, ``coat``, ``transmission``, ``subsurface``,
+  ``anisotropy``, ``ao`` ``.png``: 8-bit grey;
+* ``normal.png``: 8-bit RGB, n * 0.5 + 0.5, OpenGL convention (+Y up);
+* ``ior.exr``, ``height.exr`` (one float32 channel) and ``emissive.exr`` (float32 linear RGB,
+  unclipped).
+
+With ``float_format="png16"`` the height is also written as ``height16.png`` (16-bit grey,
+normalised to its finite min/max, which ``material.json`` records). A ``material.json``
+manifest describes every file. The folder is built in a temporary sibling and renamed into
+place only when everything was written (:func:`matloom.io.atomic.atomic_directory`), so a
+failing export never leaves a complete-looking folder and never damages a previous one.
+
+Non-finite values never crash the export: in 8-bit maps NaN becomes 0 and +-inf clips, EXR
+keeps them, and the counts per map are returned and recorded.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from matloom.engine.colour import linear_to_srgb
+from matloom.engine.maps import MaterialMaps
+from matloom.io import exr as exr_io
+from matloom.io import png as png_io
+from matloom.io.atomic import atomic_directory, atomic_write_bytes
+
+#: Values accepted by ``export_maps(float_format=...)``.
+FLOAT_FORMATS: tuple[str, ...] = ("exr", "png16")
+#: Name of the manifest written into every export folder.
+MANIFEST_NAME = "material.json"
+#: File written next to ``height.exr`` when ``float_format="png16"``.
+HEIGHT_PNG16_NAME = "height16.png"
+#: Format identifier and version of ``material.json``.
+MANIFEST_FORMAT = ("matloom-material", 1)
+
+
+@dataclass(frozen=True)
+class MapSpec:
+    """How one exported map is encoded and which MaterialMaps arrays it is made from."""
+
+    name: str
+    file_name: str
+    encoding: str
+    colour_space: str
+    sources: tuple[str, ...]
+    meaning: str
+
+    def describe(self) -> dict[str, Any]:
+        """The manifest fields that do not depend on the data."""
+        return {
+            "file": self.file_name,
+            "encoding": self.encoding,
+            "colour_space": self.colour_space,
+            "meaning": self.meaning,
+        }
+
+
+def _grey(name: str, meaning: str) -> MapSpec:
+    return MapSpec(name, f"{name}.png", "png8-grey", "linear (non-color)", (name,), meaning)
+
+
+#: Every exported map, in the reference's order.
+MAP_SPECS: tuple[MapSpec, ...] = (
+    MapSpec(
+        "basecolor",
+        "basecolor.png",
+        "png8-rgba",
+        "sRGB (RGB); alpha is linear coverage",
+        ("basecolor_linear", "alpha"),
+        "base colour (value_range: the linear colour before encoding); A = total coverage",
+    ),
+    _grey("metallic", "metalness 0..1"),
+    _grey("roughness", "roughness 0..1"),
+    _grey("sheen", "sheen weight 0..1"),
+    _grey("coat", "clear-coat weight 0..1"),
+    _grey("transmission", "transmission weight 0..1"),
+    _grey("subsurface", "subsurface weight 0..1"),
+    _grey("anisotropy", "anisotropy magnitude 0..1 (direction: tangent/X)"),
+    MapSpec("ior", "ior.exr", "exr-float32", "linear (non-color)", ("ior",), "index of refraction"),
+    MapSpec(
+        "emissive",
+        "emissive.exr",
+        "exr-float32",
+        "linear RGB (scene-referred, unclipped)",
+        ("emissive_linear",),
+        "emitted radiance = linear colour x strength",
+    ),
+    MapSpec(
+        "height",
+        "height.exr",
+        "exr-float32",
+        "linear (non-color)",
+        ("height",),
+        "height in coordinate units (may be negative)",
+    ),
+    MapSpec(
+        "normal",
+        "normal.png",
+        "png8-rgb",
+        "linear (non-color)",
+        ("normal",),
+        "tangent-space normal, OpenGL convention (+Y up), encoded n * 0.5 + 0.5",
+    ),
+    _grey("ao", "ambient occlusion, 1 = unoccluded"),
+)
+#: Names accepted by ``maps_subset`` (and the CLI's ``--maps``), in export order.
+MAP_NAMES: tuple[str, ...] = tuple(spec.name for spec in MAP_SPECS)
+
+
+def select_maps(names: Sequence[str] | None) -> tuple[MapSpec, ...]:
+    """The specs for ``names`` in export order (all when None); unknown names raise ValueError."""
+    if names is None:
+        return MAP_SPECS
+    if isinstance(names, str):
+        raise TypeError("maps_subset must be a sequence of map names, not a string")
+    unknown = sorted(set(names) - set(MAP_NAMES))
+    if unknown:
+        raise ValueError(f"unknown map name(s) {unknown}; valid names: {', '.join(MAP_NAMES)}")
+    wanted = set(names)
+    return tuple(spec for spec in MAP_SPECS if spec.name in wanted)
+
+
+@dataclass
+class ExportResult:
+    """What :func:`export_maps` wrote.
+
+    ``files`` maps each written map name (plus ``"height16"`` and ``"manifest"``) to its final
+    path; ``nonfinite_counts`` holds, per map name, how many source values were NaN or +-inf
+    (only maps with at least one).
+    """
+
+    out_dir: Path
+    files: dict[str, Path]
+    manifest: dict[str, Any]
+    nonfinite_counts: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def manifest_path(self) -> Path:
+        return self.out_dir / MANIFEST_NAME
+
+
+def _default_engine_version() -> str:
+    """The installed matloom version, or the package's ``__version__``, or "unknown"."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("matloom")
+    except metadata.PackageNotFoundError:
+        import matloom
+
+        return str(getattr(matloom, "__version__", "unknown"))
+
+
+# --------------------------------------------------------------------------------------------
+# Per-map statistics
+
+
+def _finite_range(values: np.ndarray) -> dict[str, float] | None:
+    """Finite min/max of ``values`` (None when no value is finite)."""
+    finite = np.isfinite(values)
+    if not finite.any():
+        return None
+    low = np.min(values, where=finite, initial=np.inf)
+    high = np.max(values, where=finite, initial=-np.inf)
+    return {"min": float(low), "max": float(high)}
+
+
+def _nonfinite(values: np.ndarray) -> int:
+    return int(values.size - np.count_nonzero(np.isfinite(values)))
+
+
+def _map_stats(maps: MaterialMaps, spec: MapSpec) -> dict[str, Any]:
+    """Value ranges and non-finite counts of the arrays a map is made from."""
+    sources = {name: np.asarray(getattr(maps, name)) for name in spec.sources}
+    primary = sources[spec.sources[0]]
+    stats: dict[str, Any] = {
+        "value_range": _finite_range(primary),
+        "nonfinite_values": sum(_nonfinite(values) for values in sources.values()),
+    }
+    if len(sources) > 1:
+        stats["source_ranges"] = {name: _finite_range(v) for name, v in sources.items()}
+    return stats
+
+
+# --------------------------------------------------------------------------------------------
+# Writers
+
+
+def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> Path:
+    """Encode one map into ``folder`` following its spec; returns the file path."""
+    path = folder / spec.file_name
+    if spec.name == "basecolor":
+        with np.errstate(invalid="ignore"):
+            srgb = linear_to_srgb(np.asarray(maps.basecolor_linear, dtype=np.float32))
+        png_io.write_rgba8(path, srgb, maps.alpha)
+    elif spec.name == "normal":
+        encoded = np.asarray(maps.normal, dtype=np.float32) * np.float32(0.5) + np.float32(0.5)
+        png_io.write_rgb8(path, encoded)
+    elif spec.encoding == "exr-float32":
+        exr_io.write_exr(path, getattr(maps, spec.sources[0]))
+    else:
+        png_io.write_grey8(path, getattr(maps, spec.sources[0]))
+    return path
+
+
+def _write_height_png16(height: np.ndarray, folder: Path) -> dict[str, Any]:
+    """Write height16.png normalised to the finite min/max; returns its manifest entry.
+
+    value = (height - min) / (max - min) quantised to 16 bits (0 everywhere for a flat
+    height); NaN -> 0, +inf -> 65535, -inf -> 0.
+    """
+    values = np.asarray(height, dtype=np.float64)
+    value_range = _finite_range(values) or {"min": 0.0, "max": 0.0}
+    low, high = value_range["min"], value_range["max"]
+    span = high - low
+    if span > 0:
+        with np.errstate(invalid="ignore"):
+            unit = (values - low) / span
+    else:
+        unit = np.where(np.isposinf(values), 1.0, 0.0)
+    png_io.write_grey16(folder / HEIGHT_PNG16_NAME, unit)
+    return {
+        "file": HEIGHT_PNG16_NAME,
+        "encoding": "png16-grey",
+        "min": low,
+        "max": high,
+        "units": "coordinate units",
+        "decode": "height = min + value / 65535 * (max - min)",
+    }
+
+
+# --------------------------------------------------------------------------------------------
+# Manifest
+
+
+def _manifest(
+    maps: MaterialMaps,
+    selected: Sequence[MapSpec],
+    map_entries: dict[str, dict[str, Any]],
+    program_text: str | None,
+    engine_version: str,
+) -> dict[str, Any]:
+    """The material.json content (without the optional extras)."""
+    view = maps.view
+    dx, dy = view.texel_size(maps.width, maps.height_px)
+    nonfinite = {name: e["nonfinite_values"] for name, e in map_entries.items()}
+    return {
+        "format": MANIFEST_FORMAT[0],
+        "format_version": MANIFEST_FORMAT[1],
+        "engine_version": engine_version,
+        "program_sha256": (
+            hashlib.sha256(program_text.encode("utf-8")).hexdigest()
+            if program_text is not None
+            else None
+        ),
+        "width": maps.width,
+        "height": maps.height_px,
+        "view": {"x1": view.x1, "y1": view.y1, "x2": view.x2, "y2": view.y2},
+        "texel_size": {"dx": dx, "dy": dy},
+        "units": "coordinate units (positions, sizes and heights share one unit)",
+        "orientation": "row 0 is the top of the image (largest Y); column 0 is the smallest X",
+        "n_layers": maps.n_layers,
+        "quantisation_8bit": "clip [0, 1], x255, +0.5, truncate (float32); NaN -> 0",
+        "maps": [{"name": spec.name, **map_entries[spec.name]} for spec in selected],
+        "nonfinite_values": {name: n for name, n in nonfinite.items() if n},
+    }
+
+
+def _json_safe(value: Any) -> Any:
+    """Replace non-finite floats (not valid JSON) by their names, recursively."""
+    if isinstance(value, float) and not np.isfinite(value):
+        return "nan" if np.isnan(value) else ("inf" if value > 0 else "-inf")
+    if isinstance(value, dict):
+        return {str(k): _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
+
+
+# --------------------------------------------------------------------------------------------
+# Entry point
+
+
+def export_maps(
+    maps: MaterialMaps,
+    out_dir: str | os.PathLike[str],
+    *,
+    float_format: str = "exr",
+    maps_subset: Sequence[str] | None = None,
+    program_text: str | None = None,
+    engine_version: str | None = None,
+    extra_meta: dict[str, Any] | None = None,
+) -> ExportResult:
+    """Write ``maps`` into the folder ``out_dir`` (replacing it as a whole on success).
+
+    ``float_format``: "exr" (default) or "png16" (adds height16.png; ior/emissive stay EXR).
+    ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all 13, in that order);
+    an unknown name raises ValueError before anything is written. ``program_text`` is hashed
+    (SHA-256) into the manifest; ``extra_meta`` is stored under the manifest key "extra".
+    """
+    if float_format not in FLOAT_FORMATS:
+        raise ValueError(f"float_format must be one of {FLOAT_FORMATS}, got {float_format!r}")
+    selected = select_maps(maps_subset)
+    version = engine_version if engine_version is not None else _default_engine_version()
+    final_dir = Path(out_dir).absolute()
+    entries: dict[str, dict[str, Any]] = {}
+    files: dict[str, Path] = {}
+    with atomic_directory(final_dir) as staging:
+        for spec in selected:
+            written = _write_map(maps, spec, staging)
+            files[spec.name] = final_dir / written.name
+            entries[spec.name] = {**spec.describe(), **_map_stats(maps, spec)}
+        manifest = _manifest(maps, selected, entries, program_text, version)
+        if float_format == "png16" and "height" in entries:
+            manifest["height_png16"] = _write_height_png16(maps.height, staging)
+            files["height16"] = final_dir / HEIGHT_PNG16_NAME
+        if extra_meta:
+            manifest["extra"] = dict(extra_meta)
+        manifest = _json_safe(manifest)
+        text = json.dumps(manifest, indent=2, allow_nan=False, default=str) + "\n"
+        atomic_write_bytes(staging / MANIFEST_NAME, text.encode("utf-8"))
+        files["manifest"] = final_dir / MANIFEST_NAME
+    return ExportResult(
+        out_dir=final_dir,
+        files=files,
+        manifest=manifest,
+        nonfinite_counts=dict(manifest["nonfinite_values"]),
+    )
