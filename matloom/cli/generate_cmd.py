@@ -18,30 +18,47 @@ from matloom.author.config import AuthorConfig, ConfigError, ModelSettings
 
 #: Flags that map 1:1 onto AuthorConfig fields.
 _CONFIG_FLAGS: dict[str, str] = {
-    "rounds": "rounds", "variants": "variants", "scorer": "scorer",
-    "scorer_weights": "scorer_weights", "critic_signals": "critic_signals", "seed": "seed",
-    "repair_turns": "repair_turns", "sweep_jobs": "sweep_jobs", "critique_size": "critique_size",
-    "select_size": "select_size", "sweep_size": "sweep_size", "export_size": "export_size",
-    "stats_grid": "stats_grid", "playbook": "playbook", "few_shot": "few_shot",
+    "rounds": "rounds",
+    "variants": "variants",
+    "scorer": "scorer",
+    "scorer_weights": "scorer_weights",
+    "critic_signals": "critic_signals",
+    "seed": "seed",
+    "repair_turns": "repair_turns",
+    "sweep_jobs": "sweep_jobs",
+    "critique_size": "critique_size",
+    "select_size": "select_size",
+    "sweep_size": "sweep_size",
+    "export_size": "export_size",
+    "stats_grid": "stats_grid",
+    "playbook": "playbook",
+    "few_shot": "few_shot",
 }
 #: Flags that override generator model settings.
 _MODEL_FLAGS: dict[str, str] = {
-    "model": "model", "base_url": "base_url", "temperature": "temperature",
-    "reasoning_effort": "reasoning_effort", "timeout": "timeout_s", "max_retries": "max_retries",
-    "images": "images", "retry_backoff": "backoff_s",
+    "model": "model",
+    "base_url": "base_url",
+    "temperature": "temperature",
+    "reasoning_effort": "reasoning_effort",
+    "timeout": "timeout_s",
+    "max_retries": "max_retries",
+    "images": "images",
+    "retry_backoff": "backoff_s",
 }
 
 
 def _explicit(ctx: click.Context) -> set[str]:
     """Names of the options the user actually gave on the command line."""
     return {
-        name for name in ctx.params
+        name
+        for name in ctx.params
         if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)
     }
 
 
-def _generator_settings(params: dict[str, Any], given: set[str],
-                        base: ModelSettings | None) -> ModelSettings | None:
+def _generator_settings(
+    params: dict[str, Any], given: set[str], base: ModelSettings | None
+) -> ModelSettings | None:
     from matloom.author.config import load_config_file, resolve_profile, with_overrides
 
     data = load_config_file(params["config_file"])
@@ -53,8 +70,12 @@ def _generator_settings(params: dict[str, Any], given: set[str],
     return with_overrides(base, **updates)
 
 
-def _critic_settings(params: dict[str, Any], given: set[str], generator: ModelSettings | None,
-                     base: ModelSettings | None) -> ModelSettings | None:
+def _critic_settings(
+    params: dict[str, Any],
+    given: set[str],
+    generator: ModelSettings | None,
+    base: ModelSettings | None,
+) -> ModelSettings | None:
     from matloom.author.config import load_config_file, resolve_profile, with_overrides
 
     if "critic_profile" in given:
@@ -71,8 +92,9 @@ def _critic_settings(params: dict[str, Any], given: set[str], generator: ModelSe
     return with_overrides(base, **updates)
 
 
-def build_config(params: dict[str, Any], given: set[str],
-                 base: AuthorConfig | None = None) -> AuthorConfig:
+def build_config(
+    params: dict[str, Any], given: set[str], base: AuthorConfig | None = None
+) -> AuthorConfig:
     """The frozen config from flags: explicit flags override ``base`` (a resumed run's
     settings) or the defaults; model access comes from the profile and model flags."""
     fresh = base is None
@@ -89,25 +111,40 @@ def build_config(params: dict[str, Any], given: set[str],
 def _model_options(f: Any) -> Any:
     options = [
         click.option("--profile", help="Model profile from matloom.toml."),
-        click.option("--config", "config_file", type=click.Path(dir_okay=False),
-                     help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
-                          "~/.config/matloom/matloom.toml)."),
+        click.option(
+            "--config",
+            "config_file",
+            type=click.Path(dir_okay=False),
+            help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
+            "~/.config/matloom/matloom.toml).",
+        ),
         click.option("--model", help="Generator model id (OpenAI-compatible)."),
-        click.option("--base-url", help="Chat Completions endpoint, e.g. http://localhost:8000/v1."),
+        click.option(
+            "--base-url", help="Chat Completions endpoint, e.g. http://localhost:8000/v1."
+        ),
         click.option("--temperature", type=float),
         click.option("--reasoning-effort"),
         click.option("--extra-body", help="JSON object merged into each request body."),
         click.option("--timeout", type=float, help="Seconds per model request."),
         click.option("--max-retries", type=int, help="Retries on 429/5xx/timeouts."),
-        click.option("--retry-backoff", type=float,
-                     help="First retry delay in seconds (grows 1.5x per retry)."),
-        click.option("--images/--no-images", default=None,
-                     help="Whether the generator model accepts images (default: guessed)."),
+        click.option(
+            "--retry-backoff",
+            type=float,
+            help="First retry delay in seconds (grows 1.5x per retry).",
+        ),
+        click.option(
+            "--images/--no-images",
+            default=None,
+            help="Whether the generator model accepts images (default: guessed).",
+        ),
         click.option("--critic-model", help="Critic model (default: the generator's)."),
         click.option("--critic-profile", help="Critic model profile from matloom.toml."),
         click.option("--critic-base-url"),
-        click.option("--critic-images/--no-critic-images", default=None,
-                     help="Whether the critic accepts images; text-only critics get no render."),
+        click.option(
+            "--critic-images/--no-critic-images",
+            default=None,
+            help="Whether the critic accepts images; text-only critics get no render.",
+        ),
     ]
     for option in reversed(options):
         f = option(f)
@@ -118,16 +155,30 @@ def _pipeline_options(f: Any) -> Any:
     d = AuthorConfig()
     options = [
         click.option("--rounds", type=int, default=d.rounds, show_default=True),
-        click.option("--variants", type=int, default=d.variants, show_default=True,
-                     help="Seed variants per candidate in the seed search."),
-        click.option("--scorer", default=d.scorer, show_default=True,
-                     help="auto, none, mobileclip2, open_clip:MODEL:WEIGHTS, test-colour, ..."),
+        click.option(
+            "--variants",
+            type=int,
+            default=d.variants,
+            show_default=True,
+            help="Seed variants per candidate in the seed search.",
+        ),
+        click.option(
+            "--scorer",
+            default=d.scorer,
+            show_default=True,
+            help="auto, none, mobileclip2, open_clip:MODEL:WEIGHTS, test-colour, ...",
+        ),
         click.option("--scorer-weights", help="Local MobileCLIP2-S2 weights file."),
         click.option("--critic-signals", default=",".join(d.critic_signals), show_default=True),
         click.option("--seed", type=int, default=d.seed, show_default=True),
         click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),
-        click.option("--sweep-jobs", type=int, default=d.sweep_jobs, show_default=True,
-                     help="Render processes per sweep (0 = all cores)."),
+        click.option(
+            "--sweep-jobs",
+            type=int,
+            default=d.sweep_jobs,
+            show_default=True,
+            help="Render processes per sweep (0 = all cores).",
+        ),
         click.option("--critique-size", type=int, default=d.critique_size, show_default=True),
         click.option("--select-size", type=int, default=d.select_size, show_default=True),
         click.option("--sweep-size", type=int, default=d.sweep_size, show_default=True),
@@ -168,6 +219,8 @@ class ProgressView:
         if not self.enabled:
             return
         text = f"[{event.run}] {event.stage}: {event.message}"
+        if event.round is not None:
+            text += f" (round {event.round})"
         if event.total:
             text += f" {event.done}/{event.total}"
         if event.eta_s is not None:
@@ -188,10 +241,20 @@ class ProgressView:
 
 @click.command("generate")
 @click.argument("prompt", required=False)
-@click.option("-o", "--out", "out_dir", required=True, type=click.Path(file_okay=False),
-              help="Run folder (with --prompts: the parent of one folder per prompt).")
-@click.option("--prompts", "prompts_file", type=click.Path(exists=True, dir_okay=False),
-              help="JSON file of prompts to author as a batch.")
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Run folder (with --prompts: the parent of one folder per prompt).",
+)
+@click.option(
+    "--prompts",
+    "prompts_file",
+    type=click.Path(exists=True, dir_okay=False),
+    help="JSON file of prompts to author as a batch.",
+)
 @click.option("--jobs", type=int, default=1, show_default=True, help="Prompts authored at once.")
 @click.option("--resume", is_flag=True, help="Continue an interrupted run (or batch).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
@@ -199,8 +262,17 @@ class ProgressView:
 @_model_options
 @_pipeline_options
 @click.pass_context
-def generate_cmd(ctx: click.Context, prompt: str | None, out_dir: str, prompts_file: str | None,
-                 jobs: int, resume: bool, as_json: bool, quiet: bool, **_: Any) -> None:
+def generate_cmd(
+    ctx: click.Context,
+    prompt: str | None,
+    out_dir: str,
+    prompts_file: str | None,
+    jobs: int,
+    resume: bool,
+    as_json: bool,
+    quiet: bool,
+    **_: Any,
+) -> None:
     """Author a material program for PROMPT (text -> program -> critique -> selection -> seeds).
 
     With no model configured (no --model, --profile or default profile) the built-in offline
@@ -215,8 +287,10 @@ def generate_cmd(ctx: click.Context, prompt: str | None, out_dir: str, prompts_f
     if prompt is None and prompts_file is None and base is None:
         raise click.UsageError("give a PROMPT, --prompts FILE, or --resume an existing run")
     if config.generator is None:
-        click.echo("matloom: no model configured (--model/--profile); using the built-in "
-                   "offline author", err=True)
+        click.echo(
+            "matloom: no model configured (--model/--profile); using the built-in offline author",
+            err=True,
+        )
     view = ProgressView(enabled=not quiet)
     if prompts_file:
         _run_batch(prompts_file, out_dir, config, jobs, resume, as_json, view)
@@ -232,8 +306,14 @@ def _resumed_settings(out_dir: str) -> AuthorConfig | None:
     return RecordStore.load(out_dir).record.settings
 
 
-def _run_single(prompt: str | None, out_dir: str, config: AuthorConfig, resume: bool,
-                as_json: bool, view: ProgressView) -> None:
+def _run_single(
+    prompt: str | None,
+    out_dir: str,
+    config: AuthorConfig,
+    resume: bool,
+    as_json: bool,
+    view: ProgressView,
+) -> None:
     from matloom.author.pipeline import AuthoringError, author_material
 
     try:
@@ -242,7 +322,13 @@ def _run_single(prompt: str | None, out_dir: str, config: AuthorConfig, resume: 
     except AuthoringError as err:
         raise click.ClickException(
             f"{err}\n(the record is kept in {Path(err.folder) / 'record.json'}; "
-            "fix the cause and rerun with --resume)") from None
+            "fix the cause and rerun with --resume)"
+        ) from None
+    except Exception as err:  # noqa: BLE001 - the CLI never shows a traceback
+        raise click.ClickException(
+            f"unexpected {type(err).__name__}: {err}\n(the record is kept in "
+            f"{Path(out_dir) / 'record.json'}; rerun with --resume)"
+        ) from None
     if as_json:
         click.echo(json.dumps(result.summary(), indent=2))
     else:
@@ -256,8 +342,15 @@ def _say_scorer_note(record: Any) -> None:
         click.echo(f"matloom: seed search skipped: {search.skipped}", err=True)
 
 
-def _run_batch(prompts_file: str, out_dir: str, config: AuthorConfig, jobs: int, resume: bool,
-               as_json: bool, view: ProgressView) -> None:
+def _run_batch(
+    prompts_file: str,
+    out_dir: str,
+    config: AuthorConfig,
+    jobs: int,
+    resume: bool,
+    as_json: bool,
+    view: ProgressView,
+) -> None:
     from matloom.author.batch import author_batch, read_prompts
 
     try:
@@ -265,11 +358,25 @@ def _run_batch(prompts_file: str, out_dir: str, config: AuthorConfig, jobs: int,
     except (OSError, ValueError) as err:
         raise click.ClickException(str(err)) from None
     with view:
-        outcomes = author_batch(items, out_dir, config, jobs=jobs, resume=resume,
-                                progress=view.update, on_done=view.batch_done)
-    rows = [{"id": o.item.id, "prompt": o.item.text, "folder": str(o.folder),
-             "status": "finished" if o.result else "failed", "error": o.error}
-            for o in outcomes]
+        outcomes = author_batch(
+            items,
+            out_dir,
+            config,
+            jobs=jobs,
+            resume=resume,
+            progress=view.update,
+            on_done=view.batch_done,
+        )
+    rows = [
+        {
+            "id": o.item.id,
+            "prompt": o.item.text,
+            "folder": str(o.folder),
+            "status": "finished" if o.result else "failed",
+            "error": o.error,
+        }
+        for o in outcomes
+    ]
     if as_json:
         click.echo(json.dumps(rows, indent=2))
     else:
@@ -285,8 +392,12 @@ def _run_batch(prompts_file: str, out_dir: str, config: AuthorConfig, jobs: int,
 @click.option("--print", "do_print", is_flag=True, default=True, help="Print the system prompt.")
 @click.option("--playbook/--no-playbook", default=True, show_default=True)
 @click.option("--few-shot/--no-few-shot", default=True, show_default=True)
-@click.option("--critic", "critic_signals", default=None,
-              help="Print the critic system prompt for these signals instead (e.g. render,code).")
+@click.option(
+    "--critic",
+    "critic_signals",
+    default=None,
+    help="Print the critic system prompt for these signals instead (e.g. render,code).",
+)
 def prompt_cmd(do_print: bool, playbook: bool, few_shot: bool, critic_signals: str | None) -> None:
     """Print the generator system prompt (rendered from the vocabulary registry)."""
     if critic_signals is not None:

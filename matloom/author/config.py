@@ -1,0 +1,205 @@
+"""The one frozen configuration of an authoring run, shared by the CLI, the API and the record.
+
+:class:`AuthorConfig` holds every tunable of the pipeline; the CLI builds one from its flags,
+the API takes one as an argument, and ``record.json`` stores its dump, so a run can be resumed
+with exactly the settings it started with. Model backends are described by :class:`ModelSettings`
+and can be named in a ``matloom.toml`` file::
+
+    [matloom]
+    profile = "luna"            # used when no --profile/--model is given
+
+    [profiles.luna]
+    model = "openai/gpt-5.6-luna"
+    base_url = "https://openrouter.ai/api/v1"
+    api_key_env = "OPENROUTER_API_KEY"
+    reasoning_effort = "low"
+
+    [profiles.glm]
+    model = "z-ai/glm-5.2"
+    base_url = "https://openrouter.ai/api/v1"
+    images = false              # text-only: the critic gets code and statistics, no render
+    extra_body = { reasoning = { enabled = true } }
+
+The file is looked up at ``$MATLOOM_CONFIG``, ``./matloom.toml``, then
+``~/.config/matloom/matloom.toml``.
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+#: The critic's configurable inputs (paper Sec. 4, Stage II).
+CRITIC_SIGNALS: tuple[str, ...] = ("render", "stats", "code")
+#: Name fragments of backbones known to take no image input (the paper's text-only critics).
+TEXT_ONLY_MODEL_HINTS: tuple[str, ...] = ("deepseek", "glm")
+
+
+class ConfigError(ValueError):
+    """A configuration file or value is invalid; the message says what to change."""
+
+
+class ModelSettings(BaseModel):
+    """How to reach one chat model (generator or critic)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    provider: str = "openai"
+    model: str
+    base_url: str | None = None
+    #: Environment variable holding the key; the default order is MATLOOM_API_KEY, OPENAI_API_KEY.
+    api_key_env: str | None = None
+    temperature: float | None = None
+    reasoning_effort: str | None = None
+    extra_body: dict[str, Any] | None = None
+    max_completion_tokens: int | None = 65536
+    timeout_s: float = 600.0
+    #: Attempts after the first on 429 / 5xx / timeouts / connection errors.
+    max_retries: int = 5
+    #: First back-off delay; attempt r waits backoff_s * 1.5**r plus up to backoff_s of jitter.
+    backoff_s: float = 1.0
+    #: Whether the model accepts image input; ``None`` guesses from the model name.
+    images: bool | None = None
+
+    @property
+    def accepts_images(self) -> bool:
+        """Image capability: the explicit flag, else False for known text-only backbones."""
+        if self.images is not None:
+            return self.images
+        name = self.model.lower()
+        return not any(hint in name for hint in TEXT_ONLY_MODEL_HINTS)
+
+
+class AuthorConfig(BaseModel):
+    """Every setting of the three-stage pipeline (defaults = the paper's recorded settings)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    #: Generator backend; ``None`` means the built-in offline author.
+    generator: ModelSettings | None = None
+    #: Critic backend; ``None`` means "same as the generator" (a fresh, stateless conversation).
+    critic: ModelSettings | None = None
+    rounds: int = Field(5, ge=0)
+    repair_turns: int = Field(3, ge=0)
+    critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS
+    critic_retries: int = Field(3, ge=0)
+    playbook: bool = True
+    few_shot: bool = True
+    #: Scorer name from the scorer registry; "auto" = open_clip if its weights are local, else
+    #: none; "none" = no scorer (critic-score selection, no seed search).
+    scorer: str = "auto"
+    scorer_weights: str | None = None
+    variants: int = Field(1000, ge=0)
+    critique_size: int = Field(512, ge=8)
+    select_size: int = Field(512, ge=8)
+    sweep_size: int = Field(256, ge=8)
+    stats_grid: int = Field(128, ge=8)
+    export_size: int = Field(512, ge=8)
+    sweep_jobs: int = Field(0, ge=0)
+    seed: int = 0
+
+    @field_validator("critic_signals", mode="before")
+    @classmethod
+    def _parse_signals(cls, value: Any) -> Any:
+        if isinstance(value, str):
+            value = [s.strip() for s in value.split(",") if s.strip()]
+        if isinstance(value, list | tuple):
+            unknown = [s for s in value if s not in CRITIC_SIGNALS]
+            if unknown:
+                raise ValueError(
+                    f"unknown critic signal(s) {unknown}; choose from {CRITIC_SIGNALS}"
+                )
+            return tuple(s for s in CRITIC_SIGNALS if s in value)
+        return value
+
+    @property
+    def critic_settings(self) -> ModelSettings | None:
+        """The critic backend (the generator's when no separate critic is configured)."""
+        return self.critic or self.generator
+
+    def critic_sees_render(self) -> bool:
+        """True when the render is requested and the critic model can take images."""
+        critic = self.critic_settings
+        return "render" in self.critic_signals and critic is not None and critic.accepts_images
+
+    def effective_signals(self) -> tuple[str, ...]:
+        """The signals actually sent: the render is dropped for a text-only critic."""
+        return tuple(s for s in self.critic_signals if s != "render" or self.critic_sees_render())
+
+
+# --------------------------------------------------------------------------- matloom.toml
+
+
+def config_file_candidates() -> list[Path]:
+    """Where ``matloom.toml`` is looked for, in order."""
+    paths = []
+    env = os.environ.get("MATLOOM_CONFIG")
+    if env:
+        paths.append(Path(env))
+    paths.append(Path.cwd() / "matloom.toml")
+    paths.append(Path.home() / ".config" / "matloom" / "matloom.toml")
+    return paths
+
+
+def load_config_file(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
+    """The parsed TOML of ``path`` (or of the first existing default location); ``{}`` if none."""
+    if path is not None:
+        candidates = [Path(path)]
+        if not candidates[0].exists():
+            raise ConfigError(f"config file {path} does not exist")
+    else:
+        candidates = [p for p in config_file_candidates() if p.exists()]
+    if not candidates:
+        return {}
+    try:
+        return tomllib.loads(candidates[0].read_text(encoding="utf-8"))
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise ConfigError(f"cannot read {candidates[0]}: {e}") from None
+
+
+def profile_names(data: dict[str, Any]) -> list[str]:
+    """Names of the model profiles in a parsed config file."""
+    return sorted(data.get("profiles", {}))
+
+
+def resolve_profile(data: dict[str, Any], name: str | None) -> ModelSettings | None:
+    """The :class:`ModelSettings` of profile ``name`` (or of the file's default profile)."""
+    name = name or data.get("matloom", {}).get("profile")
+    if name is None:
+        return None
+    profiles = data.get("profiles", {})
+    if name not in profiles:
+        known = ", ".join(profile_names(data)) or "none defined"
+        raise ConfigError(f"unknown model profile {name!r} (profiles: {known})")
+    try:
+        return ModelSettings(**profiles[name])
+    except ValueError as e:
+        raise ConfigError(f"profile {name!r} is invalid: {e}") from None
+
+
+def with_overrides(settings: ModelSettings | None, **overrides: Any) -> ModelSettings | None:
+    """``settings`` with the non-None ``overrides`` applied (a new frozen object).
+
+    A ``model`` override with no base settings creates fresh settings for that model.
+    """
+    given = {k: v for k, v in overrides.items() if v is not None}
+    if settings is None:
+        if "model" not in given:
+            return None
+        return ModelSettings(**given)
+    return settings.model_copy(update=given) if given else settings
+
+
+def api_key_for(settings: ModelSettings) -> str | None:
+    """The API key: the profile's variable, else MATLOOM_API_KEY, else OPENAI_API_KEY."""
+    names = [settings.api_key_env] if settings.api_key_env else []
+    names += ["MATLOOM_API_KEY", "OPENAI_API_KEY"]
+    for name in names:
+        value = os.environ.get(name)
+        if value:
+            return value
+    return None

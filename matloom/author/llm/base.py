@@ -1,0 +1,124 @@
+"""The small chat-model interface every backend implements, and the provider registry.
+
+A backend is anything with ``model_id``, ``accepts_images`` and ``complete(messages)``. The
+built-in OpenAI-compatible adapter is itself just one registered provider (as in simonw/llm);
+tests register a scripted model through the same :func:`register_provider`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal, Protocol, runtime_checkable
+
+from matloom.author.config import ModelSettings
+
+Role = Literal["system", "user", "assistant"]
+
+
+@dataclass(frozen=True)
+class ImageInput:
+    """An image attached to a user turn: encoded bytes plus their MIME type."""
+
+    data: bytes
+    mime: str = "image/jpeg"
+    #: Where the image is stored in the run folder (for the record), if it is.
+    path: str | None = None
+
+
+@dataclass(frozen=True)
+class ChatMessage:
+    """One turn of a conversation; images (user turns only) follow the text."""
+
+    role: Role
+    text: str
+    images: tuple[ImageInput, ...] = ()
+
+    def to_record(self) -> dict[str, Any]:
+        """JSON form for ``record.json`` (images by path, never inline bytes)."""
+        out: dict[str, Any] = {"role": self.role, "text": self.text}
+        if self.images:
+            out["images"] = [
+                img.path or f"<{img.mime}, {len(img.data)} bytes>" for img in self.images
+            ]
+        return out
+
+    @classmethod
+    def from_record(cls, data: dict[str, Any]) -> ChatMessage:
+        """Inverse of :meth:`to_record`; image bytes are not restored (history is text-only)."""
+        return cls(role=data["role"], text=data["text"])
+
+
+@dataclass(frozen=True)
+class ChatReply:
+    """A model's answer and what it cost."""
+
+    text: str
+    model: str
+    seconds: float
+    attempts: int = 1
+    finish_reason: str | None = None
+    usage: dict[str, int] = field(default_factory=dict)
+
+
+class ModelError(RuntimeError):
+    """A chat call failed for good (after retries); the message is meant for the user."""
+
+
+class ModelUnavailableError(ModelError):
+    """The endpoint could not be reached (connection refused, DNS, TLS)."""
+
+
+class ModelTimeoutError(ModelError):
+    """Every attempt timed out."""
+
+
+@runtime_checkable
+class ChatModel(Protocol):
+    """What the pipeline needs from a chat backend."""
+
+    @property
+    def model_id(self) -> str: ...
+
+    @property
+    def accepts_images(self) -> bool: ...
+
+    def complete(self, messages: Sequence[ChatMessage]) -> ChatReply:
+        """Answer the conversation; raise :class:`ModelError` on a permanent failure."""
+        ...
+
+
+ProviderFactory = Callable[[ModelSettings], ChatModel]
+_PROVIDERS: dict[str, ProviderFactory] = {}
+
+
+def register_provider(name: str) -> Callable[[ProviderFactory], ProviderFactory]:
+    """Decorator registering a factory ``ModelSettings -> ChatModel`` under ``name``."""
+
+    def decorate(factory: ProviderFactory) -> ProviderFactory:
+        _PROVIDERS[name] = factory
+        return factory
+
+    return decorate
+
+
+def provider_names() -> list[str]:
+    """Registered provider names (built-ins are loaded first)."""
+    _load_builtin_providers()
+    return sorted(_PROVIDERS)
+
+
+def get_model(settings: ModelSettings) -> ChatModel:
+    """Instantiate the chat model described by ``settings``."""
+    _load_builtin_providers()
+    factory = _PROVIDERS.get(settings.provider)
+    if factory is None:
+        known = ", ".join(sorted(_PROVIDERS))
+        raise ModelError(f"unknown model provider {settings.provider!r} (known: {known})")
+    return factory(settings)
+
+
+def _load_builtin_providers() -> None:
+    """Import the modules that register the built-in providers (idempotent, lazy)."""
+    import matloom.author.llm.openai_compat  # noqa: F401
+    import matloom.author.llm.scripted  # noqa: F401

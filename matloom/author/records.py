@@ -1,0 +1,235 @@
+"""Run records: the pydantic schema of ``record.json`` and its incremental, atomic storage.
+
+One folder per run holds ``record.json`` (everything: prompt, settings, model ids, per-stage
+durations, every message, every program, critiques, scores, selection, seed-search log), the
+critic renders under ``renders/``, and at the end ``material.mat``, ``preview.png`` and
+``maps/``. The record is rewritten atomically after every step, so a crash or a kill keeps every
+finished step and ``--resume`` continues from there.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from matloom.author.config import AuthorConfig
+from matloom.io.atomic import atomic_write_bytes
+
+RECORD_NAME = "record.json"
+RECORD_FORMAT = "matloom-run"
+RECORD_VERSION = 1
+
+Status = Literal["running", "finished", "failed"]
+
+
+def utc_now() -> str:
+    """ISO-8601 UTC timestamp with seconds."""
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class MessageRecord(_Model):
+    """One chat turn; images are paths relative to the run folder."""
+
+    role: Literal["system", "user", "assistant"]
+    text: str
+    images: list[str] = Field(default_factory=list)
+
+
+class AttemptRecord(_Model):
+    """One model reply inside a generation turn, and what the parser made of it."""
+
+    attempt: int
+    reply: str
+    outcome: Literal["accepted", "no_program", "parse_error"]
+    diagnostics: list[dict[str, Any]] = Field(default_factory=list)
+    seconds: float
+    model: str
+
+
+class TurnRecord(_Model):
+    """A generation (program 0) or revision (program k > 0) turn with its repair attempts."""
+
+    program_index: int
+    kind: Literal["initial", "revision"]
+    attempts: list[AttemptRecord] = Field(default_factory=list)
+    accepted: bool = False
+    seconds: float = 0.0
+    error: str | None = None
+
+
+class ProgramRecord(_Model):
+    """A trajectory program P_k (canonical text, seeds explicit)."""
+
+    index: int
+    text: str
+    authored: str
+    source: Literal["generator", "builtin"]
+    program_seed: int
+
+
+class CritiqueRecord(_Model):
+    """One stateless critique of P_k."""
+
+    program_index: int
+    ok: bool
+    match_score: int | None = None
+    differences: list[str] = Field(default_factory=list)
+    suggestions: list[str] = Field(default_factory=list)
+    signals: list[str]
+    render: str | None = None
+    model: str
+    attempts: int
+    seconds: float
+    messages: list[MessageRecord] = Field(default_factory=list)
+    replies: list[str] = Field(default_factory=list)
+    error: str | None = None
+
+
+class SelectionRecord(_Model):
+    """Trajectory selection: which P_j goes on, and by what."""
+
+    method: Literal["scorer", "critic", "single", "last"]
+    index: int
+    scorer: str | None = None
+    size: int | None = None
+    scores: list[float | None] = Field(default_factory=list)
+    seconds: float
+
+
+class SweepRecord(_Model):
+    """The seed sweep of one candidate program (variant 0 = the original)."""
+
+    program_index: int
+    variants: int
+    size: int
+    seed: int
+    best_variant: int
+    best_score: float | None
+    original_score: float | None
+    best_program: str
+    scores: list[float | None]
+    seconds: float
+    rate: float
+    message: str = ""
+
+
+class SeedSearchRecord(_Model):
+    """Stage III seed search over the distinct {first, selected, last} programs."""
+
+    candidates: list[int] = Field(default_factory=list)
+    sweeps: list[SweepRecord] = Field(default_factory=list)
+    skipped: str | None = None
+    done: bool = False
+
+
+class FinalRecord(_Model):
+    """The returned program and where it came from."""
+
+    program: str
+    program_index: int
+    variant: int
+    score: float | None
+    files: dict[str, str] = Field(default_factory=dict)
+
+
+class Durations(_Model):
+    """Wall seconds per stage (lists: one entry per call)."""
+
+    total: float = 0.0
+    generation: list[float] = Field(default_factory=list)
+    critique: list[float] = Field(default_factory=list)
+    select: float | None = None
+    seed_search: list[float] = Field(default_factory=list)
+    export: float | None = None
+
+
+class ModelIds(_Model):
+    generator: str | None = None
+    critic: str | None = None
+    scorer: str | None = None
+
+
+class RunRecord(_Model):
+    """Everything about one authoring run (``record.json``)."""
+
+    format: Literal["matloom-run"] = RECORD_FORMAT
+    version: int = RECORD_VERSION
+    matloom_version: str
+    prompt: str
+    created: str = Field(default_factory=utc_now)
+    updated: str = Field(default_factory=utc_now)
+    status: Status = "running"
+    error: str | None = None
+    author: Literal["llm", "builtin"]
+    settings: AuthorConfig
+    models: ModelIds = Field(default_factory=ModelIds)
+    system_prompt: str | None = None
+    #: The generator conversation up to the last accepted program (accepted turns rewritten to
+    #: show the canonical program).
+    conversation: list[MessageRecord] = Field(default_factory=list)
+    turns: list[TurnRecord] = Field(default_factory=list)
+    programs: list[ProgramRecord] = Field(default_factory=list)
+    critiques: list[CritiqueRecord] = Field(default_factory=list)
+    stop_reason: str | None = None
+    builtin_explanation: str | None = None
+    selection: SelectionRecord | None = None
+    seed_search: SeedSearchRecord | None = None
+    final: FinalRecord | None = None
+    durations: Durations = Field(default_factory=Durations)
+    sessions: list[str] = Field(default_factory=list)
+
+    def critique_of(self, index: int) -> CritiqueRecord | None:
+        """The critique of program ``index``, if one was recorded."""
+        return next((c for c in self.critiques if c.program_index == index), None)
+
+
+class RecordStore:
+    """A run folder and its record, saved atomically on every :meth:`save`."""
+
+    def __init__(self, folder: str | os.PathLike[str], record: RunRecord) -> None:
+        self.folder = Path(folder)
+        self.record = record
+
+    @property
+    def path(self) -> Path:
+        return self.folder / RECORD_NAME
+
+    def save(self) -> None:
+        """Write ``record.json`` atomically (temp file + rename)."""
+        self.record.updated = utc_now()
+        self.folder.mkdir(parents=True, exist_ok=True)
+        text = self.record.model_dump_json(indent=2) + "\n"
+        atomic_write_bytes(self.path, text.encode("utf-8"))
+
+    def write_file(self, relative: str, data: bytes) -> str:
+        """Store an artefact in the run folder atomically; return its relative path."""
+        target = self.folder / relative
+        target.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write_bytes(target, data)
+        return relative
+
+    @classmethod
+    def load(cls, folder: str | os.PathLike[str]) -> RecordStore:
+        """Read and validate the record of an existing run folder."""
+        path = Path(folder) / RECORD_NAME
+        data = json.loads(path.read_text(encoding="utf-8"))
+        return cls(folder, RunRecord.model_validate(data))
+
+
+def validate_record_file(path: str | os.PathLike[str]) -> RunRecord:
+    """Parse and schema-validate a ``record.json`` (raises pydantic.ValidationError)."""
+    return RunRecord.model_validate_json(Path(path).read_text(encoding="utf-8"))
+
+
+def record_json_schema() -> dict[str, Any]:
+    """The JSON Schema of ``record.json``."""
+    return RunRecord.model_json_schema()

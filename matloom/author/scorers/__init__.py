@@ -1,0 +1,17 @@
+"""Text-image scorers for trajectory selection and seed search (see :mod:`.base`)."""
+
+from matloom.author.scorers.base import (
+    ScorerUnavailableError,
+    TextImageScorer,
+    get_scorer,
+    register_scorer,
+    scorer_names,
+)
+
+__all__ = [
+    "ScorerUnavailableError",
+    "TextImageScorer",
+    "get_scorer",
+    "register_scorer",
+    "scorer_names",
+]

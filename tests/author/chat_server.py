@@ -1,0 +1,164 @@
+"""A real HTTP server on 127.0.0.1 speaking the Chat Completions protocol with scripted replies.
+
+``POST /v1/chat/completions`` takes the JSON request and answers with a JSON completion whose
+content comes from a responder function. Faults can be queued to hit the next requests: an HTTP
+status (429, 500, ...), a delay (to trigger client timeouts), a dropped connection, or a hang
+that blocks until :meth:`ChatServer.release` (to kill a client mid-run).
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from typing import Any
+
+Responder = Callable[[dict[str, Any]], str]
+
+
+@dataclass
+class Fault:
+    """What to do instead of (or before) answering one request."""
+
+    status: int | None = None
+    delay: float = 0.0
+    drop: bool = False
+    hang: bool = False
+
+
+@dataclass
+class ServerState:
+    responder: Responder
+    requests: list[dict[str, Any]] = field(default_factory=list)
+    headers: list[dict[str, str]] = field(default_factory=list)
+    faults: deque[Fault] = field(default_factory=deque)
+    hang_event: threading.Event = field(default_factory=threading.Event)
+    hung: threading.Event = field(default_factory=threading.Event)
+    lock: threading.Lock = field(default_factory=threading.Lock)
+
+
+def completion(text: str, model: str) -> dict[str, Any]:
+    """A Chat Completions response body."""
+    return {
+        "id": "chatcmpl-test",
+        "object": "chat.completion",
+        "created": int(time.time()),
+        "model": model,
+        "choices": [
+            {"index": 0, "finish_reason": "stop", "message": {"role": "assistant", "content": text}}
+        ],
+        "usage": {"prompt_tokens": 10, "completion_tokens": 10, "total_tokens": 20},
+    }
+
+
+class _Handler(BaseHTTPRequestHandler):
+    server: _Server
+
+    def log_message(self, format: str, *args: Any) -> None:  # noqa: A002 - silence the log
+        pass
+
+    def _send_json(self, status: int, body: dict[str, Any]) -> None:
+        data = json.dumps(body).encode()
+        try:
+            self.send_response(status)
+            self.send_header("Content-Type", "application/json")
+            self.send_header("Content-Length", str(len(data)))
+            self.end_headers()
+            self.wfile.write(data)
+        except (BrokenPipeError, ConnectionResetError):
+            pass
+
+    def do_POST(self) -> None:  # noqa: N802 - http.server naming
+        state = self.server.state
+        length = int(self.headers.get("Content-Length", 0))
+        body = json.loads(self.rfile.read(length) or b"{}")
+        if self.path.rstrip("/") != "/v1/chat/completions":
+            self._send_json(404, {"error": {"message": f"no route {self.path}"}})
+            return
+        with state.lock:
+            fault = state.faults.popleft() if state.faults else None
+            state.requests.append(body)
+            state.headers.append({k.lower(): v for k, v in self.headers.items()})
+        if fault is not None and self._apply(fault, state):
+            return
+        try:
+            text = state.responder(body)
+        except Exception as err:  # noqa: BLE001 - report responder bugs as a 500
+            self._send_json(500, {"error": {"message": f"responder failed: {err!r}"}})
+            return
+        self._send_json(200, completion(text, body.get("model", "?")))
+
+    def _apply(self, fault: Fault, state: ServerState) -> bool:
+        """Apply a fault; True when the request is finished (no normal answer)."""
+        if fault.hang:
+            state.hung.set()
+            state.hang_event.wait(60)
+            self.close_connection = True
+            return True
+        if fault.delay:
+            time.sleep(fault.delay)
+        if fault.drop:
+            self.close_connection = True
+            self.connection.close()
+            return True
+        if fault.status is not None:
+            self._send_json(
+                fault.status,
+                {
+                    "error": {
+                        "message": f"injected {fault.status}",
+                        "type": "test",
+                        "code": fault.status,
+                    }
+                },
+            )
+            return True
+        return False
+
+
+class _Server(ThreadingHTTPServer):
+    daemon_threads = True
+    state: ServerState
+
+
+class ChatServer:
+    """Start with ``with ChatServer(responder) as server:``; ``server.base_url`` ends in /v1."""
+
+    def __init__(self, responder: Responder) -> None:
+        self._server = _Server(("127.0.0.1", 0), _Handler)
+        self._server.state = ServerState(responder=responder)
+        self._thread = threading.Thread(target=self._server.serve_forever, daemon=True)
+
+    @property
+    def state(self) -> ServerState:
+        return self._server.state
+
+    @property
+    def base_url(self) -> str:
+        host, port = self._server.server_address[:2]
+        return f"http://{host}:{port}/v1"
+
+    @property
+    def requests(self) -> list[dict[str, Any]]:
+        return self.state.requests
+
+    def inject(self, *faults: Fault) -> None:
+        """Queue faults for the next requests, in order."""
+        self.state.faults.extend(faults)
+
+    def release(self) -> None:
+        """Unblock hung requests."""
+        self.state.hang_event.set()
+
+    def __enter__(self) -> ChatServer:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.release()
+        self._server.shutdown()
+        self._server.server_close()
