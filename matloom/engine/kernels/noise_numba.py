@@ -1,0 +1,184 @@
+"""numba fBm (OpenSimplex 2014) and Worley noise; same API and numbers as ``noise_numpy``.
+
+Kernels are ``@njit(cache=True, parallel=True, fastmath=False)`` with ``prange`` over rows (or
+over chunks of a flat grid).  They compile lazily on first use and are cached on disk; see
+``noise_numba_core.jit_kernel`` for the read-only-cache fallback.  Importing this module imports
+numba.
+
+Coordinate scaling follows the reference exactly: fBm scales each octave in the coordinate dtype
+(float32 axes stay float32, then the noise runs in float64).  Separable axes are scaled per
+octave on the small 1-D axes only.  Worley lives in ``noise_numba_worley``; the seed-batched
+sweeps in ``noise_numba_batch``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import prange
+
+from matloom.engine.kernels.noise_numba_batch import fbm_seed_batch
+from matloom.engine.kernels.noise_numba_core import (
+    CHUNK,
+    finish_fbm,
+    jit_kernel,
+    new_scratch,
+    noise_chunk,
+)
+from matloom.engine.kernels.noise_numba_worley import worley, worley_seed_batch
+from matloom.engine.kernels.opensimplex import (
+    FBM_SCALE,
+    coord_layout,
+    freq_in_dtype,
+    gradient_table,
+    octave_schedule,
+    scale_coords,
+)
+
+__all__ = ["fbm", "worley", "fbm_seed_batch", "worley_seed_batch", "warm_up"]
+
+
+@jit_kernel(parallel=False)
+def _fbm_row(
+    i: int,
+    xs: np.ndarray,
+    ys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Row i of the separable fBm: pre-scaled float64 per-octave axes xs (O, W), ys (O, H)."""
+    width = out.shape[1]
+    scratch = new_scratch()
+    values = scratch[3]
+    yb = np.empty(CHUNK)
+    total = np.empty(CHUNK)
+    for j0 in range(0, width, CHUNK):
+        n = min(CHUNK, width - j0)
+        for j in range(n):
+            total[j] = 0.0
+        for k in range(amps.size):
+            for j in range(n):
+                yb[j] = ys[k, i]
+            noise_chunk(xs[k, j0 : j0 + n], yb, n, grad_table, scratch)
+            for j in range(n):
+                total[j] += values[j] * FBM_SCALE * amps[k]
+        out_chunk = out[i, j0 : j0 + n]
+        for j in range(n):
+            out_chunk[j] = finish_fbm(total[j], norm, to_01)
+
+
+@jit_kernel()
+def _fbm_separable_kernel(
+    xs: np.ndarray,
+    ys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Parallel over rows; the work is in ``_fbm_row`` (keeps the parfor cheap to compile)."""
+    for i in prange(out.shape[0]):
+        _fbm_row(i, xs, ys, amps, norm, to_01, grad_table, out)
+
+
+@jit_kernel(parallel=False)
+def _fbm_grid_chunk(
+    c: int,
+    xg: np.ndarray,
+    yg: np.ndarray,
+    fxs: np.ndarray,
+    fys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Chunk c of the flat-grid fBm; ``xg[n] * fxs[k]`` is computed in the grid dtype."""
+    j0 = c * CHUNK
+    n = min(CHUNK, out.size - j0)
+    scratch = new_scratch()
+    values = scratch[3]
+    xb = np.empty(CHUNK)
+    yb = np.empty(CHUNK)
+    total = np.zeros(CHUNK)
+    xg_chunk, yg_chunk = xg[j0 : j0 + n], yg[j0 : j0 + n]  # zero-based loops vectorise
+    for k in range(amps.size):
+        for j in range(n):
+            xb[j] = np.float64(xg_chunk[j] * fxs[k])
+            yb[j] = np.float64(yg_chunk[j] * fys[k])
+        noise_chunk(xb, yb, n, grad_table, scratch)
+        for j in range(n):
+            total[j] += values[j] * FBM_SCALE * amps[k]
+    out_chunk = out[j0 : j0 + n]
+    for j in range(n):
+        out_chunk[j] = finish_fbm(total[j], norm, to_01)
+
+
+@jit_kernel()
+def _fbm_grid_kernel(
+    xg: np.ndarray,
+    yg: np.ndarray,
+    fxs: np.ndarray,
+    fys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Parallel over chunks of the flat grid; the work is in ``_fbm_grid_chunk``."""
+    for c in prange((out.size + CHUNK - 1) // CHUNK):
+        _fbm_grid_chunk(c, xg, yg, fxs, fys, amps, norm, to_01, grad_table, out)
+
+
+def fbm(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    octaves: int,
+    lacunarity: float,
+    gain: float,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seed: int,
+) -> np.ndarray:
+    """fBm of OpenSimplex noise on the broadcast of x and y (float64); see ``noise_numpy.fbm``."""
+    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
+    table = gradient_table(int(seed))
+    amps = np.array(sched.amps, dtype=np.float64)
+    lay = coord_layout(x, y)
+    if lay.separable:
+        xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
+        ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
+        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
+        _fbm_separable_kernel(xs, ys, amps, sched.norm, bool(to_01), table, out)
+        return out.reshape(lay.shape)
+    fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
+    fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
+    flat = np.empty(lay.x_grid.size, dtype=np.float64)
+    _fbm_grid_kernel(lay.x_grid, lay.y_grid, fxs, fys, amps, sched.norm, bool(to_01), table, flat)
+    return flat.reshape(lay.shape)
+
+
+def warm_up(*, include_batch: bool = False) -> None:
+    """Compile (or load from the on-disk cache) the kernels for the common argument types.
+
+    Calls every entry point once on tiny float32 separable axes and rotated float32 grids, so
+    a CLI can pay numba's first-call cost up front (e.g. at install time or in a warm-up step).
+    """
+    x = np.linspace(0.0, 1.0, 4, dtype=np.float32)[None, :]
+    y = np.linspace(1.0, 0.0, 3, dtype=np.float32)[:, None]
+    grid_x, grid_y = np.float32(0.8) * x + np.float32(0.6) * y, np.float32(0.8) * y - x
+    fkw = dict(octaves=2, lacunarity=2.0, gain=0.5, freq_x=2.0, freq_y=2.0, to_01=True)
+    wkw = dict(distance="euclidean", combination="F1", freq_x=2.0, freq_y=2.0, to_01=True)
+    for gx, gy in ((x, y), (grid_x, grid_y)):
+        fbm(gx, gy, seed=0, **fkw)
+        worley(gx, gy, seed=0, **wkw)
+        if include_batch:
+            fbm_seed_batch(gx, gy, seeds=[0, 1], **fkw)
+            worley_seed_batch(gx, gy, seeds=[0, 1], **wkw)

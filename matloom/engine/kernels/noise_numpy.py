@@ -1,0 +1,318 @@
+"""Pure-numpy fBm (OpenSimplex 2014) and Worley noise, bit-compatible with the reference engine.
+
+This is the portable backend (no numba).  ``noise_numba`` exports the same functions and must
+agree with this module to <= 1e-12.  The arithmetic of ``_noise2`` mirrors opensimplex 0.4.5.1's
+``internals._noise2`` operation by operation (same operands, same order), vectorised with
+``np.where`` in place of the branches.  Work is done in flat chunks to keep temporaries in cache.
+
+Reference facts the fixtures pinned down beyond the spec text: Worley scales coordinates in
+float64 (fBm scales each octave in the coordinate dtype), and its hash runs on wrapping int64,
+so the ``>> 33`` shifts are arithmetic (sign-propagating), not logical.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from matloom.engine.kernels.opensimplex import (
+    FBM_SCALE,
+    GRADIENTS2,
+    NORM_CONSTANT2,
+    SQUISH_CONSTANT2,
+    STRETCH_CONSTANT2,
+    WORLEY_HASH_CX,
+    WORLEY_HASH_CY,
+    WORLEY_MIX1,
+    WORLEY_MIX2,
+    WORLEY_SEARCH,
+    coord_layout,
+    octave_schedule,
+    perm_from_seed,
+    scale_coords,
+    worley_codes,
+    worley_seed_term,
+)
+
+__all__ = ["fbm", "worley", "fbm_seed_batch", "worley_seed_batch", "noise2"]
+
+_CHUNK = 1 << 15  # elements per vectorised block
+_TWO_SQUISH = 2.0 * SQUISH_CONSTANT2
+
+
+# --- OpenSimplex 2-D --------------------------------------------------------------------------
+
+
+def _vertex_term(
+    perm: np.ndarray,
+    xsb: np.ndarray,
+    ysb: np.ndarray,
+    off_x: np.ndarray | int,
+    off_y: np.ndarray | int,
+    dx0: np.ndarray,
+    dy0: np.ndarray,
+) -> np.ndarray:
+    """Contribution of lattice vertex (xsb + off_x, ysb + off_y), 0 where attenuation <= 0.
+
+    The displacement is ``(dx0 - off_x) - (off_x + off_y) * SQUISH`` which reproduces every
+    vertex formula of the reference (e.g. ``dx0 - 1 - SQUISH``, ``dx0 - 1 - 2 * SQUISH``,
+    ``dx0 + 1``) exactly: subtracting 0.0 or a negated integer is exact in IEEE arithmetic.
+    """
+    squish = (off_x + off_y) * SQUISH_CONSTANT2
+    dx = (dx0 - off_x) - squish
+    dy = (dy0 - off_y) - squish
+    attn = 2 - dx * dx - dy * dy
+    index = perm[(perm[(xsb + off_x) & 0xFF] + (ysb + off_y)) & 0xFF] & 0x0E
+    extrapolated = GRADIENTS2[index] * dx + GRADIENTS2[index + 1] * dy
+    positive = attn > 0
+    attn = attn * attn
+    return np.where(positive, attn * attn * extrapolated, 0.0)
+
+
+def _ext_offsets(
+    xins: np.ndarray, yins: np.ndarray, in_sum: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Offsets of the extra vertex and of the base vertex (0,0)/(1,1), as in the reference."""
+    lower = in_sum <= 1
+    x_wins = xins > yins
+    z_lo = 1 - in_sum
+    z_hi = 2 - in_sum
+    near_lo = (z_lo > xins) | (z_lo > yins)
+    near_hi = (z_hi < xins) | (z_hi < yins)
+    ext_x = np.where(
+        lower,
+        np.where(near_lo, np.where(x_wins, 1, -1), 1),
+        np.where(near_hi, np.where(x_wins, 2, 0), 0),
+    )
+    ext_y = np.where(
+        lower,
+        np.where(near_lo, np.where(x_wins, -1, 1), 1),
+        np.where(near_hi, np.where(x_wins, 0, 2), 0),
+    )
+    base = np.where(lower, 0, 1)
+    return ext_x, ext_y, base
+
+
+def noise2(x: np.ndarray, y: np.ndarray, perm: np.ndarray) -> np.ndarray:
+    """OpenSimplex 2-D noise at float64 points (x, y broadcast together), raw range ~+-0.866.
+
+    Non-finite inputs give 0 (every attenuation test fails), as in the reference.
+    """
+    x = np.asarray(x, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        stretch_offset = (x + y) * STRETCH_CONSTANT2
+        xs = x + stretch_offset
+        ys = y + stretch_offset
+        xsb_f = np.floor(xs)
+        ysb_f = np.floor(ys)
+        squish_offset = (xsb_f + ysb_f) * SQUISH_CONSTANT2
+        dx0 = x - (xsb_f + squish_offset)
+        dy0 = y - (ysb_f + squish_offset)
+        xins = xs - xsb_f
+        yins = ys - ysb_f
+        xsb = xsb_f.astype(np.int64)
+        ysb = ysb_f.astype(np.int64)
+    ext_x, ext_y, base = _ext_offsets(xins, yins, xins + yins)
+    value = _vertex_term(perm, xsb, ysb, 1, 0, dx0, dy0)
+    value = value + _vertex_term(perm, xsb, ysb, 0, 1, dx0, dy0)
+    value = value + _vertex_term(perm, xsb, ysb, base, base, dx0, dy0)
+    value = value + _vertex_term(perm, xsb, ysb, ext_x, ext_y, dx0, dy0)
+    return value / NORM_CONSTANT2
+
+
+# --- fBm ----------------------------------------------------------------------------------------
+
+
+def _finish_fbm(total: np.ndarray, norm: float, to_01: bool) -> np.ndarray:
+    """Normalise by the amplitude sum, map to [0, 1] if asked, and clamp."""
+    out = total / norm
+    if to_01:
+        return np.clip((out + 1) / 2, 0.0, 1.0)
+    return np.clip(out, -1.0, 1.0)
+
+
+def _row_blocks(height: int, width: int) -> list[slice]:
+    """Row slices holding about ``_CHUNK`` elements each."""
+    rows = max(1, _CHUNK // max(width, 1))
+    return [slice(r, min(r + rows, height)) for r in range(0, height, rows)]
+
+
+def fbm(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    octaves: int,
+    lacunarity: float,
+    gain: float,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seed: int,
+) -> np.ndarray:
+    """fBm of OpenSimplex noise on the broadcast of x and y (float64 result).
+
+    Per octave k the coordinates are ``x * f_k`` in the coordinate dtype (float32 axes round
+    each octave's coordinates to float32, like the reference); the noise runs in float64.
+    """
+    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
+    perm = perm_from_seed(seed)
+    lay = coord_layout(x, y)
+    if lay.separable:
+        xs = [scale_coords(lay.x_axis, f) for f in sched.freqs_x]
+        ys = [scale_coords(lay.y_axis, f) for f in sched.freqs_y]
+        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
+        for rows in _row_blocks(*out.shape):
+            total = np.zeros((rows.stop - rows.start, out.shape[1]))
+            for k, amp in enumerate(sched.amps):
+                n = noise2(xs[k][None, :], ys[k][rows, None], perm)
+                total = total + n * FBM_SCALE * amp
+            out[rows] = _finish_fbm(total, sched.norm, to_01)
+        return out.reshape(lay.shape)
+    flat = np.empty(lay.x_grid.size, dtype=np.float64)
+    for start in range(0, flat.size, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        total = np.zeros(flat[part].size)
+        for k, amp in enumerate(sched.amps):
+            xk = scale_coords(lay.x_grid[part], sched.freqs_x[k])
+            yk = scale_coords(lay.y_grid[part], sched.freqs_y[k])
+            total = total + noise2(xk, yk, perm) * FBM_SCALE * amp
+        flat[part] = _finish_fbm(total, sched.norm, to_01)
+    return flat.reshape(lay.shape)
+
+
+def fbm_seed_batch(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    octaves: int,
+    lacunarity: float,
+    gain: float,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seeds: Sequence[int],
+) -> np.ndarray:
+    """fBm for many seeds, float32 (S, H, W) (numpy reference version: loops over seeds)."""
+    kw = dict(octaves=octaves, lacunarity=lacunarity, gain=gain, freq_x=freq_x, freq_y=freq_y)
+    layers = [fbm(x, y, to_01=to_01, seed=int(s), **kw).astype(np.float32) for s in seeds]
+    shape = np.broadcast_shapes(np.shape(x), np.shape(y))
+    return np.stack(layers) if layers else np.empty((0, *shape), dtype=np.float32)
+
+
+# --- Worley -----------------------------------------------------------------------------------
+
+
+def worley_hash(cx: np.ndarray, cy: np.ndarray, seed_term: np.int64, which: int) -> np.ndarray:
+    """The reference's cell hash in [0, 1): a murmur-style finaliser on wrapping int64.
+
+    The reference works in signed int64, so ``>> 33`` is an arithmetic shift (not the logical
+    shift of a uint64 hash); the fixtures confirm this.  numpy int64 arrays wrap silently.
+    """
+    t = cx * np.int64(WORLEY_HASH_CX) + cy * np.int64(WORLEY_HASH_CY)
+    t = t + seed_term + np.int64(which)
+    t ^= t >> 33
+    t *= np.int64(WORLEY_MIX1)
+    t ^= t >> 33
+    t *= np.int64(WORLEY_MIX2)
+    t ^= t >> 33
+    return (t & 0xFFFFFFFF).astype(np.float64) / 4294967296.0
+
+
+def _metric(dx: np.ndarray, dy: np.ndarray, metric: int) -> np.ndarray:
+    """Euclidean (0), Manhattan (1) or Chebyshev (2) length of (dx, dy)."""
+    if metric == 0:
+        return np.sqrt(dx * dx + dy * dy)
+    if metric == 1:
+        return np.abs(dx) + np.abs(dy)
+    return np.maximum(np.abs(dx), np.abs(dy))
+
+
+def _combine(f1: np.ndarray, f2: np.ndarray, combo: int, norm: float, to_01: bool) -> np.ndarray:
+    """F1/F2/F2-F1/F2+F1, optional division by the fixed norm (clipped at 1), clamp >= 0."""
+    with np.errstate(invalid="ignore"):
+        out = (f1, f2, f2 - f1, f2 + f1)[combo]
+        if to_01:
+            out = np.minimum(out / norm, 1.0)
+        return np.maximum(out, 0.0)
+
+
+def _worley_points(
+    u: np.ndarray, v: np.ndarray, seed_term: np.uint64, metric: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """F1 and F2 over the 5 x 5 cell block around (floor u, floor v) (flat float64 inputs)."""
+    finite = np.isfinite(u) & np.isfinite(v)
+    cu = np.floor(np.where(finite, u, 0.0)).astype(np.int64)
+    cv = np.floor(np.where(finite, v, 0.0)).astype(np.int64)
+    f1 = np.full(u.shape, np.inf)
+    f2 = np.full(u.shape, np.inf)
+    for off_x in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+        cx = cu + off_x
+        for off_y in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+            cy = cv + off_y
+            px = cx + worley_hash(cx, cy, seed_term, 0)
+            py = cy + worley_hash(cx, cy, seed_term, 1)
+            d = _metric(u - px, v - py, metric)
+            d = np.where(finite, d, np.nan)
+            closer = d < f1
+            f2 = np.where(closer, f1, np.where(d < f2, d, f2))
+            f1 = np.where(closer, d, f1)
+    return f1, f2
+
+
+def worley(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    distance: str,
+    combination: str,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seed: int,
+) -> np.ndarray:
+    """Worley (cellular) noise on the broadcast of x and y (float64 result).
+
+    u = x * freq_x and v = y * freq_y are computed in float64 (unlike fBm, float32 axes are
+    widened first -- the fixtures confirm this).  One feature point per cell at
+    (c + h(c, seed, 0), c' + h(c, seed, 1)); F1/F2 over the 5 x 5 block around (floor u, floor v).
+    """
+    metric, combo, norm = worley_codes(distance, combination)
+    seed_term = worley_seed_term(seed)
+    lay = coord_layout(x, y)
+    if lay.separable:
+        u_axis = lay.x_axis.astype(np.float64) * freq_x
+        v_axis = lay.y_axis.astype(np.float64) * freq_y
+        out = np.empty((v_axis.size, u_axis.size), dtype=np.float64)
+        for rows in _row_blocks(*out.shape):
+            u, v = np.broadcast_arrays(u_axis[None, :], v_axis[rows, None])
+            f1, f2 = _worley_points(u.ravel(), v.ravel(), seed_term, metric)
+            out[rows] = _combine(f1, f2, combo, norm, to_01).reshape(u.shape)
+        return out.reshape(lay.shape)
+    flat = np.empty(lay.x_grid.size, dtype=np.float64)
+    for start in range(0, flat.size, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        u = lay.x_grid[part].astype(np.float64) * freq_x
+        v = lay.y_grid[part].astype(np.float64) * freq_y
+        f1, f2 = _worley_points(u, v, seed_term, metric)
+        flat[part] = _combine(f1, f2, combo, norm, to_01)
+    return flat.reshape(lay.shape)
+
+
+def worley_seed_batch(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    distance: str,
+    combination: str,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seeds: Sequence[int],
+) -> np.ndarray:
+    """Worley for many seeds, float32 (S, H, W) (numpy reference version: loops over seeds)."""
+    kw = dict(distance=distance, combination=combination, freq_x=freq_x, freq_y=freq_y)
+    layers = [worley(x, y, to_01=to_01, seed=int(s), **kw).astype(np.float32) for s in seeds]
+    shape = np.broadcast_shapes(np.shape(x), np.shape(y))
+    return np.stack(layers) if layers else np.empty((0, *shape), dtype=np.float32)
