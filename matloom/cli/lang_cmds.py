@@ -74,7 +74,13 @@ def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | 
     if seed is not None:
         program = canonicalize_seeds(program, seed)
     if inline:
-        program = inline_defines(program)
+        from matloom.lang.diagnostics import ProgramError
+
+        try:
+            program = inline_defines(program)
+        except ProgramError as e:
+            click.echo(format_diagnostics(e.diagnostics, file), err=True)
+            sys.exit(2)
     out = format_program(program)
     if check_only:
         sys.exit(0 if text.strip() == out else 1)

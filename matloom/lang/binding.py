@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from matloom.lang import ast as A
-from matloom.lang.diagnostics import Span, hint_for
+from matloom.lang.diagnostics import Span, did_you_mean, hint_for
 from matloom.lang.lexer import Token
 from matloom.vocab import CHANNELS, FUNCTIONS
 
@@ -50,7 +50,8 @@ def bind_call(
         if key is not None:
             pname = key.text
             if spec.param(pname) is None:
-                hint = hint_for(pname, names, "=")
+                guess = did_you_mean(pname, names)
+                hint = f"did you mean `{guess}=`?" if guess else None
                 if spec.variadic is not None and pname == spec.variadic.name:
                     hint = f"pass {spec.variadic.name} as extra positional arguments"
                 p.diag("E031", f"unknown parameter '{pname}' for {name}", key.span,

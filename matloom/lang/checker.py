@@ -6,6 +6,7 @@ import math
 
 from matloom.lang import ast as A
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
+from matloom.lang.parser import MAX_NESTING
 from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import FUNCTIONS, Kind, ParamSpec, Returns
 
@@ -46,9 +47,30 @@ class Checker:
         if self.nodes > MAX_NODES:
             self.diag("E070", f"program has {self.nodes} expression nodes, more than the limit "
                       f"of {MAX_NODES}", program.span, expected=f"at most {MAX_NODES} nodes")
+        self._check_inlined_depth(program)
         self._warn_unused(program)
         self._warn_hidden(program)
         return self.diags
+
+    def _check_inlined_depth(self, program: A.Program) -> None:
+        """Limit the depth of expressions with their Defines substituted (one error at most).
+
+        A long chain of Defines (``Define(d2, d1 + 1)``, ...) is shallow as written but deep when
+        evaluated or inlined; the limit keeps evaluation and ``fmt --inline`` free of deep
+        recursion, and the inlined text parseable.
+        """
+        depth_of: dict[str, int] = {}
+        for owner, expr in A.program_expressions(program):
+            depth = inlined_depth(expr, depth_of)
+            if owner[0] == "define":
+                depth_of[owner[1]] = depth
+            if depth > MAX_NESTING:
+                what = f"Define '{owner[1]}'" if owner[0] == "define" else f"layer {owner[1]}"
+                self.diag("E070", f"{what} is {depth} levels deep with its Defines substituted, "
+                          f"more than the limit of {MAX_NESTING}", _span_of(expr, program.span),
+                          expected="a shallower chain of Defines",
+                          hint="combine Defines instead of chaining each on the previous one")
+                return
 
     def _check_view(self, program: A.Program) -> None:
         v = program.view
@@ -82,19 +104,22 @@ class Checker:
 
     def _warn_hidden(self, program: A.Program) -> None:
         layers = program.layers
+        alphas = [_static_alpha(layer) for layer in layers]
+        opaque_above: list[int | None] = [None] * len(layers)  # nearest opaque layer above i
+        nearest: int | None = None
+        for i in range(len(layers) - 1, -1, -1):  # one pass from the top: linear in layers
+            opaque_above[i] = nearest
+            if alphas[i] is not None and alphas[i] >= 1:  # type: ignore[operator]
+                nearest = i
         for i, layer in enumerate(layers):
-            alpha = 1.0 if layer.alpha is None else static_number(layer.alpha)
-            if alpha is not None and not uses_coordinates(layer.alpha or A.Num(1)) and alpha <= 0:
+            alpha = alphas[i]
+            if alpha is not None and alpha <= 0:
                 self.warn("W002", f"layer {i} has alpha {alpha} and is never visible", layer.span)
                 continue
-            for j in range(i + 1, len(layers)):
-                up = layers[j].alpha
-                a = 1.0 if up is None else static_number(up)
-                if a is not None and not uses_coordinates(up or A.Num(1)) and a >= 1:
-                    if i != 0 or j != 0:
-                        self.warn("W002", f"layer {i} is fully hidden by opaque layer {j} above it",
-                                  layer.span, hint="lower the upper layer's alpha or reorder")
-                    break
+            j = opaque_above[i]
+            if j is not None:
+                self.warn("W002", f"layer {i} is fully hidden by opaque layer {j} above it",
+                          layer.span, hint="lower the upper layer's alpha or reorder")
 
     # ---------------------------------------------------------------- expressions
     def field(self, node: A.Node, where: str, in_define: bool = False) -> None:
@@ -246,6 +271,32 @@ class Checker:
 
     def _rect_radius(self, shape: A.Call) -> None:
         return None
+
+
+def _static_alpha(layer: A.Layer) -> float | None:
+    """A layer's alpha if it is a constant (no X()/Y()); 1 when unwritten; else ``None``."""
+    if layer.alpha is None:
+        return 1.0
+    if uses_coordinates(layer.alpha):
+        return None
+    return static_number(layer.alpha)
+
+
+def inlined_depth(node: A.Node, depth_of: dict[str, int]) -> int:
+    """Tree depth of ``node`` with each known Define reference counted at its own depth."""
+    deepest, stack = 0, [(node, 1)]
+    while stack:
+        cur, d = stack.pop()
+        if isinstance(cur, A.Ref):
+            d += depth_of.get(cur.name, 1) - 1
+        deepest = max(deepest, d)
+        stack.extend((child, d + 1) for child in A.children(cur))
+    return deepest
+
+
+def _span_of(node: A.Node, fallback: Span) -> Span:
+    span = getattr(node, "span", None)
+    return span if span is not None and span.end > span.start else fallback
 
 
 def _is_none(node: A.Node) -> bool:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import difflib
 import enum
+import functools
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -83,9 +84,16 @@ class Diagnostic:
         return self.format()
 
 
+@functools.lru_cache(maxsize=4)
+def _source_lines(source: str) -> tuple[str, ...]:
+    """Lines of ``source``, cached: a program with many diagnostics is split once, not per
+    diagnostic (which was quadratic on large inputs)."""
+    return tuple(source.split("\n"))
+
+
 def caret_excerpt(source: str, span: Span, context: int = 1) -> str:
     """The offending line (plus ``context`` lines before it) with a caret line under the span."""
-    lines = source.split("\n")
+    lines = _source_lines(source)
     idx = max(0, min(span.line - 1, len(lines) - 1))
     out = []
     width = len(str(idx + 1))

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import replace
 
 from matloom.lang import ast as A
+from matloom.lang.checker import MAX_NODES
+from matloom.lang.diagnostics import Diagnostic, ProgramError
 from matloom.lang.rewrite import map_expr, map_program
 
 
@@ -12,7 +14,16 @@ def inline_defines(program: A.Program) -> A.Program:
     """Program with no Defines; every reference replaced by the (recursively inlined) expression.
 
     Explicit noise seeds are kept verbatim, so the inlined program evaluates to the same maps.
+    Raises :class:`ProgramError` (E070) if the result would exceed the node limit: Defines that
+    reuse each other can grow exponentially when written out.
     """
+    size = inlined_size(program)
+    if size > MAX_NODES:
+        message = f"inlining gives {size} expression nodes, more than the limit of {MAX_NODES}"
+        hint = "keep the Defines: the program is valid as written"
+        too_big = Diagnostic("E070", message, program.span, expected=f"at most {MAX_NODES} nodes",
+                             hint=hint)
+        raise ProgramError([too_big])
     resolved: dict[str, A.Node] = {}
 
     def sub(node: A.Node) -> A.Node:
@@ -24,3 +35,16 @@ def inline_defines(program: A.Program) -> A.Program:
         resolved[d.name] = map_expr(d.expr, sub)
     inlined = map_program(replace(program, defines=()), sub)
     return inlined
+
+
+def inlined_size(program: A.Program) -> int:
+    """Number of expression nodes of the inlined program, computed without building it."""
+    size_of: dict[str, int] = {}
+    total = 0
+    for owner, expr in A.program_expressions(program):
+        size = sum(size_of.get(n.name, 1) if isinstance(n, A.Ref) else 1 for n in A.walk(expr))
+        if owner[0] == "define":
+            size_of[owner[1]] = size
+        else:
+            total += size
+    return total

@@ -26,8 +26,12 @@ from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, 
 from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token
 from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS, Returns
 
-MAX_NESTING = 200
-"""Maximum expression nesting depth (documented limit; protects against stack exhaustion)."""
+MAX_NESTING = 100
+"""Maximum expression nesting depth, and maximum depth of an expression tree (documented limit).
+
+It bounds the recursion of the parser and of every recursive tree walker (checker, printer,
+evaluator), so hostile inputs such as ``((((...`` or ``1+1+...+1`` fail with E070 instead of
+exhausting Python's stack (the parser needs about 6 frames per nesting level)."""
 
 _STATEMENTS = ("View", "Define", "Material", "Layer")
 _BINARY_FUNCS = {"Add": "+", "Sub": "-", "Mul": "*", "Div": "/", "Pow": "**"}
@@ -47,8 +51,9 @@ class Parser:
         self.i = 0
         self.depth = 0
         self.diags: list[Diagnostic] = []
-        self.defined: list[str] = []
-        self.all_define_names: list[str] = []
+        self.defined: dict[str, None] = {}  # ordered set: O(1) lookups on huge inputs
+        self.all_define_names: set[str] = set()
+        self.broken_defines: set[str] = set()
 
     # ---------------------------------------------------------------- diagnostics
     def diag(self, code: str, msg: str, span: Span, expected: str | None = None,
@@ -144,6 +149,8 @@ class Parser:
                 else:
                     raise self._unexpected_statement(tok, layers is not None)
             except _Bail:
+                if tok.text == "Define" and start + 2 < len(self.toks):
+                    self.broken_defines.add(self.toks[start + 2].text)  # uses are not re-reported
                 self._skip_statement(start)
         if layers is None:
             eof = self.peek()
@@ -169,48 +176,71 @@ class Parser:
         t = self.toks
         for k in range(len(t) - 2):
             if t[k].text == "Define" and t[k + 1].text == "(" and t[k + 2].kind == "IDENT":
-                self.all_define_names.append(t[k + 2].text)
+                self.all_define_names.add(t[k + 2].text)
 
     def _skip_statement(self, start: int) -> None:
-        """Resynchronise: skip from ``start`` past the statement's balanced parentheses."""
+        """Resynchronise: skip from ``start`` past the statement's balanced parentheses.
+
+        Skipping stops early at a ``View(``/``Define(``/``Material(`` that starts a line, so an
+        unclosed parenthesis does not swallow (and hide errors in) the statements after it.
+        """
         self.i = start
         self.next()  # the statement keyword (or stray token)
+        self._skip_parens()
+        # a stray top-level ',' after a statement is skipped, and so is a method chain such as
+        # `.roughness(0.5)` after a misplaced Layer(...)
+        while self.peek().text in (",", ".") and self.peek().kind == "OP":
+            dot = self.next().text == "."
+            if dot and self.peek().kind == "IDENT" and not self._at_statement_start():
+                self.next()
+                self._skip_parens()
+
+    def _skip_parens(self) -> None:
         if not self.at("("):
             return
         depth = 0
         while self.peek().kind != "EOF":
+            if depth > 0 and self._at_statement_start():
+                return
             tok = self.next()
             if tok.text == "(":
                 depth += 1
             elif tok.text == ")":
                 depth -= 1
                 if depth == 0:
-                    break
-        # a stray top-level ',' or '.' after a statement is skipped too
-        while self.peek().text in (",", ".") and self.peek().kind == "OP":
-            self.next()
+                    return
+
+    def _at_statement_start(self) -> bool:
+        tok = self.peek()
+        if tok.kind != "IDENT" or tok.text not in ("View", "Define", "Material"):
+            return False
+        first_on_line = self.i == 0 or self.toks[self.i - 1].span.line < tok.span.line
+        return first_on_line and self.at("(", 1)
 
     def parse_view(self) -> A.ViewDecl | None:
         kw = self.next()
         self.expect("(", "after View")
-        from matloom.lang.static import static_number
+        from matloom.lang.static import is_static, static_number
 
         values: list[float] = []
+        bad = False
         for k in range(4):
             if k:
                 self.expect(",", "between View arguments")
             tok = self.peek()
             node = self.parse_expr()
-            v = static_number(node)
+            v = static_number(node) if is_static(node) else None  # X()/Y() are not numbers here
             if v is None:
                 self.diag("E061", "View arguments must be numbers", node_span(node, tok.span),
                           expected="View(x1, y1, x2, y2) with numeric corners")
-                v = 0.0
+                bad, v = True, 0.0
             values.append(float(v))
         if self.at(","):
             raise self.fail("E027", "View takes exactly 4 arguments", self.peek().span,
                             expected="View(x1, y1, x2, y2)")
         self.expect(")", "to close View(...)")
+        if bad:  # drop the View, so its placeholder corners cause no follow-on errors
+            raise _Bail()
         return A.ViewDecl(*values, span=self.span_from(kw.span))
 
     def parse_define(self) -> A.Define | None:
@@ -239,7 +269,7 @@ class Parser:
             self.diag("W005", f"Define name '{name}' is shadowed by a built-in and can never be "
                       "referenced", name_tok.span, severity=Severity.WARNING,
                       hint="choose another name")
-        self.defined.append(name)
+        self.defined[name] = None
         return A.Define(name, expr, self.span_from(kw.span), name_tok.span)
 
     # ---------------------------------------------------------------- material / layers
@@ -354,18 +384,36 @@ class Parser:
                                 self.peek().span, expected="a shallower expression",
                                 hint="move sub-expressions into Defines")
             left = self.parse_muldiv()
+            chain = 0
             while self.peek().kind == "OP" and self.peek().text in "+-" and self.peek().text:
                 op = self.next()
+                chain += 1
+                self._check_chain(chain, op)
                 right = self.parse_muldiv()
                 left = A.BinOp(op.text, left, right, _join(left, right, op.span))
+            if self.depth == 1 and _tree_depth(left) > MAX_NESTING:  # long operator chains
+                raise self.fail("E070", f"expression tree deeper than {MAX_NESTING} levels",
+                                node_span(left, self.peek().span),
+                                expected="a shallower expression",
+                                hint="move sub-expressions into Defines")
             return left
         finally:
             self.depth -= 1
 
+    def _check_chain(self, chain: int, op: Token) -> None:
+        """Fail early on an operator chain whose tree alone would exceed :data:`MAX_NESTING`."""
+        if chain >= MAX_NESTING:  # the chain alone makes the tree deeper than the limit
+            raise self.fail("E070", f"expression tree deeper than {MAX_NESTING} levels",
+                            op.span, expected="a shallower expression",
+                            hint="move sub-expressions into Defines")
+
     def parse_muldiv(self) -> A.Node:
         left = self.parse_unary()
+        chain = 0
         while self.peek().kind == "OP" and self.peek().text in ("*", "/"):
             op = self.next()
+            chain += 1
+            self._check_chain(chain, op)
             right = self.parse_unary()
             left = A.BinOp(op.text, left, right, _join(left, right, op.span))
         return left
@@ -438,7 +486,7 @@ class Parser:
             self.diag("E035", f"'{name}' is a function — call it as {name}()", tok.span,
                       expected=f"{name}(...)")
             return A.Ref(name, tok.span)
-        if name in self.defined:
+        if name in self.defined or name in self.broken_defines:
             return A.Ref(name, tok.span)
         current = getattr(self, "current_define", None)
         if name == current:
@@ -481,6 +529,16 @@ class Parser:
         self.expect(")", f"to close {name_tok.text}(...)")
         span = self.span_from(name_tok.span)
         return bind_call(self, name_tok, raw, span)
+
+
+def _tree_depth(node: A.Node) -> int:
+    """Depth of an expression tree, computed without recursion."""
+    deepest, stack = 0, [(node, 1)]
+    while stack:
+        cur, d = stack.pop()
+        deepest = max(deepest, d)
+        stack.extend((c, d + 1) for c in A.children(cur))
+    return deepest
 
 
 def node_span(node: A.Node, fallback: Span) -> Span:

@@ -11,6 +11,7 @@ import math
 from matloom.lang import ast as A
 from matloom.lang.static import static_number
 from matloom.vocab import CONSTANTS, FUNCTIONS, Kind, ParamSpec, PrintStyle
+from matloom.vocab.spec import format_default
 
 
 def fmt_num(v: float | int) -> str:
@@ -74,6 +75,8 @@ def _arg_text(call: A.Call, p: ParamSpec) -> str:
     node = call.arg(p.name)
     if p.kind in (Kind.EXPR, Kind.SHAPE):
         return format_expr(node) if node is not None else "None"
+    if node is None and not p.required:  # positional style prints omitted values as defaults
+        return format_default(p.default)
     return _static_text(node, p)
 
 
