@@ -83,6 +83,10 @@ class AuthorConfig(BaseModel):
     generator: ModelSettings | None = None
     #: Critic backend; ``None`` means "same as the generator" (a fresh, stateless conversation).
     critic: ModelSettings | None = None
+    #: Who writes P0 when a generator is configured: the model (Stage I), or the built-in offline
+    #: author, whose program the model then sees as its own first answer and revises in Stage II.
+    #: Irrelevant without a generator (the offline author is used anyway).
+    start: Literal["model", "builtin"] = "model"
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS

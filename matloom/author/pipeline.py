@@ -20,9 +20,21 @@ import numpy as np
 
 from matloom.author.config import AuthorConfig
 from matloom.author.llm.base import ChatModel, ImageInput, ModelError, get_model
-from matloom.author.prompts.revision import request_message, revision_message
+from matloom.author.prompts.revision import (
+    canonical_assistant_turn,
+    request_message,
+    revision_message,
+)
 from matloom.author.prompts.system import system_prompt
-from matloom.author.records import RECORD_NAME, ModelIds, RecordStore, RunRecord, SeedSearchRecord
+from matloom.author.records import (
+    RECORD_NAME,
+    MessageRecord,
+    ModelIds,
+    ProgramRecord,
+    RecordStore,
+    RunRecord,
+    SeedSearchRecord,
+)
 from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer, get_scorer
 from matloom.author.stages.critique import critique_program
 from matloom.author.stages.generate import (
@@ -161,6 +173,9 @@ class Run:
     def generate_initial(self) -> None:
         if self.record.programs:
             return
+        if self.config.start == "builtin":
+            self.start_from_builtin()
+            return
         assert self.generator is not None
         self.notify("generate", "generating P0", round=0)
         run_turn(
@@ -172,6 +187,21 @@ class Run:
             repair_turns=self.config.repair_turns,
             notify=lambda m: self.notify("generate", m, round=0),
         )
+
+    def start_from_builtin(self) -> None:
+        """P0 from the offline author, committed as the model's first answer to the request.
+
+        The conversation becomes (request, assistant turn with the canonical P0), exactly as if
+        the generator had written P0, so the first revision turn has its context. Program and
+        conversation are saved together: a resumed run either has both or redoes both.
+        """
+        self.notify("generate", "P0 from the built-in offline author", round=0)
+        program = _append_builtin_program(self)
+        self.record.conversation = [
+            MessageRecord(role="user", text=request_message(self.record.prompt)),
+            MessageRecord(role="assistant", text=canonical_assistant_turn("", program.text)),
+        ]
+        self.store.save()
 
     def refine(self) -> None:
         """Critique P_k and revise into P_{k+1} for k = 0..rounds-1, then critique P_rounds."""
@@ -466,24 +496,30 @@ def _builtin_author(run: Run) -> None:
     """The offline author (no model configured): one program, no critique."""
     if run.record.programs:
         return
-    from matloom.author.builtin import author
-    from matloom.author.records import ProgramRecord
-
     run.notify("generate", "built-in offline author")
+    _append_builtin_program(run)
+    run.store.save()
+
+
+def _append_builtin_program(run: Run) -> ProgramRecord:
+    """Record the offline author's program as P0 (canonical, seeds explicit) and its
+    explanation; the caller saves."""
+    from matloom.author.builtin import author
+    from matloom.lang.api import parse
+    from matloom.lang.printer import format_program
+    from matloom.lang.seeds import canonicalize_seeds
+
     start = time.perf_counter()
     result = author(run.record.prompt, seed=run.config.seed)
-    run.record.programs.append(
-        ProgramRecord(
-            index=0,
-            text=result.program,
-            authored=result.program,
-            source="builtin",
-            program_seed=run.config.seed,
-        )
+    # The offline author already pins every seed; this only guarantees the canonical form.
+    text = format_program(canonicalize_seeds(parse(result.program), run.config.seed))
+    program = ProgramRecord(
+        index=0, text=text, authored=result.program, source="builtin", program_seed=run.config.seed
     )
+    run.record.programs.append(program)
     run.record.builtin_explanation = result.explanation
     run.record.durations.generation.append(time.perf_counter() - start)
-    run.store.save()
+    return program
 
 
 def _fail(store: RecordStore, message: str, session_start: float) -> None:

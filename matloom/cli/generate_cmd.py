@@ -33,6 +33,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "stats_grid": "stats_grid",
     "playbook": "playbook",
     "few_shot": "few_shot",
+    "start": "start",
 }
 #: Flags that override generator model settings.
 _MODEL_FLAGS: dict[str, str] = {
@@ -154,6 +155,14 @@ def _model_options(f: Any) -> Any:
 def _pipeline_options(f: Any) -> Any:
     d = AuthorConfig()
     options = [
+        click.option(
+            "--start",
+            type=click.Choice(["model", "builtin"]),
+            default=d.start,
+            show_default=True,
+            help="Who writes P0 when a model is configured: the model, or the built-in offline "
+            "author (the model then critiques and revises it).",
+        ),
         click.option("--rounds", type=int, default=d.rounds, show_default=True),
         click.option(
             "--variants",
@@ -259,6 +268,11 @@ class ProgressView:
 @click.option("--resume", is_flag=True, help="Continue an interrupted run (or batch).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--quiet", is_flag=True, help="No progress display.")
+@click.option(
+    "--explain",
+    is_flag=True,
+    help="Print (on stderr) which built-in recipe, slots and modifiers were chosen and why.",
+)
 @_model_options
 @_pipeline_options
 @click.pass_context
@@ -271,6 +285,7 @@ def generate_cmd(
     resume: bool,
     as_json: bool,
     quiet: bool,
+    explain: bool,
     **_: Any,
 ) -> None:
     """Author a material program for PROMPT (text -> program -> critique -> selection -> seeds).
@@ -291,11 +306,13 @@ def generate_cmd(
             "matloom: no model configured (--model/--profile); using the built-in offline author",
             err=True,
         )
+        if "start" in given:
+            click.echo("matloom: --start is irrelevant without a model; ignored", err=True)
     view = ProgressView(enabled=not quiet)
     if prompts_file:
         _run_batch(prompts_file, out_dir, config, jobs, resume, as_json, view)
     else:
-        _run_single(prompt, out_dir, config, resume, as_json, view)
+        _run_single(prompt, out_dir, config, resume, as_json, view, explain)
 
 
 def _resumed_settings(out_dir: str) -> AuthorConfig | None:
@@ -313,6 +330,7 @@ def _run_single(
     resume: bool,
     as_json: bool,
     view: ProgressView,
+    explain: bool = False,
 ) -> None:
     from matloom.author.pipeline import AuthoringError, author_material
 
@@ -329,11 +347,26 @@ def _run_single(
             f"unexpected {type(err).__name__}: {err}\n(the record is kept in "
             f"{Path(out_dir) / 'record.json'}; rerun with --resume)"
         ) from None
+    if explain:
+        _say_explanation(result.record)
     if as_json:
         click.echo(json.dumps(result.summary(), indent=2))
     else:
         click.echo(result.program)
     _say_scorer_note(result.record)
+
+
+def _say_explanation(record: Any) -> None:
+    """The built-in author's explanation on stderr (of P0 when a model revised it)."""
+    explanation = record.builtin_explanation
+    if explanation is None:
+        explanation = "(no built-in author explanation: an LLM wrote this program)"
+    elif record.author == "llm" and record.final is not None:
+        explanation = (
+            "P0 came from the built-in offline author; the result is "
+            f"P{record.final.program_index}. P0's explanation:\n{explanation}"
+        )
+    click.echo(explanation, err=True)
 
 
 def _say_scorer_note(record: Any) -> None:
