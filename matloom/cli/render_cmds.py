@@ -77,7 +77,7 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
 @click.option("--scorer", default=None, help="Registered text-image scorer name.")
 @click.option("--prompt", default=None, help="Text the scorer compares against.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Variant RNG seed.")
-@click.option("--jobs", type=int, default=0, show_default=True, help="Worker processes (0 = all cores).")
+@click.option("--jobs", type=int, default=0, show_default=True, help="Shading threads (0 = all cores).")
 @click.option("-o", "--out", "out_dir", type=click.Path(file_okay=False), default=None,
               help="Write best.mat, report.json and previews here.")
 @click.option("--sheet", type=click.Path(dir_okay=False), default=None,

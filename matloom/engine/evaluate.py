@@ -11,11 +11,12 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
-from matloom.engine.backends import Backend, get_backend
+from matloom.engine.backends import Backend, choose_backend
 from matloom.engine.composite import RawLayer, composite
 from matloom.engine.grid import sample_axes
 from matloom.engine.kernels import mathops, shapes
@@ -222,9 +223,16 @@ def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:
     return raw
 
 
+@lru_cache(maxsize=64)
+def _parse_cached(text: str) -> A.Program:
+    """``parse`` memoised on the text (the AST is immutable, so sharing it is safe)."""
+    return parse(text)
+
+
 def prepare(program_or_text: A.Program | str, program_seed: int = 0) -> A.Program:
     """Parse (if text) and make omitted seeds explicit so evaluation is deterministic."""
-    program = parse(program_or_text) if isinstance(program_or_text, str) else program_or_text
+    text = program_or_text
+    program = _parse_cached(text) if isinstance(text, str) else program_or_text
     if has_seedless_noise(program):
         program = canonicalize_seeds(program, program_seed)
     return program
@@ -252,8 +260,15 @@ def evaluate(
     if not program.layers:
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")
     v = view if isinstance(view, View) else View(*(view or program.view_tuple))
-    be = backend if isinstance(backend, Backend) else get_backend(backend)
+    be = backend if isinstance(backend, Backend) else choose_backend(backend, width * height)
     x, y = sample_axes(v, width, height)
+    if be.fused:  # same maps as below, bit for bit (see matloom.engine.fused)
+        from matloom.engine.fused import evaluate_fused
+
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore", RuntimeWarning)
+            return evaluate_fused(program, x, y, v, be, ao_radius_units=ao_radius_units,
+                                  stats=stats)
     ev = Evaluator(program, x, y, be)
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)

@@ -1,40 +1,46 @@
 """Seed sweep: render the original program and K seed variants as previews, score, keep the best.
 
-Fast the way a graphics engineer would do it:
+Made fast the way a graphics engineer would:
 
 * the program is parsed once; variants are seed *assignments* applied during evaluation, so no
   variant is ever re-parsed (the variant text is produced only for the winners);
 * every sub-expression that depends on no noise seed (Bricks, shapes, constants, transforms of
-  coordinates) is evaluated once per sweep and reused by every candidate;
-* seeded fBm fields are computed for a whole chunk of candidates at once with the backend's
-  seed-batched kernel, which shares all seed-independent lattice work between seeds;
-* candidates are split over ``jobs`` worker processes.
+  coordinates) is evaluated once per sweep and reused by every candidate
+  (:class:`SweepEvaluator`);
+* the candidates are evaluated in chunks with a leading seed axis: each seeded fBm / Worley is
+  one seed-batched kernel call per chunk, and every other operation runs once per chunk on the
+  batched arrays (numpy broadcasting), so the Python work is per chunk, not per candidate;
+* per candidate only two compiled kernels run: the fused arithmetic + compositing kernel in its
+  preview mode and a fused normals + AO + shading kernel; candidates are shaded on ``jobs``
+  threads (the kernels release the GIL), with no worker processes to start.
+
+Previews may differ from :func:`matloom.preview` by one 8-bit level at a few texels (float32
+seed-batched noise, table-based sRGB conversions, float32 shading); the sweep ranks candidates,
+the winner's maps are then rendered by the exact engine.
 """
 
 from __future__ import annotations
 
 import heapq
-import math
 import os
+import threading
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from matloom.engine.backends import get_backend
-from matloom.engine.composite import composite
-from matloom.engine.evaluate import Coords, Evaluator, Field, layer_fields, prepare
-from matloom.engine.grid import sample_axes
-from matloom.engine.maps import View
 from matloom.lang import ast as A
 from matloom.lang.printer import format_program
 from matloom.lang.seeds import apply_seed_map, seed_assignments, seed_literal_spans
-from matloom.render.preview import shade
 
 Progress = Callable[[int, int], None]
-CHUNK = 32
+#: Upper bound of candidates per chunk (larger chunks amortise the noise lattice work).
+MAX_CHUNK = 128
+#: Bytes the seed-batched fields of one chunk may take (sets the chunk size).
+CHUNK_BUDGET_BYTES = 128 << 20
 
 
 @dataclass
@@ -81,114 +87,259 @@ def seeded_nodes(program: A.Program) -> set[int]:
     return out
 
 
-class SweepEvaluator(Evaluator):
-    """An :class:`Evaluator` reused across candidates: seed-free values persist, seeds are mapped."""
+def _sweep_evaluator_class() -> type:
+    """:class:`SweepEvaluator` (built on first use so that importing this module stays light)."""
+    from matloom.engine.lazy import LazyEvaluator
 
-    def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend_name: str) -> None:
-        super().__init__(program, x, y, get_backend(backend_name))
-        self.seeded = seeded_nodes(program)
-        self.persistent: dict[tuple[int, int], Any] = {}
-        self.batch: dict[tuple[int, int], np.ndarray] = {}
-        self.chunk_maps: list[dict[int, int]] = [{}]
-        self.slot = 0
+    class SweepEvaluator(LazyEvaluator):  # type: ignore[misc, valid-type]
+        """Evaluates one chunk of candidates at once (leading seed axis on seeded values);
+        seed-free values persist across chunks."""
 
-    def begin_chunk(self, maps: list[dict[int, int]]) -> None:
-        self.chunk_maps = maps
-        self.batch.clear()
+        def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend: Any) -> None:
+            super().__init__(program, x, y, backend)
+            self.seeded = seeded_nodes(program)
+            self.persistent: dict[tuple[int, int], Any] = {}
+            self.seed_maps: list[dict[int, int]] = [{}]
 
-    def begin_candidate(self, slot: int) -> None:
-        self.slot = slot
-        self.memo.clear()
+        def begin_chunk(self, seed_maps: list[dict[int, int]]) -> None:
+            self.seed_maps = seed_maps
+            self.memo.clear()
+            self.materialised.clear()
 
-    def eval(self, node: A.Node, c: Coords) -> Field:
-        if id(node) in self.seeded or isinstance(node, A.Num | A.Const):
-            return super().eval(node, c)
-        key = (id(node), self._frame_id(c))
-        if key not in self.persistent:
-            self.persistent[key] = super().eval(node, c)
-        return self.persistent[key]
+        def eval(self, node: A.Node, c: Any) -> Any:
+            if id(node) in self.seeded or isinstance(node, A.Num | A.Const):
+                return super().eval(node, c)
+            key = (id(node), self._frame_id(c))
+            if key not in self.persistent:
+                self.persistent[key] = super().eval(node, c)
+            return self.persistent[key]
 
-    def transform(self, call: A.Call, c: Coords) -> Coords:
-        key = (id(call), -1 - self._frame_id(c))
-        if key not in self.persistent:
-            self.persistent[key] = super().transform(call, c)
-        return self.persistent[key]
+        def transform(self, call: A.Call, c: Any) -> Any:
+            key = (id(call), -1 - self._frame_id(c))
+            if key not in self.persistent:
+                self.persistent[key] = super().transform(call, c)
+            return self.persistent[key]
 
-    def noise(self, call: A.Call, c: Coords) -> Field:
-        seed = self.num(call, "seed")
-        if call.func != "fBm":
-            new = self.chunk_maps[self.slot].get(seed, seed)
-            return self._noise_with_seed(call, c, new)
-        key = (id(call), self._frame_id(c))
-        if key not in self.batch:
-            seeds = [m.get(seed, seed) for m in self.chunk_maps]
+        def noise(self, call: A.Call, c: Any) -> Any:
+            seed = self.num(call, "seed")
+            seeds = [m.get(seed, seed) for m in self.seed_maps]
             fx, fy = self.freqs(call)
-            self.batch[key] = self.backend.fbm_seed_batch(
-                c[0], c[1], octaves=self.num(call, "octaves"),
-                lacunarity=self.num(call, "lacunarity"), gain=self.num(call, "gain"),
-                freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seeds=seeds)
-        return self.batch[key][self.slot]
+            common = dict(freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seeds=seeds)
+            if call.func == "fBm":
+                return self.backend.fbm_seed_batch(
+                    c[0],
+                    c[1],
+                    octaves=self.num(call, "octaves"),
+                    lacunarity=self.num(call, "lacunarity"),
+                    gain=self.num(call, "gain"),
+                    **common,
+                )
+            return self.backend.worley_seed_batch(
+                c[0],
+                c[1],
+                distance=self.num(call, "distance"),
+                combination=self.num(call, "combination"),
+                **common,
+            )
 
-    def _noise_with_seed(self, call: A.Call, c: Coords, seed: int) -> Field:
-        fx, fy = self.freqs(call)
-        return self.backend.worley(
-            c[0], c[1], distance=self.num(call, "distance"),
-            combination=self.num(call, "combination"), freq_x=fx, freq_y=fy,
-            to_01=bool(self.num(call, "to_01")), seed=seed)
+    return SweepEvaluator
 
 
-def _render_shard(text: str, maps: list[dict[int, int]], indices: list[int], size: int,
-                  backend: str, keep: int, scorer_name: str | None, prompt: str | None,
-                  progress: Progress | None = None) -> tuple[list[tuple[int, float | None]], list]:
-    """Render (and score) the candidates ``indices``; ``maps[i]`` is candidate i's seed map."""
+@dataclass
+class _Renderer:
+    """Everything fixed for a sweep: program, grid, kernels' constant inputs, thread buffers."""
+
+    program: A.Program
+    size: int
+    jobs: int
+    evaluator: Any = None
+    shade_args: tuple[Any, ...] = ()
+    local: threading.local = field(default_factory=threading.local)
+
+    def __post_init__(self) -> None:
+        from matloom.engine import fused
+        from matloom.engine.backends import get_backend
+        from matloom.engine.grid import sample_axes
+        from matloom.engine.kernels import preview_numba, relief_numba
+        from matloom.engine.maps import View
+        from matloom.render.preview import _light_and_half_vectors
+
+        view = View(*self.program.view_tuple)
+        x, y = sample_axes(view, self.size, self.size)
+        self.evaluator = _sweep_evaluator_class()(self.program, x, y, get_backend("numba"))
+        dx, dy = view.texel_size(self.size, self.size)
+        wx, div_x = relief_numba._tap_weights(8.0) or (np.ones(17, np.float32), np.float32(17))
+        light, half = _light_and_half_vectors(None)
+        spacing = np.array([dx, 2.0 * dx, dy, 2.0 * dy], dtype=np.float32)
+        self.shade_args = (
+            spacing,
+            wx,
+            div_x,
+            wx,
+            div_x,
+            np.float32(8.0 * dx),
+            light.astype(np.float32),
+            half.astype(np.float32),
+            preview_numba.encode_coefficients(),
+        )
+        self.luts = fused.decode_luts()
+
+    def chunk_program(self, seed_maps: list[dict[int, int]]) -> Any:
+        """Evaluate one chunk and compile its layers for the compositing kernel."""
+        from matloom.engine import fused
+        from matloom.engine.evaluate import layer_fields
+
+        ev = self.evaluator
+        ev.begin_chunk(seed_maps)
+        with np.errstate(all="ignore"):
+            layers = [layer_fields(ev, layer) for layer in self.program.layers]
+            return fused.compile_layers(layers, (self.size, self.size))
+
+    def render_chunk(
+        self, seed_maps: list[dict[int, int]], pool: ThreadPoolExecutor
+    ) -> list[np.ndarray]:
+        """Previews of one chunk of candidates, shaded on ``pool``. A program the fused kernel
+        cannot take (see :class:`fused.UnsupportedProgram`) is previewed variant by variant
+        with the exact engine."""
+        from matloom.engine import fused
+
+        try:
+            prog = self.chunk_program(seed_maps)
+        except fused.UnsupportedProgram:
+            return [self.exact_preview(m) for m in seed_maps]
+        return list(pool.map(lambda cand: self.render(prog, cand), range(len(seed_maps))))
+
+    def exact_preview(self, seed_map: dict[int, int]) -> np.ndarray:
+        """The exact engine's preview of one variant (fallback path)."""
+        from matloom.lang.printer import format_program as fmt
+        from matloom.render.api import preview
+
+        text = apply_seed_map(fmt(self.program), seed_map)
+        return preview(text, self.size, backend="numba")
+
+    def render(self, prog: Any, cand: int) -> np.ndarray:
+        """Preview of candidate ``cand`` of the chunk program ``prog`` (runs on any thread)."""
+        from matloom.engine import fused
+        from matloom.engine.kernels import composite_numba, preview_numba
+
+        buffers = getattr(self.local, "buffers", None)
+        if buffers is None:
+            n = self.size
+            buffers = (
+                np.zeros((16, n, n), np.float32),
+                np.zeros((n, n), np.uint8),
+                np.empty((n, n), np.float32),
+                np.zeros((1, 1, 3), np.float32),
+            )
+            self.local.buffers = buffers
+        planes, flags, mean, dummy = buffers
+        l64, l32 = fused.leaf_tuples(prog)
+        composite_numba.composite_rows(
+            prog.loads,
+            prog.code,
+            prog.consts,
+            prog.n_regs,
+            l64,
+            l32,
+            cand,
+            prog.chan_reg,
+            prog.chan_mode,
+            self.luts,
+            -1.0,
+            planes,
+            dummy,
+            dummy,
+            0,
+            flags,
+            0,
+            self.size,
+        )
+        image = np.empty((self.size, self.size, 3), np.uint8)
+        preview_numba.relief_shade(planes, *self.shade_args, mean, image)
+        return image
+
+
+@dataclass
+class _ExactRenderer:
+    """Fallback without numba: every variant is previewed by the (numpy) engine."""
+
+    program: A.Program
+    size: int
+
+    def render_chunk(self, seed_maps: list[dict[int, int]], pool: Any) -> list[np.ndarray]:
+        del pool
+        from matloom.render.api import preview
+
+        text = format_program(self.program)
+        return [preview(apply_seed_map(text, m), self.size) for m in seed_maps]
+
+
+def _chunk_size(program: A.Program, size: int) -> int:
+    """Candidates per chunk: as many as the seed-batched fields fit in the budget (float32
+    noise per seeded call, plus about four float64 arrays for each seeded primitive that runs
+    in numpy on the batch, e.g. Threshold and its temporaries)."""
+    seeded = seeded_nodes(program)
+    noise = fields = 0
+    for _, expr in A.program_expressions(program):
+        for node in A.walk(expr):
+            if isinstance(node, A.Call) and id(node) in seeded:
+                noise += node.arg("seed") is not None
+                fields += node.func in _MATERIALISED
+    per_candidate = max(1, 4 * noise + 32 * fields) * size * size
+    return int(max(8, min(MAX_CHUNK, CHUNK_BUDGET_BYTES // per_candidate)))
+
+
+#: Primitives whose seeded inputs are materialised as float64 batches (not fused).
+_MATERIALISED = {"Sin", "Cos", "Log"}
+
+
+def _render_all(
+    text: str,
+    maps: list[dict[int, int]],
+    size: int,
+    jobs: int,
+    keep: int,
+    scorer: Any,
+    prompt: str | None,
+    progress: Progress | None,
+) -> tuple[list[tuple[int, float | None]], list]:
+    """Render (and score) every candidate; ``maps[i]`` is candidate i's seed map."""
+    from matloom.engine.evaluate import prepare
+
     program = prepare(text)
-    view = View(*program.view_tuple)
-    x, y = sample_axes(view, size, size)
-    ev = SweepEvaluator(program, x, y, backend)
-    scorer = _get_scorer(scorer_name) if scorer_name else None
+    try:
+        renderer: Any = _Renderer(program, size, jobs)
+    except ImportError:  # no numba: exact numpy previews, one variant at a time
+        renderer = _ExactRenderer(program, size)
+    chunk = _chunk_size(program, size)
     results: list[tuple[int, float | None]] = []
     heap: list[tuple[float, int, np.ndarray]] = []
-    done = 0
-    for start in range(0, len(indices), CHUNK):
-        chunk = indices[start : start + CHUNK]
-        ev.begin_chunk([maps[i] for i in chunk])
-        images = []
-        for slot in range(len(chunk)):
-            ev.begin_candidate(slot)
-            with np.errstate(all="ignore"):
-                raws = [layer_fields(ev, layer) for layer in program.layers]
-                images.append(shade(composite(raws, size, size, view)))
-        scores = scorer.score(images, prompt or "") if scorer else [None] * len(chunk)
-        for i, img, s in zip(chunk, images, scores, strict=True):
-            value = None if s is None else float(s)
-            results.append((i, value))
-            rank = -i if value is None else value
-            item = (rank, -i, img)
-            if len(heap) < keep:
-                heapq.heappush(heap, item)
-            elif item[:2] > heap[0][:2]:
-                heapq.heapreplace(heap, item)
-        done += len(chunk)
-        if progress:
-            progress(done, len(indices))
+    with ThreadPoolExecutor(max_workers=jobs, thread_name_prefix="matloom-sweep") as pool:
+        for start in range(0, len(maps), chunk):
+            indices = list(range(start, min(start + chunk, len(maps))))
+            images = renderer.render_chunk([maps[i] for i in indices], pool)
+            scores = scorer.score(images, prompt or "") if scorer else [None] * len(indices)
+            for i, img, s in zip(indices, images, scores, strict=True):
+                value = None if s is None else float(s)
+                results.append((i, value))
+                item = (-i if value is None else value, -i, img)
+                if len(heap) < keep:
+                    heapq.heappush(heap, item)
+                elif item[:2] > heap[0][:2]:
+                    heapq.heapreplace(heap, item)
+            if progress:
+                progress(len(results), len(maps))
     top = [(-neg_i, img) for _, neg_i, img in sorted(heap, key=lambda t: t[:2], reverse=True)]
     return results, top
 
 
-def _get_scorer(name: str) -> Any:
+def _resolve_scorer(scorer: Any) -> Any:
+    """A scorer object from a registered name (or the object itself, or None)."""
+    if scorer is None or hasattr(scorer, "score"):
+        return scorer
     from matloom.author.scorers.base import get_scorer
 
-    return get_scorer(name)
-
-
-def _worker(args: tuple) -> tuple[list[tuple[int, float | None]], list]:
-    try:
-        import numba
-
-        numba.set_num_threads(1)
-    except (ImportError, ValueError):
-        pass
-    return _render_shard(*args)
+    return get_scorer(str(scorer))
 
 
 def run_sweep(
@@ -206,68 +357,51 @@ def run_sweep(
 ) -> SweepResult:
     """Render the original and ``variants`` seed variants; score them when a scorer is given.
 
-    ``scorer`` is a registered scorer name (or an object with ``.name``); ``jobs`` = 0 uses all
-    cores. The winner is the highest score (ties to the earliest); without a scorer it is the
-    original. Same ``seed`` -> same variants and same winner.
+    ``scorer`` is a registered scorer name or an object with ``.name`` and
+    ``.score(images, text)``; ``jobs`` = 0 shades on all cores (threads). The winner is the
+    highest score (ties to the earliest); without a scorer it is the original. The same ``seed``
+    gives the same variants and the same winner. ``backend`` is accepted for compatibility;
+    the sweep always uses the numba kernels.
     """
+    del backend
+    from matloom.engine.evaluate import prepare
+
     t0 = time.perf_counter()
     text = format_program(prepare(program_text))
     spans = seed_literal_spans(text)
-    maps = [{}] + seed_assignments(text, variants, seed)
+    maps: list[dict[int, int]] = [{}] + seed_assignments(text, variants, seed)
     message = ""
     if len(maps) == 1:
-        message = ("no field depends on a noise seed: the sweep has a single candidate"
-                   if not spans else "no variants requested: only the original is rendered")
-    scorer_name = getattr(scorer, "name", scorer)
-    n = len(maps)
-    jobs = jobs or (os.cpu_count() or 1)
-    jobs = max(1, min(jobs, math.ceil(n / CHUNK)))
-    if jobs == 1:
-        results, top = _render_shard(text, maps, list(range(n)), size, backend, keep,
-                                     scorer_name, prompt, progress)
-    else:
-        results, top = _parallel(text, maps, n, size, backend, keep, scorer_name, prompt, jobs,
-                                 progress)
+        message = (
+            "no field depends on a noise seed: the sweep has a single candidate"
+            if not spans
+            else "no variants requested: only the original is rendered"
+        )
+    jobs = max(1, jobs or (os.cpu_count() or 1))
+    results, top = _render_all(
+        text, maps, size, jobs, keep, _resolve_scorer(scorer), prompt, progress
+    )
     results.sort()
-    scored = [s for _, s in results if s is not None]
+    n = len(maps)
     best = 0
-    if scored:
+    if any(s is not None for _, s in results):
         best = max(range(n), key=lambda i: (results[i][1], -i))
     cands = [SweepCandidate(i, "", s) for i, s in results]
     best_program = apply_seed_map(text, maps[best], spans)
     cands[best].program = best_program
     cands[0].program = text
     secs = time.perf_counter() - t0
-    return SweepResult(cands, best, best_program, secs, n / secs if secs else 0.0, n,
-                       seed_free=not spans, top_images=top, message=message)
-
-
-def _parallel(text: str, maps: list[dict[int, int]], n: int, size: int, backend: str, keep: int,
-              scorer_name: str | None, prompt: str | None, jobs: int,
-              progress: Progress | None) -> tuple[list, list]:
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
-    shards = [list(range(k, n, jobs)) for k in range(jobs)]
-    ctx = mp.get_context("forkserver")
-    ctx.set_forkserver_preload(["matloom.render.sweep"])
-    results: list = []
-    tops: list = []
-    done = 0
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
-        futs = [pool.submit(_worker, (text, maps, s, size, backend, keep, scorer_name, prompt))
-                for s in shards]
-        for fut in as_completed(futs):
-            r, t = fut.result()
-            results.extend(r)
-            tops.extend(t)
-            done += len(r)
-            if progress:
-                progress(done, n)
-    score_of = dict(results)
-    tops.sort(key=lambda it: ((score_of[it[0]] if score_of[it[0]] is not None else -it[0]), -it[0]),
-              reverse=True)
-    return results, tops[:keep]
+    return SweepResult(
+        cands,
+        best,
+        best_program,
+        secs,
+        n / secs if secs else 0.0,
+        n,
+        seed_free=not spans,
+        top_images=top,
+        message=message,
+    )
 
 
 def variant_program(text: str, index: int, variants: int, seed: int = 0) -> str:

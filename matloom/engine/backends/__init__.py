@@ -1,14 +1,20 @@
 """Kernel backends: one table of primitive kernels per backend (``numpy`` always, ``numba`` when
 installed). The evaluator only talks to a :class:`Backend`, so a GPU array backend can be added
 here without touching the AST or the evaluator.
+
+Both backends produce bit-identical maps (tests/engine/test_fast_paths.py checks this), so the
+choice is purely about speed. ``auto`` (:func:`choose_backend`) weighs numba's one-off start-up
+cost (importing numba and loading the cached kernels: about 1 s of CPU) against its speed: a
+process that evaluates one small image (e.g. ``matloom render --size 256``) is faster on numpy.
 """
 
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import lru_cache, partial
+from functools import cache, partial
 from typing import Any
 
 Kernel = Callable[..., Any]
@@ -27,6 +33,9 @@ class Backend:
     threshold: Kernel
     fill: Kernel
     stroke: Kernel
+    worley_seed_batch: Kernel
+    #: Evaluate through the fused numba compositing path (identical results, less memory).
+    fused: bool = False
 
 
 def _numpy_backend() -> Backend:
@@ -42,6 +51,7 @@ def _numpy_backend() -> Backend:
         threshold=threshold.threshold,
         fill=partial(shapes.fill, backend="numpy"),
         stroke=partial(shapes.stroke, backend="numpy"),
+        worley_seed_batch=noise_numpy.worley_seed_batch,
     )
 
 
@@ -58,6 +68,8 @@ def _numba_backend() -> Backend:
         threshold=threshold.threshold,
         fill=partial(shapes.fill, backend="numba"),
         stroke=partial(shapes.stroke, backend="numba"),
+        worley_seed_batch=noise_numba.worley_seed_batch,
+        fused=True,
     )
 
 
@@ -76,7 +88,27 @@ def available_backends() -> list[str]:
     return out
 
 
-@lru_cache(maxsize=None)
+#: ``auto`` picks numba for requests of at least this many texels (numba's start-up cost is
+#: then small next to what it saves) ...
+AUTO_NUMBA_MIN_TEXELS = 512 * 512
+#: ... and for every request once this many evaluations ran in the process, or numba is loaded.
+AUTO_NUMBA_AFTER_CALLS = 2
+_auto_calls = [0]
+
+
+def choose_backend(name: str = "auto", texels: int = 0) -> Backend:
+    """The backend for a request of ``texels`` texels; ``auto`` as in the module docstring
+    ($MATLOOM_BACKEND overrides it). Any other name is passed to :func:`get_backend`."""
+    if name != "auto" or os.environ.get("MATLOOM_BACKEND", "auto") != "auto":
+        return get_backend(name)
+    _auto_calls[0] += 1
+    warm = "numba" in sys.modules or _auto_calls[0] > AUTO_NUMBA_AFTER_CALLS
+    if warm or texels >= AUTO_NUMBA_MIN_TEXELS:
+        return get_backend("auto")
+    return get_backend("numpy")
+
+
+@cache
 def get_backend(name: str = "auto") -> Backend:
     """The backend ``name`` (``auto``: $MATLOOM_BACKEND, else numba if installed, else numpy)."""
     if name == "auto":

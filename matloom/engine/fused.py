@@ -1,0 +1,426 @@
+"""The fused numba evaluation path: bit-identical to the numpy path, several times faster.
+
+For each band of rows the program's primitive fields are evaluated by a
+:class:`~matloom.engine.lazy.LazyEvaluator` on the band's sample axes (every primitive is
+point-wise, so a band evaluates to exactly the rows of the full evaluation). The deferred channel
+arithmetic is compiled into a register program (:func:`compile_layers`) that the compositing
+kernel runs per row. Normals and AO then run as numba kernels on the finished height.
+
+Why it is exact: see :mod:`matloom.engine.kernels.composite_numba`; texels where the kernel's
+sRGB decode cannot guarantee numpy's float32 result are recomposited with the numpy code
+(:func:`_recomposite`). A program the kernel cannot take (too many leaves or registers, a
+non-float leaf) is composited band-wise by the numpy path instead; the result is the same.
+
+Memory: only one band of fields is alive at a time, so the peak stays near the size of the
+output maps (about 88 bytes per texel) instead of growing with the number of fields.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from matloom.engine import composite as C
+from matloom.engine.backends import Backend
+from matloom.engine.evaluate import EvalStats, layer_fields
+from matloom.engine.kernels import composite_numba as K
+from matloom.engine.kernels import register_numba as R
+from matloom.engine.kernels import relief_numba
+from matloom.engine.kernels.threads import parallel_rows
+from matloom.engine.lazy import FUSABLE_DTYPES, Lazy, LazyEvaluator, gather, is_scalar
+from matloom.engine.maps import SCALAR_CHANNELS, MaterialMaps, View
+from matloom.lang import ast as A
+
+#: Texels per band (the fields of one band are alive at a time).
+BAND_TEXELS = 1 << 18
+#: Register cap of the kernel (each register is one float64 row per thread).
+MAX_REGISTERS = 256
+_PLANES = ("alpha", *SCALAR_CHANNELS, "ior", "height")
+_LUTS: list[tuple[np.ndarray, np.ndarray]] = []
+
+
+def decode_luts() -> tuple[np.ndarray, np.ndarray]:
+    """The kernel's sRGB decode tables (exact, preview), built once per process."""
+    if not _LUTS:
+        _LUTS.append((K.decode_table(), K.fast_decode_table()))
+    return _LUTS[0]
+
+
+@dataclass
+class FusedProgram:
+    """A compiled register program plus the layer channel tables for the kernel."""
+
+    loads: np.ndarray
+    code: np.ndarray
+    consts: np.ndarray
+    n_regs: int
+    leaves64: list[np.ndarray]
+    leaves32: list[np.ndarray]
+    chan_reg: np.ndarray
+    chan_mode: np.ndarray
+
+
+@dataclass
+class _Compiler:
+    """Turns channel values into registers: constants first, then leaves and operations."""
+
+    shape: tuple[int, ...]
+    consts: dict[tuple[float, str], int] = field(default_factory=dict)
+    const_values: list[float] = field(default_factory=list)
+    nodes: dict[int, int] = field(default_factory=dict)
+    ops: list[tuple[int, ...]] = field(default_factory=list)
+    leaves64: list[np.ndarray] = field(default_factory=list)
+    leaves32: list[np.ndarray] = field(default_factory=list)
+    keep: list[Any] = field(default_factory=list)
+
+    def const(self, value: Any) -> int:
+        v = float(value)
+        key = (v, np.float64(v).tobytes().hex())
+        if key not in self.consts:
+            self.consts[key] = -1 - len(self.const_values)
+            self.const_values.append(v)
+        return self.consts[key]
+
+    def threshold(self, value: Lazy) -> tuple[int, ...]:
+        """The op row of a Threshold: its 6 parameters become consecutive constants."""
+        source, kw = value.args[0], dict(value.args[1])
+        below, above = kw["below_at"], kw["above_at"]
+        block = [
+            0.0 if below is None else float(below),
+            0.0 if below is None else float(below if kw["below_to"] is None else kw["below_to"]),
+            0.0 if above is None else float(above),
+            0.0 if above is None else float(above if kw["above_to"] is None else kw["above_to"]),
+            float(kw["transition_width"]),
+            float((above is not None) + 2 * (below is not None)),
+        ]
+        base = len(self.const_values)
+        self.const_values.extend(block)
+        f32 = int(
+            np.asarray(source).dtype == np.float32
+            if not isinstance(source, Lazy)
+            else source.dtype == np.float32
+        )
+        return (R.OP_THRESHOLD, 0, self.value(source), base, f32)
+
+    def leaf(self, array: np.ndarray) -> int:
+        if array.dtype not in FUSABLE_DTYPES or array.ndim > 3:
+            raise UnsupportedProgram(f"leaf dtype {array.dtype} / ndim {array.ndim}")
+        np.broadcast_shapes(array.shape, self.shape)
+        leaf = np.ascontiguousarray(array.reshape((1,) * (3 - array.ndim) + array.shape))
+        pool, op = (
+            (self.leaves32, R.OP_LOAD32)
+            if array.dtype == np.float32
+            else (self.leaves64, R.OP_LOAD64)
+        )
+        pool.append(leaf)
+        self.ops.append((op, 0, len(pool) - 1, 0, 0))
+        return len(self.ops) - 1
+
+    def value(self, value: Any) -> int:
+        """Register reference of a value (negative = constant, else index into ``ops``)."""
+        if is_scalar(value):
+            if np.asarray(value).dtype not in FUSABLE_DTYPES and not isinstance(value, float):
+                raise UnsupportedProgram("non-float scalar")
+            return self.const(value)
+        key = id(value)
+        if key not in self.nodes:
+            self.keep.append(value)
+            if isinstance(value, Lazy) and value.op == "threshold":
+                self.ops.append(self.threshold(value))
+                self.nodes[key] = len(self.ops) - 1
+            elif isinstance(value, Lazy):
+                refs = [self.value(a) for a in value.args] + [0]
+                code = R.BINARY_OPS.get(value.op, R.UNARY_OPS.get(value.op))
+                f32 = int(value.dtype == np.float32)
+                self.ops.append((code, 0, refs[0], refs[1], f32))
+                self.nodes[key] = len(self.ops) - 1
+            else:
+                self.nodes[key] = self.leaf(np.asarray(value))
+        return self.nodes[key]
+
+
+class UnsupportedProgram(Exception):
+    """The kernel cannot take this program; the numpy path composites it instead."""
+
+
+def _channel_refs(comp: _Compiler, layer: C.RawLayer) -> tuple[list[int], list[int]]:
+    """(register refs, modes) of the 17 channel slots of one layer."""
+    refs, modes = [0] * K.N_CHANNELS, [K.RAW] * K.N_CHANNELS
+
+    def ready(slot: int, converted: Any, mode: int = K.READY) -> None:
+        refs[slot] = comp.const(converted)
+        modes[slot] = K.ZERO if mode == K.READY and float(converted) == 0.0 else mode
+
+    def raw(slot: int, value: Any) -> None:
+        refs[slot] = comp.value(value)
+
+    raw(K.CH_ALPHA, layer.alpha)
+    raw(K.CH_HEIGHT, layer.height)
+    raw(K.CH_STRENGTH, layer.emissive[3])
+    for c, name in enumerate(SCALAR_CHANNELS):
+        v = getattr(layer, name)
+        ready(K.CH_SCALARS + c, C.clamp_unit(v)) if is_scalar(v) else raw(K.CH_SCALARS + c, v)
+    ior = layer.ior
+    ready(K.CH_IOR, C.clamp_below(ior, 1.0)) if is_scalar(ior) else raw(K.CH_IOR, ior)
+    strength = layer.emissive[3]
+    for k in range(3):
+        v = layer.basecolor[k]
+        ready(K.CH_BASECOLOR + k, C.colour_to_linear(v)) if is_scalar(v) else raw(
+            K.CH_BASECOLOR + k, v
+        )
+        e = layer.emissive[k]
+        if not is_scalar(e):
+            raw(K.CH_EMISSIVE + k, e)
+        elif is_scalar(strength):
+            ready(K.CH_EMISSIVE + k, C.emitted_radiance(np.asarray(e), np.asarray(strength)))
+        else:
+            ready(K.CH_EMISSIVE + k, C._colour_to_linear64(np.asarray(e)), K.DECODED)
+    return refs, modes
+
+
+def compile_layers(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> FusedProgram:
+    """Compile the layers' channel values for :func:`composite_numba.composite_rows`.
+
+    Constants occupy the first registers (the compositing stage reads channel constants from
+    registers); operations read constants directly. Other registers are reused once their value
+    is dead, except those the channel tables read. Raises ``UnsupportedProgram`` past the kernel's
+    fixed limits.
+    """
+    comp = _Compiler(shape)
+    tables = [_channel_refs(comp, layer) for layer in layers]
+    if len(comp.leaves64) > K.MAX_LEAVES64 or len(comp.leaves32) > K.MAX_LEAVES32:
+        raise UnsupportedProgram("too many leaves")
+    n_const = len(comp.const_values)
+    pinned = {r for refs, _ in tables for r in refs if r >= 0}
+    regs, code, n_regs = _allocate(comp.ops, pinned, n_const)
+    if n_regs > MAX_REGISTERS:
+        raise UnsupportedProgram("too many registers")
+
+    def reg(ref: int) -> int:
+        return -1 - ref if ref < 0 else regs[ref]
+
+    chan_reg = np.array([[reg(r) for r in refs] for refs, _ in tables], dtype=np.int64)
+    chan_mode = np.array([modes for _, modes in tables], dtype=np.int64)
+    loads = code[code[:, 0] <= R.OP_LOAD32]
+    code = code[code[:, 0] > R.OP_LOAD32]
+    return FusedProgram(
+        loads,
+        code,
+        np.array(comp.const_values, np.float64),
+        max(n_regs, 1),
+        comp.leaves64,
+        comp.leaves32,
+        chan_reg,
+        chan_mode,
+    )
+
+
+def _allocate(
+    ops: list[tuple[int, ...]], pinned: set[int], n_const: int
+) -> tuple[list[int], np.ndarray, int]:
+    """Linear-scan register allocation in execution order (all leaf loads first, then the
+    arithmetic): (register of each op, code rows in execution order, register count)."""
+    order = [k for k, o in enumerate(ops) if o[0] <= R.OP_LOAD32] + [
+        k for k, o in enumerate(ops) if o[0] > R.OP_LOAD32
+    ]
+    position = {k: p for p, k in enumerate(order)}
+
+    def operands(op: tuple[int, ...]) -> tuple[int, ...]:
+        if op[0] <= R.OP_LOAD32:
+            return ()
+        return (op[2],) if op[0] >= R.OP_ABS else (op[2], op[3])
+
+    last_use = {k: len(ops) if k in pinned else position[k] for k in range(len(ops))}
+    for k in order:
+        for ref in operands(ops[k]):
+            if ref >= 0:
+                last_use[ref] = max(last_use[ref], position[k])
+    free: list[int] = []
+    regs = [0] * len(ops)
+    rows = []
+    n_regs = n_const
+    for k in order:
+        op, _, a, b, f32 = ops[k]
+        refs = operands(ops[k])
+        for ref in refs:
+            if ref >= 0 and last_use[ref] == position[k] and regs[ref] not in free:
+                free.append(regs[ref])
+        dst = free.pop() if free else n_regs
+        n_regs = max(n_regs, dst + 1)
+        regs[k] = dst
+        if not refs:
+            rows.append((op, dst, a, 0, 0, 0))
+            continue
+        if op == R.OP_THRESHOLD:  # b is the index of its constant block
+            rows.append((op, dst, regs[a] if a >= 0 else -1 - a, b, f32, int(a < 0)))
+            continue
+        mask = sum(bit for bit, ref in zip((1, 2), refs) if ref < 0)
+        fields = [(-1 - ref) if ref < 0 else regs[ref] for ref in refs] + [0]
+        rows.append((op, dst, fields[0], fields[1], f32, mask))
+    code = np.array(rows, dtype=np.int64).reshape(-1, 6)
+    return regs, code, n_regs
+
+
+_DUMMY64 = np.zeros((1, 1, 1), np.float64)
+_DUMMY32 = np.zeros((1, 1, 1), np.float32)
+
+
+def leaf_tuples(prog: FusedProgram) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """The leaves padded to the kernel's fixed slot counts."""
+    l64 = tuple(prog.leaves64) + (_DUMMY64,) * (K.MAX_LEAVES64 - len(prog.leaves64))
+    l32 = tuple(prog.leaves32) + (_DUMMY32,) * (K.MAX_LEAVES32 - len(prog.leaves32))
+    return l64, l32
+
+
+def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
+    """Output maps as :func:`composite._allocate_maps` makes them, except that the ten planes
+    (alpha, the 7 scalars, ior, height) are views of one (10, H, W) buffer, the kernel's
+    ``planes`` argument (see :func:`planes_of`)."""
+    buffer = np.zeros((len(_PLANES), height, width), np.float32)
+    buffer[-1] = -np.inf
+    maps = {name: buffer[p] for p, name in enumerate(_PLANES)}
+    maps["basecolor_linear"] = np.zeros((height, width, 3), np.float32)
+    maps["emissive_linear"] = np.zeros((height, width, 3), np.float32)
+    return maps
+
+
+def planes_of(maps: dict[str, np.ndarray]) -> np.ndarray:
+    """The (10, H, W) buffer behind the plane maps of :func:`allocate_maps`."""
+    base = maps["alpha"].base
+    assert base is not None and base.shape[0] == len(_PLANES)
+    return base
+
+
+def run_kernel(
+    prog: FusedProgram, maps: dict[str, np.ndarray], row0: int, flags: np.ndarray, cand: int = 0
+) -> None:
+    """Composite the band of rows ``row0``.. (``flags.shape[0]`` rows; candidate ``cand`` of
+    batched leaves) into ``maps`` (from :func:`allocate_maps`), rows split over threads."""
+    l64, l32 = leaf_tuples(prog)
+    args = (
+        prog.loads,
+        prog.code,
+        prog.consts,
+        prog.n_regs,
+        l64,
+        l32,
+        cand,
+        prog.chan_reg,
+        prog.chan_mode,
+        decode_luts(),
+        K.DECODE_MARGIN,
+        planes_of(maps),
+        maps["basecolor_linear"],
+        maps["emissive_linear"],
+        row0,
+        flags,
+    )
+    parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(*args, a, b))
+
+
+def _recomposite(
+    layers: Sequence[C.RawLayer], band: dict[str, np.ndarray], flags: np.ndarray
+) -> None:
+    """Redo the flagged texels of a band with the numpy reference compositing."""
+    if not flags.any():  # the common case: much cheaper than nonzero
+        return
+    rows, cols = np.nonzero(flags)
+    shape = band["alpha"].shape
+    cache: dict[int, Any] = {}
+
+    def pick(v: Any) -> Any:
+        return gather(v, rows, cols, shape, cache)
+
+    picked = [
+        C.RawLayer(
+            pick(ly.alpha),
+            tuple(pick(v) for v in ly.basecolor),  # type: ignore[arg-type]
+            *(pick(getattr(ly, n)) for n in SCALAR_CHANNELS),
+            pick(ly.ior),
+            tuple(pick(v) for v in ly.emissive),
+            pick(ly.height),
+        )  # type: ignore[arg-type]
+        for ly in layers
+    ]
+    fixed = C._allocate_maps(rows.size, 1)
+    C._composite_band(picked, fixed, slice(0, 1))
+    for name, array in fixed.items():
+        band[name][rows, cols] = array[0]
+
+
+def _band_slices(height: int, width: int) -> list[slice]:
+    """Row bands of about BAND_TEXELS texels, each at least 2 rows unless height is 1."""
+    rows = max(2, BAND_TEXELS // max(width, 1))
+    starts = list(range(0, height, rows))
+    if len(starts) > 1 and height - starts[-1] < 2:
+        starts.pop()
+    return [
+        slice(s, starts[k + 1] if k + 1 < len(starts) else height) for k, s in enumerate(starts)
+    ]
+
+
+def composite_program(
+    program: A.Program, x: np.ndarray, y: np.ndarray, backend: Backend, stats: EvalStats
+) -> dict[str, np.ndarray]:
+    """Evaluate and composite every band; returns the blended maps (no normal/AO yet)."""
+    height, width = y.shape[0], x.shape[1]
+    maps = allocate_maps(width, height)
+    for index, rows in enumerate(_band_slices(height, width)):
+        ev = LazyEvaluator(program, x, y[rows], backend)
+        ev.count_row_invariant_zero_divisions = index == 0
+        with np.errstate(all="ignore"):
+            layers = [layer_fields(ev, layer) for layer in program.layers]
+        band = {name: array[rows] for name, array in maps.items()}
+        shape = (rows.stop - rows.start, width)
+        try:
+            prog = compile_layers(layers, shape)
+        except UnsupportedProgram:
+            layers = [_materialised(layer, ev) for layer in layers]
+            with np.errstate(all="ignore"):
+                C._composite_band(layers, band, slice(0, shape[0]))
+        else:
+            flags = np.zeros(shape, np.uint8)
+            run_kernel(prog, maps, rows.start, flags)
+            with np.errstate(all="ignore"):
+                _recomposite(layers, band, flags)
+        stats.zero_divisions += ev.stats.zero_divisions
+        if index == 0:
+            stats.define_evaluations = ev.stats.define_evaluations
+    return maps
+
+
+def _materialised(layer: C.RawLayer, ev: LazyEvaluator) -> C.RawLayer:
+    """A copy of ``layer`` with every Lazy channel value computed with numpy."""
+    m = ev.concrete
+    return C.RawLayer(
+        m(layer.alpha),
+        tuple(m(v) for v in layer.basecolor),  # type: ignore[arg-type]
+        *(m(getattr(layer, n)) for n in SCALAR_CHANNELS),
+        m(layer.ior),
+        tuple(m(v) for v in layer.emissive),
+        m(layer.height),
+    )  # type: ignore[arg-type]
+
+
+def evaluate_fused(
+    program: A.Program,
+    x: np.ndarray,
+    y: np.ndarray,
+    view: View,
+    backend: Backend,
+    *,
+    ao_radius_units: float | None = None,
+    stats: EvalStats | None = None,
+) -> MaterialMaps:
+    """Fused evaluation of ``program`` on the sample axes ``x`` (1, W) and ``y`` (H, 1)."""
+    height, width = y.shape[0], x.shape[1]
+    stats = stats if stats is not None else EvalStats()
+    radius_x, radius_y = C._ao_radii(view, width, height, None, ao_radius_units)
+    maps = composite_program(program, x, y, backend, stats)
+    dx, dy = view.texel_size(width, height)
+    maps["normal"] = relief_numba.normals(maps["height"], dx, dy)
+    maps["ao"] = relief_numba.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
+    return MaterialMaps(**maps, view=view, n_layers=len(program.layers))

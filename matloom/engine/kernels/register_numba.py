@@ -1,0 +1,240 @@
+"""numba register machine for the deferred channel arithmetic of the fused evaluation path.
+
+A compiled program (see :func:`matloom.engine.fused.compile_layers`) is a table of rows
+(op, dst, a, b, round_to_f32, const_mask) over a register file of float64 rows, one row per
+register, evaluated one image row at a time. Leaves (primitive fields) are loaded with
+broadcasting from (S|1, H|1, W|1) arrays; constants are read directly by the operations.
+
+Every operation is an IEEE operation with numpy's semantics (safe division gives 0 where the
+divisor is 0; min/max propagate NaN like ``np.minimum``/``np.maximum``); a float32 result is the
+float64 result rounded once to float32, which equals the float32 operation for + - * / and
+sqrt. So the register values equal the numpy evaluator's values bit for bit.
+
+Note for developers: numba's on-disk cache of a kernel is keyed on the file that defines it,
+not on the files of the functions it calls. After editing this module, delete the cached
+``composite_numba``/``preview_numba`` entries in ``kernels/__pycache__`` (or touch those files),
+or their cached code keeps the old register machine.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numba
+import numpy as np
+
+#: Register-program opcodes (rows of ``code``: op, dst, a, b, round_to_f32, const_mask).
+OP_LOAD64, OP_LOAD32 = 0, 1
+OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_MIN, OP_MAX = 2, 3, 4, 5, 6, 7
+OP_ABS, OP_FLOOR, OP_CEIL, OP_SQRT = 8, 9, 10, 11
+#: Threshold (grid-path rules of ``kernels.threshold``); ``b`` = first of its 6 constants
+#: (below_at, below_to, above_at, above_to, transition_width, 1 * has_above + 2 * has_below).
+OP_THRESHOLD = 12
+BINARY_OPS = {"+": OP_ADD, "-": OP_SUB, "*": OP_MUL, "/": OP_DIV, "min": OP_MIN, "max": OP_MAX}
+UNARY_OPS = {"abs": OP_ABS, "floor": OP_FLOOR, "ceil": OP_CEIL, "sqrt": OP_SQRT}
+
+_OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
+
+
+def _jit(parallel: bool = False, inline: bool = False) -> Any:
+    """``numba.njit(cache=True)`` (uncached if numba finds no writable cache directory)."""
+    options = dict(_OPTIONS, parallel=parallel)
+    if inline:
+        options["inline"] = "always"
+
+    def decorate(func: Any) -> Any:
+        try:
+            return numba.njit(cache=True, **options)(func)
+        except RuntimeError:
+            return numba.njit(cache=False, **options)(func)
+
+    return decorate
+
+
+@_jit(inline=True)
+def _load(dst: int, leaf: np.ndarray, cand: int, i: int, regs: np.ndarray) -> None:
+    """regs[dst] = row i of a (S|1, H|1, W|1) leaf for candidate ``cand``, broadcast."""
+    s = cand if leaf.shape[0] > 1 else 0
+    ii = i if leaf.shape[1] > 1 else 0
+    width = regs.shape[1]
+    if leaf.shape[2] > 1:
+        for j in range(width):
+            regs[dst, j] = leaf[s, ii, j]
+    else:
+        value = np.float64(leaf[s, ii, 0])
+        for j in range(width):
+            regs[dst, j] = value
+
+
+# The element loops index the 2-D register file directly (no per-op array views: creating
+# views costs more than the arithmetic on short rows).
+
+
+@_jit(inline=True)
+def _binary(op: int, r: np.ndarray, d: int, a: int, b: int) -> None:
+    """r[d] = r[a] (op) r[b]; safe division gives 0 where the divisor is 0; min/max keep NaN."""
+    n = r.shape[1]
+    if op == OP_ADD:
+        for j in range(n):
+            r[d, j] = r[a, j] + r[b, j]
+    elif op == OP_SUB:
+        for j in range(n):
+            r[d, j] = r[a, j] - r[b, j]
+    elif op == OP_MUL:
+        for j in range(n):
+            r[d, j] = r[a, j] * r[b, j]
+    elif op == OP_DIV:
+        for j in range(n):
+            r[d, j] = 0.0 if r[b, j] == 0.0 else r[a, j] / r[b, j]
+    elif op == OP_MIN:
+        for j in range(n):
+            x, y = r[a, j], r[b, j]
+            r[d, j] = x if (x < y or x != x) else y
+    else:
+        for j in range(n):
+            x, y = r[a, j], r[b, j]
+            r[d, j] = x if (x > y or x != x) else y
+
+
+@_jit(inline=True)
+def _binary_right_const(op: int, r: np.ndarray, d: int, a: int, y: float) -> None:
+    """r[d] = r[a] (op) y for a constant right operand (same semantics as :func:`_binary`)."""
+    n = r.shape[1]
+    if op == OP_ADD:
+        for j in range(n):
+            r[d, j] = r[a, j] + y
+    elif op == OP_SUB:
+        for j in range(n):
+            r[d, j] = r[a, j] - y
+    elif op == OP_MUL:
+        for j in range(n):
+            r[d, j] = r[a, j] * y
+    elif op == OP_DIV:
+        for j in range(n):
+            r[d, j] = 0.0 if y == 0.0 else r[a, j] / y
+    elif op == OP_MIN:
+        for j in range(n):
+            x = r[a, j]
+            r[d, j] = x if (x < y or x != x) else y
+    else:
+        for j in range(n):
+            x = r[a, j]
+            r[d, j] = x if (x > y or x != x) else y
+
+
+@_jit(inline=True)
+def _binary_left_const(op: int, r: np.ndarray, d: int, x: float, b: int) -> None:
+    """r[d] = x (op) r[b] for a constant left operand (same semantics as :func:`_binary`)."""
+    n = r.shape[1]
+    if op == OP_ADD:
+        for j in range(n):
+            r[d, j] = x + r[b, j]
+    elif op == OP_SUB:
+        for j in range(n):
+            r[d, j] = x - r[b, j]
+    elif op == OP_MUL:
+        for j in range(n):
+            r[d, j] = x * r[b, j]
+    elif op == OP_DIV:
+        for j in range(n):
+            r[d, j] = 0.0 if r[b, j] == 0.0 else x / r[b, j]
+    elif op == OP_MIN:
+        for j in range(n):
+            y = r[b, j]
+            r[d, j] = x if (x < y or x != x) else y
+    else:
+        for j in range(n):
+            y = r[b, j]
+            r[d, j] = x if (x > y or x != x) else y
+
+
+@_jit(inline=True)
+def _unary(op: int, r: np.ndarray, d: int, a: int) -> None:
+    """r[d] = abs/floor/ceil/sqrt(r[a]) (sqrt of a negative number is NaN)."""
+    n = r.shape[1]
+    if op == OP_ABS:
+        for j in range(n):
+            r[d, j] = abs(r[a, j])
+    elif op == OP_FLOOR:
+        for j in range(n):
+            r[d, j] = np.floor(r[a, j])
+    elif op == OP_CEIL:
+        for j in range(n):
+            r[d, j] = np.ceil(r[a, j])
+    else:
+        for j in range(n):
+            r[d, j] = np.sqrt(r[a, j])
+
+
+@_jit()
+def load_leaves(loads, regs, leaves64, leaves32, cand, i):  # type: ignore[no-untyped-def]
+    """Copy row ``i`` of every leaf into its register (``loads`` rows: op, dst, slot).
+
+    Kept apart from :func:`run_code`: a loop that touches the leaf tuples pays a large fixed
+    cost per iteration, which would otherwise be paid by every arithmetic op.
+    """
+    for k in range(loads.shape[0]):
+        if loads[k, 0] == OP_LOAD64:
+            _load(loads[k, 1], leaves64[loads[k, 2]], cand, i, regs)
+        else:
+            _load(loads[k, 1], leaves32[loads[k, 2]], cand, i, regs)
+
+
+@_jit(inline=True)
+def _smooth(t: float) -> float:
+    return t * t * (3.0 - 2.0 * t)
+
+
+@_jit(inline=True)
+def _threshold(r: np.ndarray, d: int, a: int, p: np.ndarray, base: int) -> None:
+    """r[d] = Threshold(r[a]) with the float64 operations of ``kernels.threshold.threshold``
+    in the same order (NaN passes: every comparison with it is false)."""
+    below_at, below_to, above_at, above_to = p[base], p[base + 1], p[base + 2], p[base + 3]
+    width, flags = p[base + 4], int(p[base + 5])
+    has_above, has_below = (flags & 1) != 0, (flags & 2) != 0
+    start = above_at - width
+    for j in range(r.shape[1]):
+        v = r[a, j]
+        res = v
+        if has_above:
+            if width == 0.0:
+                res = above_to if v >= above_at else res
+            else:
+                t = (v - start) / width
+                s = _smooth(t)
+                res = (1.0 - s) * v + s * above_to if (t > 0.0 and t < 1.0) else res
+                res = above_to if t >= 1.0 else res
+        if has_below:
+            if width == 0.0:
+                res = below_to if v <= below_at else res
+            else:
+                t = (v - below_at) / width
+                s = _smooth(t)
+                res = (1.0 - s) * below_to + s * v if (t > 0.0 and t < 1.0) else res
+                res = below_to if t <= 0.0 else res
+        r[d, j] = res
+
+
+@_jit()
+def run_code(code, consts, regs):  # type: ignore[no-untyped-def]
+    """Execute the arithmetic register program on the current row.
+
+    ``code`` rows are (op, dst, a, b, round_to_f32, const_mask); operands are registers, or
+    ``consts`` indices where bit 0 (a) / bit 1 (b) of the mask is set.
+    """
+    for k in range(code.shape[0]):
+        op, dst, a, b = code[k, 0], code[k, 1], code[k, 2], code[k, 3]
+        mask = code[k, 5]
+        if op == OP_THRESHOLD:
+            _threshold(regs, dst, a, consts, b)
+        elif op >= OP_ABS:
+            _unary(op, regs, dst, a)
+        elif mask == 2:
+            _binary_right_const(op, regs, dst, a, consts[b])
+        elif mask == 1:
+            _binary_left_const(op, regs, dst, consts[a], b)
+        else:
+            _binary(op, regs, dst, a, b)
+        if code[k, 4]:
+            for j in range(regs.shape[1]):
+                regs[dst, j] = np.float64(np.float32(regs[dst, j]))

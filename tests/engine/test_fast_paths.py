@@ -1,0 +1,240 @@
+"""Fast paths vs the numpy reference path: fused numba evaluation, relief kernels, seed sweep.
+
+The fused path (``backend="numba"``) must give maps bit-identical to the numpy path, which
+itself matches the reference fixtures (tests/engine/test_parity.py checks both backends against
+the fixture arrays with the project's tolerances). Sweep previews may differ from
+``matloom.preview`` by one 8-bit level.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("numba")
+
+import matloom  # noqa: E402
+from matloom.engine import fused, relief  # noqa: E402
+from matloom.engine.backends import get_backend  # noqa: E402
+from matloom.engine.evaluate import evaluate  # noqa: E402
+from matloom.engine.kernels import composite_numba, relief_numba  # noqa: E402
+from matloom.engine.maps import ARRAY_FIELDS  # noqa: E402
+from matloom.lang.random_program import random_program  # noqa: E402
+from matloom.render.sweep import run_sweep  # noqa: E402
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "parity"
+PROGRAMS = sorted(json.loads((DATA / "manifest.json").read_text())["programs"])
+SWEEP_PROGRAMS = ["tile", "brick", "reptile_scales", "terrain_thresholds", "denim_twill"]
+
+
+def _source(name: str) -> str:
+    baked = DATA / f"{name}.baked.mat"
+    return (baked if baked.exists() else DATA / f"{name}.mat").read_text()
+
+
+def _assert_bit_identical(text: str, width: int, height: int, label: str) -> None:
+    """Every map of the fused path equals the numpy path bit for bit (NaN payloads too)."""
+    ref = evaluate(text, width, height, backend="numpy")
+    ours = evaluate(text, width, height, backend="numba")
+    for key in ARRAY_FIELDS:
+        a, b = getattr(ours, key), getattr(ref, key)
+        assert a.shape == b.shape and a.dtype == b.dtype == np.float32, f"{label}.{key}"
+        differ = a.view(np.uint32) != b.view(np.uint32)
+        assert not differ.any(), f"{label}.{key}: {differ.sum()} texel(s) differ"
+
+
+@pytest.mark.parametrize(
+    "size", [(64, 64), (48, 32), (1, 1), (2, 3), (7, 1)], ids=lambda s: f"{s[0]}x{s[1]}"
+)
+@pytest.mark.parametrize("name", PROGRAMS)
+def test_fused_path_is_bit_identical_to_numpy(name: str, size: tuple[int, int]) -> None:
+    _assert_bit_identical(_source(name), *size, label=name)
+
+
+@pytest.mark.parametrize("name", PROGRAMS)
+def test_fused_path_matches_reference_fixture(name: str) -> None:
+    """Direct check against the reference arrays at 64x64 (README tolerances)."""
+    ref = np.load(DATA / f"{name}_64x64.npz")
+    ours = evaluate(_source(name), 64, 64, backend="numba")
+    for key in ARRAY_FIELDS:
+        a, r = getattr(ours, key).astype(np.float64), ref[key].astype(np.float64)
+        np.testing.assert_array_equal(np.isnan(a), np.isnan(r), err_msg=f"{name}.{key}")
+        fin = np.isfinite(a) & np.isfinite(r)
+        np.testing.assert_array_equal(a[~fin & ~np.isnan(a)], r[~fin & ~np.isnan(r)])
+        tol = {"normal": 1e-4, "ao": 1e-4}.get(key, 1e-5)
+        if key in ("height", "ior", "emissive_linear"):
+            tol = 1e-5 * np.maximum(np.abs(r[fin]), 1.0)
+        assert np.all(np.abs(a[fin] - r[fin]) <= tol), f"{name}.{key}"
+
+
+@pytest.mark.parametrize("name", ["tile", "nan_inf_fields", "all_channels", "trig_ripples"])
+def test_many_bands_and_row_splits(monkeypatch: pytest.MonkeyPatch, name: str) -> None:
+    """Band-wise evaluation (tiny bands, uneven last band) changes nothing."""
+    monkeypatch.setattr(fused, "BAND_TEXELS", 3 * 50)
+    monkeypatch.setattr("matloom.engine.kernels.threads.MIN_TEXELS_PER_THREAD", 64)
+    _assert_bit_identical(_source(name), 50, 37, name)
+
+
+@pytest.mark.parametrize("name", ["tile", "all_channels", "nan_inf_fields", "log_scales"])
+def test_uncertain_decode_texels_are_recomposited(
+    monkeypatch: pytest.MonkeyPatch, name: str
+) -> None:
+    """With a huge certainty margin nearly every colour texel is flagged and redone by numpy."""
+    monkeypatch.setattr(composite_numba, "DECODE_MARGIN", 1e-3)
+    _assert_bit_identical(_source(name), 40, 24, name)
+
+
+def test_decode_table_is_within_its_margin() -> None:
+    """The cubic sRGB table is far more accurate than the 2**-44 certainty margin."""
+    rng = np.random.default_rng(5)
+    authored = np.concatenate([rng.random(200_000), np.linspace(0.0404, 1.0, 50_001)]) * 255.0
+    lin = np.empty_like(authored)
+    composite_numba.decode_row(authored, fused.decode_luts()[0], lin, np.empty_like(lin))
+    s = authored / 255.0
+    x = (s + 0.055) / 1.055  # the float64 power base the reference forms
+    exact = np.where(s <= 0.04045, s / 12.92, np.power(x.astype(np.longdouble), 2.4))
+    rel = np.abs(lin - exact) / exact
+    # numpy's own pow is within ~1.2 ulp (3e-16) of exact; keep a 16x safety factor
+    assert float(rel.max()) < composite_numba.DECODE_MARGIN / 16
+
+
+@pytest.mark.parametrize("limit", ["MAX_REGISTERS", "leaves"])
+def test_unsupported_programs_fall_back(monkeypatch: pytest.MonkeyPatch, limit: str) -> None:
+    if limit == "MAX_REGISTERS":
+        monkeypatch.setattr(fused, "MAX_REGISTERS", 2)
+    else:
+        monkeypatch.setattr(composite_numba, "MAX_LEAVES64", 0)
+    _assert_bit_identical(_source("tile"), 32, 32, f"tile/{limit}")
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_random_programs_are_bit_identical(seed: int) -> None:
+    _assert_bit_identical(random_program(seed), 24, 20, f"random{seed}")
+
+
+@pytest.mark.parametrize("radius", [(8.0, 8.0), (2.5, 0.0), (0.0, 3.0), (1.75, 4.25)])
+@pytest.mark.parametrize("shape", [(37, 53), (1, 9), (9, 1), (2, 2), (1, 1)])
+def test_relief_kernels_are_bit_identical(
+    shape: tuple[int, int], radius: tuple[float, float]
+) -> None:
+    rng = np.random.default_rng(shape[0] * 100 + shape[1])
+    height = (rng.random(shape) * 0.05 - 0.01).astype(np.float32)
+    dx, dy = 2.0 / shape[1], 1.5 / shape[0]
+    np.testing.assert_array_equal(
+        relief_numba.normals(height, dx, dy), relief.normals(height, dx, dy)
+    )
+    np.testing.assert_array_equal(
+        relief_numba.ambient_occlusion(height, dx, *radius),
+        relief.ambient_occlusion(height, dx, *radius),
+    )
+
+
+def test_auto_backend_is_numba_for_large_requests() -> None:
+    from matloom.engine.backends import choose_backend
+
+    assert choose_backend("auto", 4096 * 4096).name == get_backend("auto").name
+    assert choose_backend("numpy", 4096 * 4096).name == "numpy"
+
+
+# --------------------------------------------------------------------------------------------
+# Seed sweep
+
+
+@pytest.mark.parametrize("name", SWEEP_PROGRAMS + ["nan_inf_fields", "all_channels"])
+def test_sweep_candidate_zero_matches_preview(name: str) -> None:
+    text = _source(name)
+    result = run_sweep(text, variants=2, size=64, jobs=2, keep=3)
+    original = dict(result.top_images)[0]
+    preview = matloom.preview(text, 64)
+    diff = np.abs(original.astype(np.int16) - preview.astype(np.int16))
+    assert diff.max() <= 1, f"{name}: candidate 0 differs by {diff.max()} levels"
+    assert np.count_nonzero(diff) <= diff.size // 100
+
+
+def test_sweep_variants_match_their_previews() -> None:
+    """Candidate k of a chunk is the preview of variant k's text (within one level)."""
+    text = _source("brick")
+    result = run_sweep(text, variants=3, size=48, jobs=1, keep=4)
+    from matloom.render.sweep import variant_program
+
+    canonical = matloom.format(text)
+    for index, image in result.top_images:
+        preview = matloom.preview(variant_program(canonical, index, 3), 48)
+        assert np.abs(image.astype(np.int16) - preview.astype(np.int16)).max() <= 1
+
+
+class MeanRedScorer:
+    """Deterministic test scorer: mean red level of each image."""
+
+    name = "test-mean-red"
+
+    def score(self, images: list[np.ndarray], text: str) -> np.ndarray:
+        del text
+        return np.array([float(img[..., 0].mean()) for img in images])
+
+
+def _scorers() -> list[object]:
+    scorers: list[object] = [MeanRedScorer()]
+    try:
+        from matloom.author.scorers.base import get_scorer
+
+        scorers.append(get_scorer("test-brightness"))
+    except (ImportError, KeyError, RuntimeError):
+        pass
+    return scorers
+
+
+@pytest.mark.parametrize("scorer", _scorers(), ids=lambda s: s.name)
+def test_sweep_is_reproducible(scorer: object) -> None:
+    text = _source("tile")
+    first = run_sweep(text, variants=12, size=32, scorer=scorer, prompt="red", seed=7, jobs=2)
+    again = run_sweep(text, variants=12, size=32, scorer=scorer, prompt="red", seed=7, jobs=1)
+    assert first.best_index == again.best_index
+    assert first.best_program == again.best_program
+    assert [c.score for c in first.candidates] == [c.score for c in again.candidates]
+    other = run_sweep(text, variants=12, size=32, scorer=scorer, prompt="red", seed=8, jobs=2)
+    assert [c.score for c in other.candidates][1:] != [c.score for c in first.candidates][1:]
+    scores = [c.score for c in first.candidates]
+    assert first.best_index == max(range(len(scores)), key=lambda i: (scores[i], -i))
+
+
+def test_seed_free_program_sweeps_as_one_candidate() -> None:
+    result = run_sweep(_source("bricks"), variants=50, size=32)
+    assert result.n_candidates == 1 and result.seed_free
+    assert "single candidate" in result.message
+
+
+def test_sweep_falls_back_for_unsupported_programs(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(fused, "MAX_REGISTERS", 2)
+    text = _source("tile")
+    result = run_sweep(text, variants=1, size=32, keep=2)
+    preview = matloom.preview(text, 32)
+    assert np.array_equal(dict(result.top_images)[0], preview)
+
+
+def test_sweep_and_evaluate_work_without_numba() -> None:
+    """numba is optional: the sweep then previews each variant with the numpy engine."""
+    import os
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; sys.modules['numba'] = None\n"
+        "import numpy as np, matloom\n"
+        "from matloom.render.sweep import run_sweep\n"
+        f"text = open({str(DATA / 'tile.mat')!r}).read()\n"
+        "r = run_sweep(text, variants=2, size=24, keep=3)\n"
+        "assert r.n_candidates == 3\n"
+        "assert np.array_equal(dict(r.top_images)[0], matloom.preview(text, 24))\n"
+        "print('ok')\n"
+    )
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    env.pop("MATLOOM_BACKEND", None)
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert result.stdout.strip() == "ok"
