@@ -22,7 +22,9 @@ if TYPE_CHECKING:
     from matloom.engine.maps import MaterialMaps
 
 
-def evaluate(program_or_text: Any, width: int = 512, height: int = 512, **kwargs: Any) -> MaterialMaps:
+def evaluate(
+    program_or_text: Any, width: int = 512, height: int = 512, **kwargs: Any
+) -> MaterialMaps:
     """Evaluate a program (or its text) into :class:`~matloom.engine.maps.MaterialMaps`."""
     from matloom.engine.evaluate import evaluate as _evaluate
 

@@ -15,8 +15,15 @@ DEMO_PROMPTS = (
 
 
 @click.command("demo")
-@click.option("-o", "--out", "out_dir", default="demo-output", show_default=True,
-              type=click.Path(file_okay=False), help="Folder for all demo outputs.")
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    default="demo-output",
+    show_default=True,
+    type=click.Path(file_okay=False),
+    help="Folder for all demo outputs.",
+)
 @click.option("--size", type=int, default=512, show_default=True)
 def demo_cmd(out_dir: str, size: int) -> None:
     """Render the paper's tile program and generate three materials offline."""

@@ -24,19 +24,24 @@ def load_program(path: str, program_seed: int = 0):  # noqa: ANN201 - returns (P
         sys.exit(2)
     if has_seedless_noise(program):
         program = canonicalize_seeds(program, program_seed)
-        click.echo(f"note: omitted noise seeds made explicit from program seed {program_seed}",
-                   err=True)
+        click.echo(
+            f"note: omitted noise seeds made explicit from program seed {program_seed}", err=True
+        )
     return program, text
 
 
 def size_options(f):  # noqa: ANN001, ANN201 - click decorator
-    f = click.option("--height", "height", type=int, default=None, help="Image height in pixels.")(f)
+    f = click.option("--height", "height", type=int, default=None, help="Image height in pixels.")(
+        f
+    )
     f = click.option("--width", "width", type=int, default=None, help="Image width in pixels.")(f)
     f = click.option("--size", type=int, default=None, help="Square size in pixels.")(f)
     return f
 
 
-def resolve_size(size: int | None, width: int | None, height: int | None, default: int) -> tuple[int, int]:
+def resolve_size(
+    size: int | None, width: int | None, height: int | None, default: int
+) -> tuple[int, int]:
     if size is not None and (width is not None or height is not None):
         raise click.UsageError("use either --size or --width/--height")
     if size is not None:
@@ -46,23 +51,59 @@ def resolve_size(size: int | None, width: int | None, height: int | None, defaul
 
 @click.command("render")
 @click.argument("file")
-@click.option("-o", "--out", "out_dir", required=True, type=click.Path(file_okay=False),
-              help="Output folder (replaced atomically).")
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Output folder (replaced atomically).",
+)
 @size_options
-@click.option("--format", "float_format", type=click.Choice(["exr", "png16"]), default="exr",
-              show_default=True, help="Float maps as EXR; png16 also writes a 16-bit height PNG.")
-@click.option("--maps", "maps_csv", default=None, help="Comma-separated subset, e.g. basecolor,normal.")
-@click.option("--ao-radius", type=float, default=None,
-              help="AO radius in coordinate units (default: the reference's 8 texels).")
-@click.option("--preview/--no-preview", default=True, show_default=True,
-              help="Also write preview.png (the quick shaded swatch).")
-@click.option("--backend", default="auto", show_default=True, help="Kernel backend: auto, numba, numpy.")
-@click.option("--program-seed", type=int, default=0, show_default=True,
-              help="Seed for omitted noise seeds.")
+@click.option(
+    "--format",
+    "float_format",
+    type=click.Choice(["exr", "png16"]),
+    default="exr",
+    show_default=True,
+    help="Float maps as EXR; png16 also writes a 16-bit height PNG.",
+)
+@click.option(
+    "--maps", "maps_csv", default=None, help="Comma-separated subset, e.g. basecolor,normal."
+)
+@click.option(
+    "--ao-radius",
+    type=float,
+    default=None,
+    help="AO radius in coordinate units (default: the reference's 8 texels).",
+)
+@click.option(
+    "--preview/--no-preview",
+    default=True,
+    show_default=True,
+    help="Also write preview.png (the quick shaded swatch).",
+)
+@click.option(
+    "--backend", default="auto", show_default=True, help="Kernel backend: auto, numba, numpy."
+)
+@click.option(
+    "--program-seed", type=int, default=0, show_default=True, help="Seed for omitted noise seeds."
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the manifest as JSON on stdout.")
-def render_cmd(file: str, out_dir: str, size: int | None, width: int | None, height: int | None,
-               float_format: str, maps_csv: str | None, ao_radius: float | None, preview: bool,
-               backend: str, program_seed: int, as_json: bool) -> None:
+def render_cmd(
+    file: str,
+    out_dir: str,
+    size: int | None,
+    width: int | None,
+    height: int | None,
+    float_format: str,
+    maps_csv: str | None,
+    ao_radius: float | None,
+    preview: bool,
+    backend: str,
+    program_seed: int,
+    as_json: bool,
+) -> None:
     """Evaluate FILE and export its maps (13 maps + material.json) into a folder."""
     import json
 
@@ -76,7 +117,9 @@ def render_cmd(file: str, out_dir: str, size: int | None, width: int | None, hei
     if subset:
         unknown = [m for m in subset if m not in MAP_NAMES]
         if unknown:
-            raise click.UsageError(f"unknown map(s) {', '.join(unknown)}; choose from {', '.join(MAP_NAMES)}")
+            raise click.UsageError(
+                f"unknown map(s) {', '.join(unknown)}; choose from {', '.join(MAP_NAMES)}"
+            )
     program, _ = load_program(file, program_seed)
     t0 = time.perf_counter()
     stats = EvalStats()
@@ -86,9 +129,14 @@ def render_cmd(file: str, out_dir: str, size: int | None, width: int | None, hei
         raise click.ClickException(str(e)) from None
     t_eval = time.perf_counter() - t0
     canonical = format_program(program)
-    result = export_maps(maps, out_dir, float_format=float_format, maps_subset=subset,
-                         program_text=canonical,
-                         extra_meta={"ao_radius_units": ao_radius, "source": str(file)})
+    result = export_maps(
+        maps,
+        out_dir,
+        float_format=float_format,
+        maps_subset=subset,
+        program_text=canonical,
+        extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
+    )
     if preview:
         from matloom.io.atomic import atomic_write_bytes
         from matloom.io.png import encode_png8

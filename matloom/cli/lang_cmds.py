@@ -38,8 +38,14 @@ def check_cmd(files: tuple[str, ...], strict: bool, as_json: bool) -> None:
             click.echo(format_diagnostics(diags, f), err=True)
         errors = sum(d.is_error for d in diags)
         warnings = len(diags) - errors
-        report.append({"file": f, "errors": errors, "warnings": warnings,
-                       "diagnostics": [d.to_dict() for d in diags]})
+        report.append(
+            {
+                "file": f,
+                "errors": errors,
+                "warnings": warnings,
+                "diagnostics": [d.to_dict() for d in diags],
+            }
+        )
         if errors:
             worst = 2
         elif warnings and strict:
@@ -55,11 +61,19 @@ def check_cmd(files: tuple[str, ...], strict: bool, as_json: bool) -> None:
 @click.command("fmt")
 @click.argument("file")
 @click.option("--inline", is_flag=True, help="Replace Define references by their expressions.")
-@click.option("--check", "check_only", is_flag=True,
-              help="Exit 1 if FILE is not already canonical; print nothing.")
+@click.option(
+    "--check",
+    "check_only",
+    is_flag=True,
+    help="Exit 1 if FILE is not already canonical; print nothing.",
+)
 @click.option("--write", is_flag=True, help="Rewrite FILE in place (atomically).")
-@click.option("--seed", type=int, default=None,
-              help="Make omitted noise seeds explicit, derived from this program seed.")
+@click.option(
+    "--seed",
+    type=int,
+    default=None,
+    help="Make omitted noise seeds explicit, derived from this program seed.",
+)
 def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | None) -> None:
     """Print FILE in canonical form."""
     from matloom.lang.inline import inline_defines
@@ -111,10 +125,21 @@ def _atomic_write(path: Path, text: str) -> None:
 @click.argument("file")
 @click.option("--variants", "-k", type=int, required=True, help="Number of seed variants K.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the variant RNG.")
-@click.option("--program-seed", type=int, default=0, show_default=True,
-              help="Program seed used to make omitted noise seeds explicit first.")
-@click.option("-o", "--out", "out_dir", type=click.Path(file_okay=False), default=None,
-              help="Write variant_0000.mat (the original) ... into this folder.")
+@click.option(
+    "--program-seed",
+    type=int,
+    default=0,
+    show_default=True,
+    help="Program seed used to make omitted noise seeds explicit first.",
+)
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Write variant_0000.mat (the original) ... into this folder.",
+)
 def seeds_cmd(file: str, variants: int, seed: int, program_seed: int, out_dir: str | None) -> None:
     """Print (or write) the original program and K seed variants of FILE."""
     from matloom.lang.printer import format_program

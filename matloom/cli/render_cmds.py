@@ -32,14 +32,27 @@ def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
 
 @click.command("preview")
 @click.argument("file")
-@click.option("-o", "--out", "out", required=True, type=click.Path(dir_okay=False),
-              help="Output PNG path.")
+@click.option(
+    "-o", "--out", "out", required=True, type=click.Path(dir_okay=False), help="Output PNG path."
+)
 @size_options
-@click.option("--light", default=None, help="Light AZIMUTH,ELEVATION in degrees (default: reference).")
-@click.option("--tile", type=int, default=1, show_default=True, help="Tile the swatch N x N to show seams.")
+@click.option(
+    "--light", default=None, help="Light AZIMUTH,ELEVATION in degrees (default: reference)."
+)
+@click.option(
+    "--tile", type=int, default=1, show_default=True, help="Tile the swatch N x N to show seams."
+)
 @click.option("--backend", default="auto", show_default=True)
-def preview_cmd(file: str, out: str, size: int | None, width: int | None, height: int | None,
-                light: str | None, tile: int, backend: str) -> None:
+def preview_cmd(
+    file: str,
+    out: str,
+    size: int | None,
+    width: int | None,
+    height: int | None,
+    light: str | None,
+    tile: int,
+    backend: str,
+) -> None:
     """Render the quick head-on shaded preview of FILE to a PNG."""
     from matloom.render.api import preview
 
@@ -64,8 +77,12 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
     program, _ = load_program(file)
     values = stats(program, grid)
     if as_json:
-        click.echo(json.dumps({k: {"value": v, "definition": STAT_DEFINITIONS[k]}
-                               for k, v in values.items()}, indent=2))
+        click.echo(
+            json.dumps(
+                {k: {"value": v, "definition": STAT_DEFINITIONS[k]} for k, v in values.items()},
+                indent=2,
+            )
+        )
     else:
         click.echo(format_stats(values))
 
@@ -77,16 +94,38 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
 @click.option("--scorer", default=None, help="Registered text-image scorer name.")
 @click.option("--prompt", default=None, help="Text the scorer compares against.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Variant RNG seed.")
-@click.option("--jobs", type=int, default=0, show_default=True, help="Shading threads (0 = all cores).")
-@click.option("-o", "--out", "out_dir", type=click.Path(file_okay=False), default=None,
-              help="Write best.mat, report.json and previews here.")
-@click.option("--sheet", type=click.Path(dir_okay=False), default=None,
-              help="Contact sheet PNG of the top candidates.")
+@click.option(
+    "--jobs", type=int, default=0, show_default=True, help="Shading threads (0 = all cores)."
+)
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Write best.mat, report.json and previews here.",
+)
+@click.option(
+    "--sheet",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Contact sheet PNG of the top candidates.",
+)
 @click.option("--top", type=int, default=8, show_default=True, help="Candidates on the sheet.")
 @click.option("--json", "as_json", is_flag=True)
-def sweep_cmd(file: str, variants: int, size: int, scorer: str | None, prompt: str | None,
-              seed: int, jobs: int, out_dir: str | None, sheet: str | None, top: int,
-              as_json: bool) -> None:
+def sweep_cmd(
+    file: str,
+    variants: int,
+    size: int,
+    scorer: str | None,
+    prompt: str | None,
+    seed: int,
+    jobs: int,
+    out_dir: str | None,
+    sheet: str | None,
+    top: int,
+    as_json: bool,
+) -> None:
     """Render the original and K seed variants of FILE; with a scorer, keep the best."""
     from matloom.cli.progress import LazyProgress
     from matloom.lang.printer import format_program
@@ -97,15 +136,29 @@ def sweep_cmd(file: str, variants: int, size: int, scorer: str | None, prompt: s
     program, _ = load_program(file)
     text = format_program(program)
     with LazyProgress("sweep") as bar:
-        res = run_sweep(text, variants=variants, size=size, scorer=scorer, prompt=prompt,
-                        seed=seed, jobs=jobs, keep=top, progress=bar)
+        res = run_sweep(
+            text,
+            variants=variants,
+            size=size,
+            scorer=scorer,
+            prompt=prompt,
+            seed=seed,
+            jobs=jobs,
+            keep=top,
+            progress=bar,
+        )
     if res.message:
         click.echo(res.message, err=True)
     report = {
-        "candidates": res.n_candidates, "seconds": round(res.seconds, 3),
-        "candidates_per_second": round(res.rate, 1), "best_index": res.best_index,
-        "best_score": res.candidates[res.best_index].score, "scorer": scorer, "seed": seed,
-        "size": size, "scores": [c.score for c in res.candidates] if scorer else None,
+        "candidates": res.n_candidates,
+        "seconds": round(res.seconds, 3),
+        "candidates_per_second": round(res.rate, 1),
+        "best_index": res.best_index,
+        "best_score": res.candidates[res.best_index].score,
+        "scorer": scorer,
+        "seed": seed,
+        "size": size,
+        "scores": [c.score for c in res.candidates] if scorer else None,
     }
     if out_dir:
         from matloom.io.atomic import atomic_write_bytes
@@ -119,11 +172,17 @@ def sweep_cmd(file: str, variants: int, size: int, scorer: str | None, prompt: s
     if sheet:
         from matloom.render.sheet import contact_sheet
 
-        labels = [f"#{i}" + (f" {res.candidates[i].score:.1f}" if res.candidates[i].score is not None
-                             else "") for i, _ in res.top_images]
+        labels = [
+            f"#{i}"
+            + (f" {res.candidates[i].score:.1f}" if res.candidates[i].score is not None else "")
+            for i, _ in res.top_images
+        ]
         _save_png(sheet, contact_sheet([im for _, im in res.top_images], labels))
-    click.echo(f"{res.n_candidates} candidates in {res.seconds:.2f} s "
-               f"({res.rate:.0f}/s); best #{res.best_index}", err=True)
+    click.echo(
+        f"{res.n_candidates} candidates in {res.seconds:.2f} s "
+        f"({res.rate:.0f}/s); best #{res.best_index}",
+        err=True,
+    )
     if as_json:
         click.echo(json.dumps(report, indent=2))
     else:

@@ -7,7 +7,6 @@ differ only in layout compare equal.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Union
 
 from matloom.lang.diagnostics import NO_SPAN, Span
 
@@ -103,7 +102,7 @@ class Call:
         return frozenset(a.param for a in self.args)
 
 
-Node = Union[Num, Str, Lit, Const, Ref, Neg, BinOp, Call]
+Node = Num | Str | Lit | Const | Ref | Neg | BinOp | Call
 """Any expression node."""
 
 

@@ -37,8 +37,13 @@ def bind_call(
         hint = _NOT_FUNCTIONS.get(name) or hint_for(name, FUNCTIONS) or function_alias(name)
         if hint is None and name.lower() in CHANNELS:
             hint = f"'{name}' is a layer channel: chain it as .{name.lower()}(...) on a Layer"
-        p.diag("E030", f"unknown function '{name}'", name_tok.span,
-               expected="a function of the MatLoom vocabulary", hint=hint)
+        p.diag(
+            "E030",
+            f"unknown function '{name}'",
+            name_tok.span,
+            expected="a function of the MatLoom vocabulary",
+            hint=hint,
+        )
         args = tuple(A.Arg(f"#{k}", v, False, s) for k, (_, v, s) in enumerate(raw))
         return A.Call(name, args, (), span)
 
@@ -54,13 +59,23 @@ def bind_call(
                 hint = f"did you mean `{guess}=`?" if guess else None
                 if spec.variadic is not None and pname == spec.variadic.name:
                     hint = f"pass {spec.variadic.name} as extra positional arguments"
-                p.diag("E031", f"unknown parameter '{pname}' for {name}", key.span,
-                       expected=_param_list(spec.param_names) if names else f"{name}() takes no arguments",
-                       hint=hint)
+                p.diag(
+                    "E031",
+                    f"unknown parameter '{pname}' for {name}",
+                    key.span,
+                    expected=_param_list(spec.param_names)
+                    if names
+                    else f"{name}() takes no arguments",
+                    hint=hint,
+                )
                 continue
             if pname in bound:
-                p.diag("E033", f"duplicate value for parameter '{pname}' in {name}", key.span,
-                       expected="each parameter at most once")
+                p.diag(
+                    "E033",
+                    f"duplicate value for parameter '{pname}' in {name}",
+                    key.span,
+                    expected="each parameter at most once",
+                )
                 continue
             bound[pname] = A.Arg(pname, value, True, aspan)
             continue
@@ -69,25 +84,41 @@ def bind_call(
             pname = names[pos]
             pos += 1
             if pname in bound:
-                p.diag("E033", f"duplicate value for parameter '{pname}' in {name} "
-                       "(given by keyword and by position)", aspan,
-                       expected="each parameter at most once")
+                p.diag(
+                    "E033",
+                    f"duplicate value for parameter '{pname}' in {name} "
+                    "(given by keyword and by position)",
+                    aspan,
+                    expected="each parameter at most once",
+                )
                 continue
             bound[pname] = A.Arg(pname, value, False, aspan)
         elif spec.variadic is not None:
             extra.append(value)
         else:
-            p.diag("E032", f"too many positional arguments for {name}: expected at most "
-                   f"{len(names)}, got {sum(1 for k, _, _ in raw if k is None)}", aspan,
-                   expected=spec.signature())
+            p.diag(
+                "E032",
+                f"too many positional arguments for {name}: expected at most "
+                f"{len(names)}, got {sum(1 for k, _, _ in raw if k is None)}",
+                aspan,
+                expected=spec.signature(),
+            )
     missing = [q.name for q in spec.params if q.required and q.name not in bound]
     if missing:
-        p.diag("E034", f"{name}() is missing required argument"
-               f"{'s' if len(missing) > 1 else ''}: {', '.join(missing)}", span,
-               expected=spec.signature())
+        p.diag(
+            "E034",
+            f"{name}() is missing required argument"
+            f"{'s' if len(missing) > 1 else ''}: {', '.join(missing)}",
+            span,
+            expected=spec.signature(),
+        )
     if spec.variadic is not None and len(extra) < spec.min_variadic and not missing:
-        p.diag("E044", f"{name} needs at least {spec.min_variadic} segment (LineTo or CubicTo)",
-               span, expected=spec.signature())
+        p.diag(
+            "E044",
+            f"{name} needs at least {spec.min_variadic} segment (LineTo or CubicTo)",
+            span,
+            expected=spec.signature(),
+        )
     if name in _BINARY and not missing:
         left = bound[names[0]].value
         right = bound[names[1]].value

@@ -25,10 +25,18 @@ class Checker:
         self.diags: list[Diagnostic] = []
         self.nodes = 0
 
-    def diag(self, code: str, msg: str, span: Span, expected: str | None = None,
-             hint: str | None = None, severity: Severity = Severity.ERROR) -> None:
-        self.diags.append(Diagnostic(code, msg, span, severity, expected, hint,
-                                     caret_excerpt(self.src, span)))
+    def diag(
+        self,
+        code: str,
+        msg: str,
+        span: Span,
+        expected: str | None = None,
+        hint: str | None = None,
+        severity: Severity = Severity.ERROR,
+    ) -> None:
+        self.diags.append(
+            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
+        )
 
     def warn(self, code: str, msg: str, span: Span, hint: str | None = None) -> None:
         self.diag(code, msg, span, hint=hint, severity=Severity.WARNING)
@@ -45,8 +53,12 @@ class Checker:
                 for a in ch.args:
                     self.field(a, f"layer {i} .{ch.name}()")
         if self.nodes > MAX_NODES:
-            self.diag("E070", f"program has {self.nodes} expression nodes, more than the limit "
-                      f"of {MAX_NODES}", program.span, expected=f"at most {MAX_NODES} nodes")
+            self.diag(
+                "E070",
+                f"program has {self.nodes} expression nodes, more than the limit of {MAX_NODES}",
+                program.span,
+                expected=f"at most {MAX_NODES} nodes",
+            )
         self._check_inlined_depth(program)
         self._warn_unused(program)
         self._warn_hidden(program)
@@ -66,10 +78,14 @@ class Checker:
                 depth_of[owner[1]] = depth
             if depth > MAX_NESTING:
                 what = f"Define '{owner[1]}'" if owner[0] == "define" else f"layer {owner[1]}"
-                self.diag("E070", f"{what} is {depth} levels deep with its Defines substituted, "
-                          f"more than the limit of {MAX_NESTING}", _span_of(expr, program.span),
-                          expected="a shallower chain of Defines",
-                          hint="combine Defines instead of chaining each on the previous one")
+                self.diag(
+                    "E070",
+                    f"{what} is {depth} levels deep with its Defines substituted, "
+                    f"more than the limit of {MAX_NESTING}",
+                    _span_of(expr, program.span),
+                    expected="a shallower chain of Defines",
+                    hint="combine Defines instead of chaining each on the previous one",
+                )
                 return
 
     def _check_view(self, program: A.Program) -> None:
@@ -78,14 +94,23 @@ class Checker:
             return
         vals = v.as_tuple()
         if not all(math.isfinite(x) for x in vals):
-            self.diag("E061", "View corners must be finite numbers", v.span,
-                      expected="View(x1, y1, x2, y2) with finite values")
+            self.diag(
+                "E061",
+                "View corners must be finite numbers",
+                v.span,
+                expected="View(x1, y1, x2, y2) with finite values",
+            )
         elif v.x1 == v.x2 or v.y1 == v.y2:
-            self.diag("E061", "View has zero width or height", v.span,
-                      expected="x1 != x2 and y1 != y2")
+            self.diag(
+                "E061", "View has zero width or height", v.span, expected="x1 != x2 and y1 != y2"
+            )
         elif v.x1 > v.x2 or v.y1 > v.y2:
-            self.warn("W007", "View is reversed (x1 > x2 or y1 > y2), so the image is mirrored",
-                      v.span, hint="(x1, y1) is the bottom-left corner, (x2, y2) the top-right")
+            self.warn(
+                "W007",
+                "View is reversed (x1 > x2 or y1 > y2), so the image is mirrored",
+                v.span,
+                hint="(x1, y1) is the bottom-left corner, (x2, y2) the top-right",
+            )
 
     def _warn_unused(self, program: A.Program) -> None:
         used: set[str] = set()
@@ -99,8 +124,12 @@ class Checker:
                     stack.append(by_name[n.name].expr)
         for d in program.defines:
             if d.name not in used:
-                self.warn("W001", f"Define '{d.name}' is never used by any layer", d.name_span,
-                          hint="remove it or reference it in a layer")
+                self.warn(
+                    "W001",
+                    f"Define '{d.name}' is never used by any layer",
+                    d.name_span,
+                    hint="remove it or reference it in a layer",
+                )
 
     def _warn_hidden(self, program: A.Program) -> None:
         layers = program.layers
@@ -118,34 +147,54 @@ class Checker:
                 continue
             j = opaque_above[i]
             if j is not None:
-                self.warn("W002", f"layer {i} is fully hidden by opaque layer {j} above it",
-                          layer.span, hint="lower the upper layer's alpha or reorder")
+                self.warn(
+                    "W002",
+                    f"layer {i} is fully hidden by opaque layer {j} above it",
+                    layer.span,
+                    hint="lower the upper layer's alpha or reorder",
+                )
 
     # ---------------------------------------------------------------- expressions
     def field(self, node: A.Node, where: str, in_define: bool = False) -> None:
         """``node`` must be a field expression (not a string, bool, shape or segment)."""
         if isinstance(node, A.Str):
-            self.diag("E042", f"{where}: expected an expression, got the string {node.value!r}",
-                      node.span, expected="a number or field expression")
+            self.diag(
+                "E042",
+                f"{where}: expected an expression, got the string {node.value!r}",
+                node.span,
+                expected="a number or field expression",
+            )
             return
         if isinstance(node, A.Lit):
             kind = "None" if node.value is None else "bool"
-            self.diag("E042", f"{where}: expected an expression, got {kind}", node.span,
-                      expected="a number or field expression")
+            self.diag(
+                "E042",
+                f"{where}: expected an expression, got {kind}",
+                node.span,
+                expected="a number or field expression",
+            )
             return
         if isinstance(node, A.Call):
             spec = FUNCTIONS.get(node.func)
             if spec is not None and spec.returns is Returns.SHAPE:
-                self.diag("E040", f"{where}: the shape {node.func}(...) is only valid inline inside "
-                          "Fill(...) or Stroke(...)" + (" and cannot be bound by Define"
-                                                       if in_define else ""),
-                          node.span, expected="Fill(shape) or Stroke(shape, width)",
-                          hint=f"wrap it: Fill({node.func}(...))")
+                self.diag(
+                    "E040",
+                    f"{where}: the shape {node.func}(...) is only valid inline inside "
+                    "Fill(...) or Stroke(...)"
+                    + (" and cannot be bound by Define" if in_define else ""),
+                    node.span,
+                    expected="Fill(shape) or Stroke(shape, width)",
+                    hint=f"wrap it: Fill({node.func}(...))",
+                )
                 self.call(node)
                 return
             if spec is not None and spec.returns is Returns.SEGMENT:
-                self.diag("E041", f"{where}: {node.func}(...) is a segment and only valid inside "
-                          "Path(...)", node.span, expected="Path(x, y, LineTo(...), ...)")
+                self.diag(
+                    "E041",
+                    f"{where}: {node.func}(...) is a segment and only valid inside Path(...)",
+                    node.span,
+                    expected="Path(x, y, LineTo(...), ...)",
+                )
                 return
         self.expr(node)
 
@@ -166,9 +215,12 @@ class Checker:
                 self.expr(a.value)
             return
         if spec.name in _NOISE and node.arg("seed") is None:
-            self.warn("W003", f"{spec.name}(...) has no seed; one will be drawn at "
-                      "canonicalisation", node.span,
-                      hint="write seed=N so the program is reproducible as written")
+            self.warn(
+                "W003",
+                f"{spec.name}(...) has no seed; one will be drawn at canonicalisation",
+                node.span,
+                hint="write seed=N so the program is reproducible as written",
+            )
         for arg in node.args:
             p = spec.param(arg.param)
             assert p is not None
@@ -176,9 +228,12 @@ class Checker:
         for seg in node.extra:
             seg_spec = FUNCTIONS.get(seg.func) if isinstance(seg, A.Call) else None
             if seg_spec is None or seg_spec.returns is not Returns.SEGMENT:
-                self.diag("E044", f"{spec.name}(...) segments must be LineTo(...) or CubicTo(...)",
-                          getattr(seg, "span", node.span),
-                          expected="LineTo(x, y) or CubicTo(c1x, c1y, c2x, c2y, x, y)")
+                self.diag(
+                    "E044",
+                    f"{spec.name}(...) segments must be LineTo(...) or CubicTo(...)",
+                    getattr(seg, "span", node.span),
+                    expected="LineTo(x, y) or CubicTo(c1x, c1y, c2x, c2y, x, y)",
+                )
                 continue
             self.nodes += 1
             for a in seg.args:
@@ -190,8 +245,12 @@ class Checker:
         if isinstance(bf, A.Lit) and bf.value is None:
             fx, fy = node.arg("base_freq_x"), node.arg("base_freq_y")
             if fx is None or fy is None or _is_none(fx) or _is_none(fy):
-                self.diag("E055", f"{node.func}: base_freq=None requires both base_freq_x and "
-                          "base_freq_y", node.span, expected="base_freq_x=... and base_freq_y=...")
+                self.diag(
+                    "E055",
+                    f"{node.func}: base_freq=None requires both base_freq_x and base_freq_y",
+                    node.span,
+                    expected="base_freq_x=... and base_freq_y=...",
+                )
 
     def argument(self, func: str, p: ParamSpec, arg: A.Arg) -> None:
         v = arg.value
@@ -201,9 +260,13 @@ class Checker:
         if p.kind is Kind.SHAPE:
             spec = FUNCTIONS.get(v.func) if isinstance(v, A.Call) else None
             if spec is None or spec.returns is not Returns.SHAPE:
-                self.diag("E043", f"{func} expects a shape (Rect, Ellipse or Path) as '{p.name}'",
-                          getattr(v, "span", arg.span), expected="Rect(...), Ellipse(...) or Path(...)",
-                          hint="shapes must be written inline; they cannot be Define'd")
+                self.diag(
+                    "E043",
+                    f"{func} expects a shape (Rect, Ellipse or Path) as '{p.name}'",
+                    getattr(v, "span", arg.span),
+                    expected="Rect(...), Ellipse(...) or Path(...)",
+                    hint="shapes must be written inline; they cannot be Define'd",
+                )
                 if isinstance(v, A.Call | A.BinOp | A.Neg):
                     self.expr(v)
                 return
@@ -218,10 +281,15 @@ class Checker:
             return
         if p.kind is Kind.BOOL:
             ok = (isinstance(v, A.Lit) and isinstance(v.value, bool)) or (
-                isinstance(v, A.Num) and v.value in (0, 1))
+                isinstance(v, A.Num) and v.value in (0, 1)
+            )
             if not ok:
-                self.diag("E053", f"{func}: {p.name} must be True or False", v.span,
-                          expected="True or False")
+                self.diag(
+                    "E053",
+                    f"{func}: {p.name} must be True or False",
+                    v.span,
+                    expected="True or False",
+                )
             return
         self._number(func, p, v)
 
@@ -232,33 +300,57 @@ class Checker:
         hint = hint_for(v.value, p.choices) if isinstance(v, A.Str) else None
         if hint is None and isinstance(v, A.Ref) and v.name in p.choices:
             hint = f'quote it: {p.name}="{v.name}"'
-        self.diag("E051", f"{func}: {p.name} must be {p.constraint_text()}, got {got}",
-                  getattr(v, "span", None) or Span(0, 0, 1, 1), expected=p.constraint_text(),
-                  hint=hint)
+        self.diag(
+            "E051",
+            f"{func}: {p.name} must be {p.constraint_text()}, got {got}",
+            getattr(v, "span", None) or Span(0, 0, 1, 1),
+            expected=p.constraint_text(),
+            hint=hint,
+        )
 
     def _number(self, func: str, p: ParamSpec, v: A.Node) -> None:
         span = v.span
         if isinstance(v, A.Str | A.Lit):
-            self.diag("E045", f"{func}: {p.name} must be a number, got {_describe(v)}", span,
-                      expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}")
+            self.diag(
+                "E045",
+                f"{func}: {p.name} must be a number, got {_describe(v)}",
+                span,
+                expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}",
+            )
             return
         value = static_number(v)
         if value is None:
-            self.diag("E045", f"{func}: {p.name} must be a number, not a field expression", span,
-                      expected="a constant such as 0.5",
-                      hint="only numbers (and constant arithmetic) are allowed here")
+            self.diag(
+                "E045",
+                f"{func}: {p.name} must be a number, not a field expression",
+                span,
+                expected="a constant such as 0.5",
+                hint="only numbers (and constant arithmetic) are allowed here",
+            )
             self.expr(v)
             return
         if uses_coordinates(v):
-            self.warn("W004", f"{func}: {p.name} uses X()/Y(); it is evaluated once at (0, 0)",
-                      span, hint="numeric parameters are constants, not fields")
+            self.warn(
+                "W004",
+                f"{func}: {p.name} uses X()/Y(); it is evaluated once at (0, 0)",
+                span,
+                hint="numeric parameters are constants, not fields",
+            )
         if isinstance(value, float) and not math.isfinite(value):
-            self.diag("E050", f"{func}: {p.name} must be finite, got {value}", span,
-                      expected="a finite number")
+            self.diag(
+                "E050",
+                f"{func}: {p.name} must be finite, got {value}",
+                span,
+                expected="a finite number",
+            )
             return
         if p.kind is Kind.INT and not float(value).is_integer():
-            self.diag("E052", f"{func}: {p.name} must be an integer, got {value}", span,
-                      expected="a whole number")
+            self.diag(
+                "E052",
+                f"{func}: {p.name} must be an integer, got {value}",
+                span,
+                expected="a whole number",
+            )
             return
         problem = p.check_value(value)
         if problem is not None:
@@ -266,8 +358,12 @@ class Checker:
             self.diag(code, f"{func}: {problem}", span, expected=p.constraint_text())
             return
         if p.name == "octaves" and value > MAX_OCTAVES:
-            self.diag("E070", f"{func}: octaves={int(value)} exceeds the limit of {MAX_OCTAVES}",
-                      span, expected=f"octaves <= {MAX_OCTAVES}")
+            self.diag(
+                "E070",
+                f"{func}: octaves={int(value)} exceeds the limit of {MAX_OCTAVES}",
+                span,
+                expected=f"octaves <= {MAX_OCTAVES}",
+            )
 
     def _rect_radius(self, shape: A.Call) -> None:
         return None

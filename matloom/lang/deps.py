@@ -11,8 +11,18 @@ from dataclasses import dataclass
 
 from matloom.lang import ast as A
 
-BLENDED = ("basecolor", "metallic", "roughness", "sheen", "coat", "transmission", "ior",
-           "subsurface", "anisotropy", "emissive")
+BLENDED = (
+    "basecolor",
+    "metallic",
+    "roughness",
+    "sheen",
+    "coat",
+    "transmission",
+    "ior",
+    "subsurface",
+    "anisotropy",
+    "emissive",
+)
 OUTPUTS = ("alpha", *BLENDED, "height", "normal", "ao")
 
 
@@ -31,8 +41,9 @@ class ParamRef:
         return f"{self.line}:{self.col}"
 
 
-def _expr_params(node: A.Node, where: str, defines: dict[str, frozenset[ParamRef]],
-                 seen: set[str]) -> set[ParamRef]:
+def _expr_params(
+    node: A.Node, where: str, defines: dict[str, frozenset[ParamRef]], seen: set[str]
+) -> set[ParamRef]:
     out: set[ParamRef] = set()
     seed_nums: set[int] = set()
     for n in A.walk(node):

@@ -56,9 +56,7 @@ class Diagnostic:
 
     def format(self, filename: str = "<program>") -> str:
         """Multi-line human/LLM readable text: location, message, caret excerpt, expectation, hint."""
-        head = (
-            f"{filename}:{self.line}:{self.column}: {self.severity.value} {self.code}: {self.message}"
-        )
+        head = f"{filename}:{self.line}:{self.column}: {self.severity.value} {self.code}: {self.message}"
         lines = [head]
         if self.excerpt:
             lines.append(self.excerpt)

@@ -21,8 +21,9 @@ def inline_defines(program: A.Program) -> A.Program:
     if size > MAX_NODES:
         message = f"inlining gives {size} expression nodes, more than the limit of {MAX_NODES}"
         hint = "keep the Defines: the program is valid as written"
-        too_big = Diagnostic("E070", message, program.span, expected=f"at most {MAX_NODES} nodes",
-                             hint=hint)
+        too_big = Diagnostic(
+            "E070", message, program.span, expected=f"at most {MAX_NODES} nodes", hint=hint
+        )
         raise ProgramError([too_big])
     resolved: dict[str, A.Node] = {}
 

@@ -46,8 +46,14 @@ class Token:
 
 
 class LexError(Exception):
-    def __init__(self, code: str, message: str, span: Span, expected: str | None = None,
-                 hint: str | None = None) -> None:
+    def __init__(
+        self,
+        code: str,
+        message: str,
+        span: Span,
+        expected: str | None = None,
+        hint: str | None = None,
+    ) -> None:
         super().__init__(message)
         self.code, self.message, self.span = code, message, span
         self.expected, self.hint = expected, hint
@@ -75,9 +81,13 @@ class Lexer:
                 raise self._bad_character(i)
             kind, end = m.lastgroup, m.end()
             if len(out) >= MAX_TOKENS and kind not in ("ws", "comment"):
-                raise LexError("E070", f"program has more than {MAX_TOKENS} tokens",
-                               self.span(i, end), expected=f"at most {MAX_TOKENS} tokens",
-                               hint="programs are normally a few hundred tokens long")
+                raise LexError(
+                    "E070",
+                    f"program has more than {MAX_TOKENS} tokens",
+                    self.span(i, end),
+                    expected=f"at most {MAX_TOKENS} tokens",
+                    hint="programs are normally a few hundred tokens long",
+                )
             if kind == "num":
                 out.append(self._number(i))
             elif kind == "str":
@@ -93,8 +103,12 @@ class Lexer:
     def _bad_character(self, i: int) -> LexError:
         c = self.src[i]
         if c in "\"'":
-            return LexError("E002", "unterminated string literal", self.span(i, i + 1),
-                            expected=f"a closing {c} on the same line")
+            return LexError(
+                "E002",
+                "unterminated string literal",
+                self.span(i, i + 1),
+                expected=f"a closing {c} on the same line",
+            )
         hint = None
         if c == ";":
             hint = "statements are not separated by ';' — remove it"
@@ -102,8 +116,13 @@ class Lexer:
             hint = "only round parentheses are used in MatLoom programs"
         elif c == "`":
             hint = "remove Markdown code fences around the program"
-        return LexError("E001", f"unexpected character {c!r}", self.span(i, i + 1),
-                        expected="a number, name, string, operator or parenthesis", hint=hint)
+        return LexError(
+            "E001",
+            f"unexpected character {c!r}",
+            self.span(i, i + 1),
+            expected="a number, name, string, operator or parenthesis",
+            hint=hint,
+        )
 
     def _number(self, i: int) -> Token:
         m = _NUMBER.match(self.src, i)
@@ -111,17 +130,26 @@ class Lexer:
         text = m.group()
         span = self.span(i, m.end())
         if len(text) > MAX_NUMBER_DIGITS:
-            raise LexError("E003", "numeric literal is too long", span,
-                           expected=f"at most {MAX_NUMBER_DIGITS} characters")
+            raise LexError(
+                "E003",
+                "numeric literal is too long",
+                span,
+                expected=f"at most {MAX_NUMBER_DIGITS} characters",
+            )
         mant, _, exp = text.lower().partition("e")
         if "e" in text.lower() and not exp.lstrip("+-"):
-            raise LexError("E003", f"malformed number {text!r}: exponent has no digits", span,
-                           expected="digits after 'e', as in 1e-3")
+            raise LexError(
+                "E003",
+                f"malformed number {text!r}: exponent has no digits",
+                span,
+                expected="digits after 'e', as in 1e-3",
+            )
         if "." in text or "e" in text.lower():
             value: int | float = float(text)
         else:
             value = int(text)
         if isinstance(value, float) and value == float("inf"):
-            raise LexError("E003", f"number {text!r} is too large", span,
-                           expected="a finite number")
+            raise LexError(
+                "E003", f"number {text!r} is too large", span, expected="a finite number"
+            )
         return Token("NUM", text, span, value)

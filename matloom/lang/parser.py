@@ -56,13 +56,22 @@ class Parser:
         self.broken_defines: set[str] = set()
 
     # ---------------------------------------------------------------- diagnostics
-    def diag(self, code: str, msg: str, span: Span, expected: str | None = None,
-             hint: str | None = None, severity: Severity = Severity.ERROR) -> None:
-        self.diags.append(Diagnostic(code, msg, span, severity, expected, hint,
-                                     caret_excerpt(self.src, span)))
+    def diag(
+        self,
+        code: str,
+        msg: str,
+        span: Span,
+        expected: str | None = None,
+        hint: str | None = None,
+        severity: Severity = Severity.ERROR,
+    ) -> None:
+        self.diags.append(
+            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
+        )
 
-    def fail(self, code: str, msg: str, span: Span, expected: str | None = None,
-             hint: str | None = None) -> _Bail:
+    def fail(
+        self, code: str, msg: str, span: Span, expected: str | None = None, hint: str | None = None
+    ) -> _Bail:
         self.diag(code, msg, span, expected, hint)
         return _Bail()
 
@@ -90,8 +99,13 @@ class Parser:
             hint = "a ',' may be missing between arguments"
         elif text == "," and tok.text == ")":
             hint = "an argument is missing"
-        raise self.fail("E010", f"expected '{text}'{where} but found {tok.describe()}",
-                        tok.span, expected=f"'{text}'", hint=hint)
+        raise self.fail(
+            "E010",
+            f"expected '{text}'{where} but found {tok.describe()}",
+            tok.span,
+            expected=f"'{text}'",
+            hint=hint,
+        )
 
     def span_from(self, start: Span) -> Span:
         prev = self.toks[self.i - 1] if self.i > 0 else self.peek()
@@ -100,8 +114,12 @@ class Parser:
     # ---------------------------------------------------------------- program
     def parse(self) -> A.Program | None:
         if len(self.src) > MAX_SOURCE_CHARS:
-            self.diag("E070", f"program is too large ({len(self.src)} characters)",
-                      Span(0, 1, 1, 1), expected=f"at most {MAX_SOURCE_CHARS} characters")
+            self.diag(
+                "E070",
+                f"program is too large ({len(self.src)} characters)",
+                Span(0, 1, 1, 1),
+                expected=f"at most {MAX_SOURCE_CHARS} characters",
+            )
             return None
         try:
             self.toks = self.lexer.tokens()
@@ -119,18 +137,29 @@ class Parser:
             try:
                 if tok.text == "View" and tok.kind == "IDENT":
                     if layers is not None or seen_define or view is not None:
-                        what = "a second View" if view is not None else "View after " + (
-                            "Material" if layers is not None else "a Define")
-                        self.diag("E020", f"{what}: View must be the first statement",
-                                  tok.span, expected="View(...) before any Define or Material",
-                                  hint="move the View line to the top of the program")
+                        what = (
+                            "a second View"
+                            if view is not None
+                            else "View after " + ("Material" if layers is not None else "a Define")
+                        )
+                        self.diag(
+                            "E020",
+                            f"{what}: View must be the first statement",
+                            tok.span,
+                            expected="View(...) before any Define or Material",
+                            hint="move the View line to the top of the program",
+                        )
                     v = self.parse_view()
                     view = view or v
                 elif tok.text == "Define" and tok.kind == "IDENT":
                     if layers is not None:
-                        self.diag("E023", "Define after Material: nothing may follow Material(...)",
-                                  tok.span, expected="end of input",
-                                  hint="move Defines above Material(...)")
+                        self.diag(
+                            "E023",
+                            "Define after Material: nothing may follow Material(...)",
+                            tok.span,
+                            expected="end of input",
+                            hint="move Defines above Material(...)",
+                        )
                     seen_define = True
                     d = self.parse_define()
                     if d is not None:
@@ -138,14 +167,22 @@ class Parser:
                 elif tok.text == "Material" and tok.kind == "IDENT":
                     self.material_started = True
                     if layers is not None:
-                        self.diag("E023", "a second Material: a program has exactly one",
-                                  tok.span, expected="end of input")
+                        self.diag(
+                            "E023",
+                            "a second Material: a program has exactly one",
+                            tok.span,
+                            expected="end of input",
+                        )
                     parsed = self.parse_material()
                     layers = parsed if layers is None else layers
                 elif tok.text == "Layer" and tok.kind == "IDENT":
-                    raise self.fail("E025", "Layer outside Material(...)", tok.span,
-                                    expected="Material(Layer(...), ...)",
-                                    hint="put every Layer inside one Material(...)")
+                    raise self.fail(
+                        "E025",
+                        "Layer outside Material(...)",
+                        tok.span,
+                        expected="Material(Layer(...), ...)",
+                        hint="put every Layer inside one Material(...)",
+                    )
                 else:
                     raise self._unexpected_statement(tok, layers is not None)
             except _Bail:
@@ -157,20 +194,33 @@ class Parser:
             if not getattr(self, "material_started", False) and not any(
                 d.code in ("E012", "E025") for d in self.diags
             ):
-                self.diag("E022", "missing Material(...)", eof.span,
-                          expected="Material(Layer(...), ...) as the last statement")
+                self.diag(
+                    "E022",
+                    "missing Material(...)",
+                    eof.span,
+                    expected="Material(Layer(...), ...) as the last statement",
+                )
             return None
         return A.Program(view, tuple(defines), layers, Span(0, len(self.src), 1, 1))
 
     def _unexpected_statement(self, tok: Token, after_material: bool) -> _Bail:
         if after_material:
-            return self.fail("E012", f"unexpected trailing input {tok.describe()} after Material(...)",
-                             tok.span, expected="end of input")
+            return self.fail(
+                "E012",
+                f"unexpected trailing input {tok.describe()} after Material(...)",
+                tok.span,
+                expected="end of input",
+            )
         hint = None
         if tok.kind == "IDENT":
             hint = hint_for(tok.text, _STATEMENTS)
-        return self.fail("E012", f"unexpected {tok.describe()} at top level", tok.span,
-                         expected="View(...), Define(...) or Material(...)", hint=hint)
+        return self.fail(
+            "E012",
+            f"unexpected {tok.describe()} at top level",
+            tok.span,
+            expected="View(...), Define(...) or Material(...)",
+            hint=hint,
+        )
 
     def _prescan_defines(self) -> None:
         t = self.toks
@@ -231,13 +281,21 @@ class Parser:
             node = self.parse_expr()
             v = static_number(node) if is_static(node) else None  # X()/Y() are not numbers here
             if v is None:
-                self.diag("E061", "View arguments must be numbers", node_span(node, tok.span),
-                          expected="View(x1, y1, x2, y2) with numeric corners")
+                self.diag(
+                    "E061",
+                    "View arguments must be numbers",
+                    node_span(node, tok.span),
+                    expected="View(x1, y1, x2, y2) with numeric corners",
+                )
                 bad, v = True, 0.0
             values.append(float(v))
         if self.at(","):
-            raise self.fail("E027", "View takes exactly 4 arguments", self.peek().span,
-                            expected="View(x1, y1, x2, y2)")
+            raise self.fail(
+                "E027",
+                "View takes exactly 4 arguments",
+                self.peek().span,
+                expected="View(x1, y1, x2, y2)",
+            )
         self.expect(")", "to close View(...)")
         if bad:  # drop the View, so its placeholder corners cause no follow-on errors
             raise _Bail()
@@ -248,8 +306,12 @@ class Parser:
         self.expect("(", "after Define")
         name_tok = self.peek()
         if name_tok.kind != "IDENT":
-            raise self.fail("E010", f"expected a name for the Define but found {name_tok.describe()}",
-                            name_tok.span, expected="Define(name, expression)")
+            raise self.fail(
+                "E010",
+                f"expected a name for the Define but found {name_tok.describe()}",
+                name_tok.span,
+                expected="Define(name, expression)",
+            )
         self.next()
         self.expect(",", "after the Define name")
         self.current_define = name_tok.text
@@ -258,17 +320,30 @@ class Parser:
         finally:
             self.current_define = None
         if self.at(","):
-            raise self.fail("E027", "Define takes exactly 2 arguments (name, expression)",
-                            self.peek().span, expected="')'")
+            raise self.fail(
+                "E027",
+                "Define takes exactly 2 arguments (name, expression)",
+                self.peek().span,
+                expected="')'",
+            )
         self.expect(")", "to close Define(...)")
         name = name_tok.text
         if name in self.defined:
-            self.diag("E038", f"Define '{name}' is defined twice", name_tok.span,
-                      expected="a unique name", hint="rename one of the Defines")
+            self.diag(
+                "E038",
+                f"Define '{name}' is defined twice",
+                name_tok.span,
+                expected="a unique name",
+                hint="rename one of the Defines",
+            )
         elif name in FUNCTIONS or name in CONSTANTS or name in LITERALS or name in _STATEMENTS:
-            self.diag("W005", f"Define name '{name}' is shadowed by a built-in and can never be "
-                      "referenced", name_tok.span, severity=Severity.WARNING,
-                      hint="choose another name")
+            self.diag(
+                "W005",
+                f"Define name '{name}' is shadowed by a built-in and can never be referenced",
+                name_tok.span,
+                severity=Severity.WARNING,
+                hint="choose another name",
+            )
         self.defined[name] = None
         return A.Define(name, expr, self.span_from(kw.span), name_tok.span)
 
@@ -278,20 +353,33 @@ class Parser:
         self.expect("(", "after Material")
         layers: list[A.Layer] = []
         if self.at(")"):
-            self.diag("E024", "Material has no layers", self.span_from(kw.span),
-                      expected="at least one Layer(...)",
-                      hint="add a base layer such as Layer(1).basecolor(128, 128, 128)")
+            self.diag(
+                "E024",
+                "Material has no layers",
+                self.span_from(kw.span),
+                expected="at least one Layer(...)",
+                hint="add a base layer such as Layer(1).basecolor(128, 128, 128)",
+            )
             self.next()
             return ()
         while True:
             tok = self.peek()
             if not (tok.kind == "IDENT" and tok.text == "Layer"):
                 if tok.text == ")" and layers:
-                    raise self.fail("E013", "trailing comma after the last layer", tok.span,
-                                    expected="another Layer(...) or no comma")
+                    raise self.fail(
+                        "E013",
+                        "trailing comma after the last layer",
+                        tok.span,
+                        expected="another Layer(...) or no comma",
+                    )
                 hint = hint_for(tok.text, ["Layer"]) if tok.kind == "IDENT" else None
-                raise self.fail("E025", f"expected Layer(...) but found {tok.describe()}",
-                                tok.span, expected="Layer(...)", hint=hint)
+                raise self.fail(
+                    "E025",
+                    f"expected Layer(...) but found {tok.describe()}",
+                    tok.span,
+                    expected="Layer(...)",
+                    hint=hint,
+                )
             layers.append(self.parse_layer())
             if self.at(","):
                 self.next()
@@ -299,10 +387,13 @@ class Parser:
             break
         if not self.at(")"):
             tok = self.peek()
-            raise self.fail("E010", f"expected ',' or ')' after a layer but found {tok.describe()}",
-                            tok.span, expected="',' between layers or ')' to close Material",
-                            hint="a ',' may be missing between layers" if tok.text == "Layer"
-                            else None)
+            raise self.fail(
+                "E010",
+                f"expected ',' or ')' after a layer but found {tok.describe()}",
+                tok.span,
+                expected="',' between layers or ')' to close Material",
+                hint="a ',' may be missing between layers" if tok.text == "Layer" else None,
+            )
         self.next()
         return tuple(layers)
 
@@ -313,36 +404,55 @@ class Parser:
         if not self.at(")"):
             alpha = self.parse_expr()
             if self.at(","):
-                raise self.fail("E028", "Layer takes at most one argument (its alpha)",
-                                self.peek().span, expected="')'",
-                                hint="set channels with methods: Layer(1).basecolor(r, g, b)")
+                raise self.fail(
+                    "E028",
+                    "Layer takes at most one argument (its alpha)",
+                    self.peek().span,
+                    expected="')'",
+                    hint="set channels with methods: Layer(1).basecolor(r, g, b)",
+                )
         self.expect(")", "to close Layer(...)")
         chans: dict[str, A.ChannelSet] = {}
         while self.at("."):
             self.next()
             name_tok = self.peek()
             if name_tok.kind != "IDENT":
-                raise self.fail("E010", f"expected a channel name after '.' but found "
-                                f"{name_tok.describe()}", name_tok.span,
-                                expected="one of " + ", ".join(CHANNELS))
+                raise self.fail(
+                    "E010",
+                    f"expected a channel name after '.' but found {name_tok.describe()}",
+                    name_tok.span,
+                    expected="one of " + ", ".join(CHANNELS),
+                )
             self.next()
             args = self._method_args(name_tok)
             name = name_tok.text
             spec = CHANNELS.get(name)
             span = self.span_from(name_tok.span)
             if spec is None:
-                self.diag("E026", f"unknown layer channel '.{name}'", name_tok.span,
-                          expected="one of " + ", ".join(CHANNELS),
-                          hint=hint_for(name, CHANNELS) or _channel_alias(name))
+                self.diag(
+                    "E026",
+                    f"unknown layer channel '.{name}'",
+                    name_tok.span,
+                    expected="one of " + ", ".join(CHANNELS),
+                    hint=hint_for(name, CHANNELS) or _channel_alias(name),
+                )
                 continue
             if len(args) != spec.arity:
-                self.diag("E027", f"{name}() expects {spec.arity} argument"
-                          f"{'s' if spec.arity != 1 else ''}, got {len(args)}", span,
-                          expected=f".{name}({', '.join(spec.arg_names)})")
+                self.diag(
+                    "E027",
+                    f"{name}() expects {spec.arity} argument"
+                    f"{'s' if spec.arity != 1 else ''}, got {len(args)}",
+                    span,
+                    expected=f".{name}({', '.join(spec.arg_names)})",
+                )
                 continue
             if name in chans:
-                self.diag("W006", f"channel '.{name}' is set twice; the last one wins",
-                          name_tok.span, severity=Severity.WARNING)
+                self.diag(
+                    "W006",
+                    f"channel '.{name}' is set twice; the last one wins",
+                    name_tok.span,
+                    severity=Severity.WARNING,
+                )
             if name == "alpha":
                 alpha = args[0]
                 chans.pop("alpha", None)
@@ -361,15 +471,23 @@ class Parser:
         while True:
             if self.peek().kind == "IDENT" and self.at("=", 1):
                 tok = self.peek()
-                raise self.fail("E031", f"channel .{name_tok.text}() takes positional values, "
-                                f"not '{tok.text}='", tok.span, expected="a value",
-                                hint=f"write .{name_tok.text}(value)")
+                raise self.fail(
+                    "E031",
+                    f"channel .{name_tok.text}() takes positional values, not '{tok.text}='",
+                    tok.span,
+                    expected="a value",
+                    hint=f"write .{name_tok.text}(value)",
+                )
             args.append(self.parse_expr())
             if self.at(","):
                 comma = self.next()
                 if self.at(")"):
-                    raise self.fail("E013", "trailing comma in argument list", comma.span,
-                                    expected="another argument")
+                    raise self.fail(
+                        "E013",
+                        "trailing comma in argument list",
+                        comma.span,
+                        expected="another argument",
+                    )
                 continue
             break
         self.expect(")", f"to close .{name_tok.text}(...)")
@@ -380,9 +498,13 @@ class Parser:
         self.depth += 1
         try:
             if self.depth > MAX_NESTING:
-                raise self.fail("E070", f"expression nested deeper than {MAX_NESTING} levels",
-                                self.peek().span, expected="a shallower expression",
-                                hint="move sub-expressions into Defines")
+                raise self.fail(
+                    "E070",
+                    f"expression nested deeper than {MAX_NESTING} levels",
+                    self.peek().span,
+                    expected="a shallower expression",
+                    hint="move sub-expressions into Defines",
+                )
             left = self.parse_muldiv()
             chain = 0
             while self.peek().kind == "OP" and self.peek().text in "+-" and self.peek().text:
@@ -392,10 +514,13 @@ class Parser:
                 right = self.parse_muldiv()
                 left = A.BinOp(op.text, left, right, _join(left, right, op.span))
             if self.depth == 1 and _tree_depth(left) > MAX_NESTING:  # long operator chains
-                raise self.fail("E070", f"expression tree deeper than {MAX_NESTING} levels",
-                                node_span(left, self.peek().span),
-                                expected="a shallower expression",
-                                hint="move sub-expressions into Defines")
+                raise self.fail(
+                    "E070",
+                    f"expression tree deeper than {MAX_NESTING} levels",
+                    node_span(left, self.peek().span),
+                    expected="a shallower expression",
+                    hint="move sub-expressions into Defines",
+                )
             return left
         finally:
             self.depth -= 1
@@ -403,9 +528,13 @@ class Parser:
     def _check_chain(self, chain: int, op: Token) -> None:
         """Fail early on an operator chain whose tree alone would exceed :data:`MAX_NESTING`."""
         if chain >= MAX_NESTING:  # the chain alone makes the tree deeper than the limit
-            raise self.fail("E070", f"expression tree deeper than {MAX_NESTING} levels",
-                            op.span, expected="a shallower expression",
-                            hint="move sub-expressions into Defines")
+            raise self.fail(
+                "E070",
+                f"expression tree deeper than {MAX_NESTING} levels",
+                op.span,
+                expected="a shallower expression",
+                hint="move sub-expressions into Defines",
+            )
 
     def parse_muldiv(self) -> A.Node:
         left = self.parse_unary()
@@ -424,9 +553,13 @@ class Parser:
             self.next()
             nxt = self.peek()
             if nxt.kind == "OP" and nxt.text in ("-", "+"):
-                raise self.fail("E011", f"expected an expression after '{tok.text}' but found "
-                                f"{nxt.describe()}", nxt.span, expected="a number, name or '('",
-                                hint="a sign cannot follow another sign; write -(-x)")
+                raise self.fail(
+                    "E011",
+                    f"expected an expression after '{tok.text}' but found {nxt.describe()}",
+                    nxt.span,
+                    expected="a number, name or '('",
+                    hint="a sign cannot follow another sign; write -(-x)",
+                )
             operand = self.parse_power()
             if tok.text == "+":
                 return operand
@@ -440,8 +573,12 @@ class Parser:
             self.depth += 1
             try:
                 if self.depth > MAX_NESTING:
-                    raise self.fail("E070", f"expression nested deeper than {MAX_NESTING} levels",
-                                    op.span, expected="a shallower expression")
+                    raise self.fail(
+                        "E070",
+                        f"expression nested deeper than {MAX_NESTING} levels",
+                        op.span,
+                        expected="a shallower expression",
+                    )
                 exp = self.parse_unary()
             finally:
                 self.depth -= 1
@@ -466,14 +603,23 @@ class Parser:
                 return self.parse_call()
             return self.parse_name()
         if tok.kind == "EOF":
-            raise self.fail("E011", "expected an expression but found end of input", tok.span,
-                            expected="a number, name, call or '('",
-                            hint="the program ends early; check for unclosed parentheses")
+            raise self.fail(
+                "E011",
+                "expected an expression but found end of input",
+                tok.span,
+                expected="a number, name, call or '('",
+                hint="the program ends early; check for unclosed parentheses",
+            )
         hint = "an argument is missing" if tok.text in (",", ")") else None
         if tok.text == ".":
             hint = "write numbers with a digit after the point, e.g. 0.5"
-        raise self.fail("E011", f"expected an expression but found {tok.describe()}", tok.span,
-                        expected="a number, name, call or '('", hint=hint)
+        raise self.fail(
+            "E011",
+            f"expected an expression but found {tok.describe()}",
+            tok.span,
+            expected="a number, name, call or '('",
+            hint=hint,
+        )
 
     def parse_name(self) -> A.Node:
         tok = self.next()
@@ -483,25 +629,43 @@ class Parser:
         if name in CONSTANTS:
             return A.Const(name, tok.span)
         if name in FUNCTIONS:
-            self.diag("E035", f"'{name}' is a function — call it as {name}()", tok.span,
-                      expected=f"{name}(...)")
+            self.diag(
+                "E035",
+                f"'{name}' is a function — call it as {name}()",
+                tok.span,
+                expected=f"{name}(...)",
+            )
             return A.Ref(name, tok.span)
         if name in self.defined or name in self.broken_defines:
             return A.Ref(name, tok.span)
         current = getattr(self, "current_define", None)
         if name == current:
-            self.diag("E060", f"Define '{name}' refers to itself", tok.span,
-                      expected="only earlier Defines", hint="Defines form an acyclic graph")
+            self.diag(
+                "E060",
+                f"Define '{name}' refers to itself",
+                tok.span,
+                expected="only earlier Defines",
+                hint="Defines form an acyclic graph",
+            )
         elif name in self.all_define_names:
-            self.diag("E060", f"'{name}' is used before its Define", tok.span,
-                      expected="only Defines that appear earlier in the program",
-                      hint=f"move Define({name}, ...) above this line")
+            self.diag(
+                "E060",
+                f"'{name}' is used before its Define",
+                tok.span,
+                expected="only Defines that appear earlier in the program",
+                hint=f"move Define({name}, ...) above this line",
+            )
         else:
             hint = hint_for(name, [*self.defined, *CONSTANTS]) or _name_alias(name)
             if hint is None and name in _STATEMENTS:
                 hint = f"{name}(...) is a statement, not an expression"
-            self.diag("E036", f"unknown name '{name}'", tok.span,
-                      expected="an earlier Define, pi, e, or a function call", hint=hint)
+            self.diag(
+                "E036",
+                f"unknown name '{name}'",
+                tok.span,
+                expected="an earlier Define, pi, e, or a function call",
+                hint=hint,
+            )
         return A.Ref(name, tok.span)
 
     def parse_call(self) -> A.Node:
@@ -522,8 +686,12 @@ class Parser:
                 if self.at(","):
                     comma = self.next()
                     if self.at(")"):
-                        raise self.fail("E013", "trailing comma in argument list", comma.span,
-                                        expected="another argument or no comma")
+                        raise self.fail(
+                            "E013",
+                            "trailing comma in argument list",
+                            comma.span,
+                            expected="another argument or no comma",
+                        )
                     continue
                 break
         self.expect(")", f"to close {name_tok.text}(...)")
@@ -552,13 +720,36 @@ def _join(left: A.Node, right: A.Node, op: Span) -> Span:
 
 
 _FUNCTION_ALIASES = {
-    "noise": "fBm", "perlin": "fBm", "simplex": "fBm", "fbm": "fBm", "turbulence": "fBm",
-    "voronoi": "Worley", "cellular": "Worley", "cells": "Worley", "brick": "Bricks",
-    "tiles": "Bricks", "tile": "Bricks", "grid": "Bricks", "checker": "Bricks",
-    "circle": "Ellipse", "rectangle": "Rect", "box": "Rect", "square": "Rect", "line": "Stroke",
-    "clamp": "Threshold", "step": "Threshold", "smoothstep": "Threshold", "mix": "Add",
-    "lerp": "Add", "power": "Pow", "exp": "Pow", "ln": "Log", "round": "Floor",
-    "translate": "Translate", "rotate": "Rotate", "scale": "Scale",
+    "noise": "fBm",
+    "perlin": "fBm",
+    "simplex": "fBm",
+    "fbm": "fBm",
+    "turbulence": "fBm",
+    "voronoi": "Worley",
+    "cellular": "Worley",
+    "cells": "Worley",
+    "brick": "Bricks",
+    "tiles": "Bricks",
+    "tile": "Bricks",
+    "grid": "Bricks",
+    "checker": "Bricks",
+    "circle": "Ellipse",
+    "rectangle": "Rect",
+    "box": "Rect",
+    "square": "Rect",
+    "line": "Stroke",
+    "clamp": "Threshold",
+    "step": "Threshold",
+    "smoothstep": "Threshold",
+    "mix": "Add",
+    "lerp": "Add",
+    "power": "Pow",
+    "exp": "Pow",
+    "ln": "Log",
+    "round": "Floor",
+    "translate": "Translate",
+    "rotate": "Rotate",
+    "scale": "Scale",
 }
 
 
@@ -576,13 +767,30 @@ def _name_alias(name: str) -> str | None:
 
 
 def _channel_alias(name: str) -> str | None:
-    aliases = {"color": "basecolor", "colour": "basecolor", "albedo": "basecolor",
-               "base_color": "basecolor", "rough": "roughness", "metal": "metallic",
-               "metalness": "metallic", "emission": "emissive", "normal": "height",
-               "bump": "height", "displacement": "height", "opacity": "alpha",
-               "clearcoat": "coat", "specular": "roughness", "glossiness": "roughness",
-               "gloss": "roughness", "smoothness": "roughness", "transparency": "transmission",
-               "refraction": "ior", "glow": "emissive", "emit": "emissive", "sss": "subsurface"}
+    aliases = {
+        "color": "basecolor",
+        "colour": "basecolor",
+        "albedo": "basecolor",
+        "base_color": "basecolor",
+        "rough": "roughness",
+        "metal": "metallic",
+        "metalness": "metallic",
+        "emission": "emissive",
+        "normal": "height",
+        "bump": "height",
+        "displacement": "height",
+        "opacity": "alpha",
+        "clearcoat": "coat",
+        "specular": "roughness",
+        "glossiness": "roughness",
+        "gloss": "roughness",
+        "smoothness": "roughness",
+        "transparency": "transmission",
+        "refraction": "ior",
+        "glow": "emissive",
+        "emit": "emissive",
+        "sss": "subsurface",
+    }
     if name.lower() in aliases:
         return f"did you mean `.{aliases[name.lower()]}`?"
     return None

@@ -92,8 +92,9 @@ def seed_assignments(text: str, variants: int, seed: int = 0) -> list[dict[int, 
     return [{old: int(rng.integers(0, SEED_LIMIT)) for old in olds} for _ in range(variants)]
 
 
-def apply_seed_map(text: str, mapping: dict[int, int],
-                   spans: list[tuple[int, int, int]] | None = None) -> str:
+def apply_seed_map(
+    text: str, mapping: dict[int, int], spans: list[tuple[int, int, int]] | None = None
+) -> str:
     """Replace each seed literal by its new value; every other byte is unchanged."""
     spans = seed_literal_spans(text) if spans is None else spans
     parts, last = [], 0

@@ -30,7 +30,9 @@ def preview(
     return tile_image(img, tile) if tile > 1 else img
 
 
-def stats(program_or_text: A.Program | str, grid: int = 128, backend: str = "auto") -> dict[str, float]:
+def stats(
+    program_or_text: A.Program | str, grid: int = 128, backend: str = "auto"
+) -> dict[str, float]:
     """The 28 material statistics, computed on a ``grid`` x ``grid`` evaluation like the reference."""
     from matloom.render.stats import material_stats
 

@@ -48,8 +48,12 @@ def render_language_reference() -> str:
         args = ", ".join(c.arg_names)
         default = ", ".join(format_default(v) for v in c.defaults)
         out.append(f"| `.{c.name}` | {args} | {default} | {c.units} | {c.doc} |")
-    out += ["", "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
-            "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.", ""]
+    out += [
+        "",
+        "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
+        "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.",
+        "",
+    ]
     for family, title in _FAMILIES:
         specs = [f for f in FUNCTIONS.values() if f.family == family]
         if not specs:
@@ -66,8 +70,9 @@ def render_language_reference() -> str:
                 else:
                     out.append(_param_line(p))
             if f.variadic is not None:
-                out.append(f"  - `{f.variadic.name}...` (at least {f.min_variadic}): "
-                           f"{f.variadic.doc}")
+                out.append(
+                    f"  - `{f.variadic.name}...` (at least {f.min_variadic}): {f.variadic.doc}"
+                )
             out += ["", f"Example: `{f.example}`", ""]
     return "\n".join(out).rstrip() + "\n"
 

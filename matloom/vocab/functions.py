@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from matloom.vocab.spec import Kind, ParamSpec, PrintStyle, Returns, FunctionSpec
+from matloom.vocab.spec import FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 
 P = ParamSpec
 _FREQ_SEARCH = (0.1, 50.0)
@@ -88,24 +88,43 @@ def _math_specs() -> list[FunctionSpec]:
             "math",
             "logarithm in the given base (natural by default); -inf at 0, NaN below 0",
             "Log(X() + 1, 10)",
-            (_expr("expr", "input field"), P("base", Kind.FLOAT, "logarithm base", math.e, lo=0, lo_open=True,
-                                                     search=(1.1, 10))),
+            (
+                _expr("expr", "input field"),
+                P(
+                    "base",
+                    Kind.FLOAT,
+                    "logarithm base",
+                    math.e,
+                    lo=0,
+                    lo_open=True,
+                    search=(1.1, 10),
+                ),
+            ),
         )
     )
-    for name, doc in (("Min", "element-wise minimum (mask intersection)"),
-                      ("Max", "element-wise maximum (mask union)")):
+    for name, doc in (
+        ("Min", "element-wise minimum (mask intersection)"),
+        ("Max", "element-wise maximum (mask union)"),
+    ):
         specs.append(
             FunctionSpec(
-                name, "math", doc, f"{name}(X(), Y())",
+                name,
+                "math",
+                doc,
+                f"{name}(X(), Y())",
                 (_expr("expr1", "first field"), _expr("expr2", "second field")),
             )
         )
     for name, (op, pnames, doc) in _BINARY.items():
         specs.append(
             FunctionSpec(
-                name, "math", doc, f"{name}(X(), 2)",
+                name,
+                "math",
+                doc,
+                f"{name}(X(), 2)",
                 tuple(_expr(p, f"{p} operand") for p in pnames),
-                print_style=PrintStyle.OPERATOR, operator=op,
+                print_style=PrintStyle.OPERATOR,
+                operator=op,
             )
         )
     return specs
@@ -119,11 +138,32 @@ def _noise_specs() -> list[FunctionSpec]:
         "(or [0, 1] with to_01=True)",
         "fBm(octaves=4, base_freq=3, to_01=True, seed=7)",
         (
-            P("octaves", Kind.INT, "number of summed noise layers (detail)", 6, lo=1, search=(1, 8)),
-            P("lacunarity", Kind.FLOAT, "frequency multiplier per octave", 2.0, lo=0, lo_open=True,
-              search=(1.5, 3.0)),
-            P("gain", Kind.FLOAT, "amplitude multiplier per octave (roughness of the noise)", 0.5,
-              lo=0, lo_open=True, search=(0.2, 0.8)),
+            P(
+                "octaves",
+                Kind.INT,
+                "number of summed noise layers (detail)",
+                6,
+                lo=1,
+                search=(1, 8),
+            ),
+            P(
+                "lacunarity",
+                Kind.FLOAT,
+                "frequency multiplier per octave",
+                2.0,
+                lo=0,
+                lo_open=True,
+                search=(1.5, 3.0),
+            ),
+            P(
+                "gain",
+                Kind.FLOAT,
+                "amplitude multiplier per octave (roughness of the noise)",
+                0.5,
+                lo=0,
+                lo_open=True,
+                search=(0.2, 0.8),
+            ),
             _freq("base_freq", "features per coordinate unit (negative mirrors)", 1.0, False),
             _freq("base_freq_x", "per-axis frequency override along x", None, False),
             _freq("base_freq_y", "per-axis frequency override along y", None, False),
@@ -138,10 +178,20 @@ def _noise_specs() -> list[FunctionSpec]:
         "cellular (Voronoi) noise: distance to the nearest feature points, one per unit cell",
         'Worley(distance="euclidean", combination="F2-F1", base_freq=6, to_01=True, seed=3)',
         (
-            P("distance", Kind.ENUM, "distance metric", "euclidean",
-              choices=("euclidean", "manhattan", "chebyshev")),
-            P("combination", Kind.ENUM, "F1 = nearest, F2 = second nearest; F2-F1 gives cell edges",
-              "F1", choices=("F1", "F2", "F2-F1", "F2+F1")),
+            P(
+                "distance",
+                Kind.ENUM,
+                "distance metric",
+                "euclidean",
+                choices=("euclidean", "manhattan", "chebyshev"),
+            ),
+            P(
+                "combination",
+                Kind.ENUM,
+                "F1 = nearest, F2 = second nearest; F2-F1 gives cell edges",
+                "F1",
+                choices=("F1", "F2", "F2-F1", "F2+F1"),
+            ),
             _freq("base_freq", "cells per coordinate unit (negative mirrors)", 1.0, False),
             _freq("base_freq_x", "per-axis frequency override along x", None, False),
             _freq("base_freq_y", "per-axis frequency override along y", None, False),
@@ -154,20 +204,48 @@ def _noise_specs() -> list[FunctionSpec]:
 
 
 def _pattern_specs() -> list[FunctionSpec]:
-    feather = P("feather", Kind.FLOAT, "edge softening width (0 = hard edge)", 0.0, lo=0,
-                search=(0.0, 0.2))
+    feather = P(
+        "feather", Kind.FLOAT, "edge softening width (0 = hard edge)", 0.0, lo=0, search=(0.0, 0.2)
+    )
     bricks = FunctionSpec(
         "Bricks",
         "pattern",
         "brick/tile mask: 1 on bricks, 0 in mortar; rows start at the origin",
         "Bricks(brick_width=0.5, brick_height=0.25, mortar=0.02)",
         (
-            P("brick_width", Kind.FLOAT, "brick size along x", 1.0, lo=0, lo_open=True, search=(0.05, 5)),
-            P("brick_height", Kind.FLOAT, "brick size along y", 0.5, lo=0, lo_open=True, search=(0.05, 5)),
-            P("offset", Kind.FLOAT, "shift of each successive row (column) in brick widths; 0 = stacked",
-              0.5, search=(0.0, 1.0)),
+            P(
+                "brick_width",
+                Kind.FLOAT,
+                "brick size along x",
+                1.0,
+                lo=0,
+                lo_open=True,
+                search=(0.05, 5),
+            ),
+            P(
+                "brick_height",
+                Kind.FLOAT,
+                "brick size along y",
+                0.5,
+                lo=0,
+                lo_open=True,
+                search=(0.05, 5),
+            ),
+            P(
+                "offset",
+                Kind.FLOAT,
+                "shift of each successive row (column) in brick widths; 0 = stacked",
+                0.5,
+                search=(0.0, 1.0),
+            ),
             P("mortar", Kind.FLOAT, "gap width between bricks", 0.05, lo=0, search=(0.0, 1.0)),
-            P("axis", Kind.ENUM, "courses run along rows or columns", "row", choices=("row", "column")),
+            P(
+                "axis",
+                Kind.ENUM,
+                "courses run along rows or columns",
+                "row",
+                choices=("row", "column"),
+            ),
             feather,
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
@@ -184,8 +262,16 @@ def _pattern_specs() -> list[FunctionSpec]:
             _freq("base_freq", "thread cells per coordinate unit", 8.0, True),
             _freq("base_freq_x", "per-axis cell frequency along x", None, True),
             _freq("base_freq_y", "per-axis cell frequency along y", None, True),
-            P("warp_width", Kind.FLOAT, "thread width as a fraction of the cell", 0.5, lo=0,
-              lo_open=True, hi=1, search=(0.05, 1.0)),
+            P(
+                "warp_width",
+                Kind.FLOAT,
+                "thread width as a fraction of the cell",
+                0.5,
+                lo=0,
+                lo_open=True,
+                hi=1,
+                search=(0.05, 1.0),
+            ),
             feather,
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
@@ -199,13 +285,31 @@ def _pattern_specs() -> list[FunctionSpec]:
         (
             _expr("expr", "input field"),
             P("below_at", Kind.FLOAT, "lower cutoff", None, nullable=True, search=(0.0, 1.0)),
-            P("below_to", Kind.FLOAT, "value below the lower cutoff (default: below_at)", None,
-              nullable=True, search=(0.0, 1.0)),
+            P(
+                "below_to",
+                Kind.FLOAT,
+                "value below the lower cutoff (default: below_at)",
+                None,
+                nullable=True,
+                search=(0.0, 1.0),
+            ),
             P("above_at", Kind.FLOAT, "upper cutoff", None, nullable=True, search=(0.0, 1.0)),
-            P("above_to", Kind.FLOAT, "value above the upper cutoff (default: above_at)", None,
-              nullable=True, search=(0.0, 1.0)),
-            P("transition_width", Kind.FLOAT, "width of the smooth ramp inside the band", 0.0, lo=0,
-              search=(0.0, 1.0)),
+            P(
+                "above_to",
+                Kind.FLOAT,
+                "value above the upper cutoff (default: above_at)",
+                None,
+                nullable=True,
+                search=(0.0, 1.0),
+            ),
+            P(
+                "transition_width",
+                Kind.FLOAT,
+                "width of the smooth ramp inside the band",
+                0.0,
+                lo=0,
+                search=(0.0, 1.0),
+            ),
         ),
         print_style=PrintStyle.THRESHOLD,
     )
@@ -216,18 +320,31 @@ def _transform_specs() -> list[FunctionSpec]:
     body = _expr("expr", "field to transform (noise included)")
     return [
         FunctionSpec(
-            "Translate", "transform", "move a field by (dx, dy)", "Translate(X(), 0.5, 0)",
-            (body, P("dx", Kind.FLOAT, "offset along x", 0.0, search=(-100, 100)),
-             P("dy", Kind.FLOAT, "offset along y", 0.0, search=(-100, 100))),
+            "Translate",
+            "transform",
+            "move a field by (dx, dy)",
+            "Translate(X(), 0.5, 0)",
+            (
+                body,
+                P("dx", Kind.FLOAT, "offset along x", 0.0, search=(-100, 100)),
+                P("dy", Kind.FLOAT, "offset along y", 0.0, search=(-100, 100)),
+            ),
         ),
         FunctionSpec(
-            "Scale", "transform", "scale a field about the origin (negative mirrors)",
+            "Scale",
+            "transform",
+            "scale a field about the origin (negative mirrors)",
             "Scale(Bricks(), 2, 1)",
-            (body, P("sx", Kind.FLOAT, "factor along x", 1.0, nonzero=True, search=(0.1, 10)),
-             P("sy", Kind.FLOAT, "factor along y", 1.0, nonzero=True, search=(0.1, 10))),
+            (
+                body,
+                P("sx", Kind.FLOAT, "factor along x", 1.0, nonzero=True, search=(0.1, 10)),
+                P("sy", Kind.FLOAT, "factor along y", 1.0, nonzero=True, search=(0.1, 10)),
+            ),
         ),
         FunctionSpec(
-            "Rotate", "transform", "rotate a field counter-clockwise about the origin",
+            "Rotate",
+            "transform",
+            "rotate a field counter-clockwise about the origin",
             "Rotate(Bricks(), 45)",
             (body, P("degrees", Kind.FLOAT, "angle in degrees", 0.0, search=(-360, 360))),
         ),
@@ -245,25 +362,43 @@ def _shape_specs() -> list[FunctionSpec]:
     seg_y = f_("y", "end point y")
     return [
         FunctionSpec(
-            "Rect", "shape", "rectangle with optional rounded corners, (x, y) = bottom-left",
+            "Rect",
+            "shape",
+            "rectangle with optional rounded corners, (x, y) = bottom-left",
             "Fill(Rect(0.1, 0.1, 0.8, 0.3, 0.05))",
-            (f_("x", "left edge"), f_("y", "bottom edge"),
-             P("width", f, "width", search=(0.01, 5), **pos),
-             P("height", f, "height", search=(0.01, 5), **pos),
-             P("radius", f, "corner radius (clamped to half the smaller side)", 0.0, lo=0,
-               search=(0.0, 1.0))),
+            (
+                f_("x", "left edge"),
+                f_("y", "bottom edge"),
+                P("width", f, "width", search=(0.01, 5), **pos),
+                P("height", f, "height", search=(0.01, 5), **pos),
+                P(
+                    "radius",
+                    f,
+                    "corner radius (clamped to half the smaller side)",
+                    0.0,
+                    lo=0,
+                    search=(0.0, 1.0),
+                ),
+            ),
             returns=Returns.SHAPE,
         ),
         FunctionSpec(
-            "Ellipse", "shape", "ellipse centred at (cx, cy) with radii rx, ry",
+            "Ellipse",
+            "shape",
+            "ellipse centred at (cx, cy) with radii rx, ry",
             "Fill(Ellipse(0.5, 0.5, 0.3, 0.2))",
-            (f_("cx", "centre x"), f_("cy", "centre y"),
-             P("rx", f, "radius along x", search=(0.01, 5), **pos),
-             P("ry", f, "radius along y", search=(0.01, 5), **pos)),
+            (
+                f_("cx", "centre x"),
+                f_("cy", "centre y"),
+                P("rx", f, "radius along x", search=(0.01, 5), **pos),
+                P("ry", f, "radius along y", search=(0.01, 5), **pos),
+            ),
             returns=Returns.SHAPE,
         ),
         FunctionSpec(
-            "Path", "shape", "polyline/curve starting at (start_x, start_y); Fill closes it",
+            "Path",
+            "shape",
+            "polyline/curve starting at (start_x, start_y); Fill closes it",
             "Fill(Path(0, 0, LineTo(1, 0), LineTo(0.5, 1)))",
             (f_("start_x", "start point x"), f_("start_y", "start point y")),
             returns=Returns.SHAPE,
@@ -271,31 +406,56 @@ def _shape_specs() -> list[FunctionSpec]:
             min_variadic=1,
         ),
         FunctionSpec(
-            "LineTo", "segment", "straight segment to (x, y); only inside Path",
-            "Path(0, 0, LineTo(1, 1))", (seg_x, seg_y), returns=Returns.SEGMENT,
-        ),
-        FunctionSpec(
-            "CubicTo", "segment", "cubic Bezier segment with controls c1, c2 to (x, y); only inside Path",
-            "Path(0, 0, CubicTo(0.3, 1, 0.7, 1, 1, 0))",
-            (f_("c1x", "first control x"), f_("c1y", "first control y"),
-             f_("c2x", "second control x"), f_("c2y", "second control y"), seg_x, seg_y),
+            "LineTo",
+            "segment",
+            "straight segment to (x, y); only inside Path",
+            "Path(0, 0, LineTo(1, 1))",
+            (seg_x, seg_y),
             returns=Returns.SEGMENT,
         ),
         FunctionSpec(
-            "Fill", "shape", "coverage of a shape's interior: 1 inside, 0 outside",
+            "CubicTo",
+            "segment",
+            "cubic Bezier segment with controls c1, c2 to (x, y); only inside Path",
+            "Path(0, 0, CubicTo(0.3, 1, 0.7, 1, 1, 0))",
+            (
+                f_("c1x", "first control x"),
+                f_("c1y", "first control y"),
+                f_("c2x", "second control x"),
+                f_("c2y", "second control y"),
+                seg_x,
+                seg_y,
+            ),
+            returns=Returns.SEGMENT,
+        ),
+        FunctionSpec(
+            "Fill",
+            "shape",
+            "coverage of a shape's interior: 1 inside, 0 outside",
             "Fill(Ellipse(0.5, 0.5, 0.3, 0.3), feather=0.01)",
-            (P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
-             P("mode", Kind.ENUM, "fill rule for self-intersecting paths", "NonZero",
-               choices=("NonZero", "EvenOdd")),
-             P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2))),
+            (
+                P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
+                P(
+                    "mode",
+                    Kind.ENUM,
+                    "fill rule for self-intersecting paths",
+                    "NonZero",
+                    choices=("NonZero", "EvenOdd"),
+                ),
+                P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2)),
+            ),
             print_style=PrintStyle.SHAPE_OP,
         ),
         FunctionSpec(
-            "Stroke", "shape", "coverage of a band of the given width along a shape's outline",
+            "Stroke",
+            "shape",
+            "coverage of a band of the given width along a shape's outline",
             "Stroke(Path(0, 0.5, LineTo(1, 0.5)), 0.02)",
-            (P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
-             P("width", f, "stroke width", search=(0.001, 10), **pos),
-             P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2))),
+            (
+                P("shape", Kind.SHAPE, "an inline Rect, Ellipse or Path"),
+                P("width", f, "stroke width", search=(0.001, 10), **pos),
+                P("feather", f, "edge softening width", 0.0, lo=0, search=(0.0, 0.2)),
+            ),
             print_style=PrintStyle.SHAPE_OP,
         ),
     ]
@@ -317,6 +477,11 @@ CONSTANTS: dict[str, float] = {"pi": math.pi, "e": math.e}
 """Named numeric constants."""
 
 LITERALS: dict[str, bool | None] = {
-    "True": True, "true": True, "False": False, "false": False, "None": None, "null": None,
+    "True": True,
+    "true": True,
+    "False": False,
+    "false": False,
+    "None": None,
+    "null": None,
 }
 """Literal words accepted where a bool or an omitted value is expected."""

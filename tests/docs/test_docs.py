@@ -15,7 +15,8 @@ DOCS = sorted([ROOT / "README.md", *(ROOT / "docs").glob("*.md")])
 def test_language_reference_is_generated_from_registry():
     on_disk = (ROOT / "docs" / "language.md").read_text(encoding="utf-8")
     assert on_disk == render_language_reference(), (
-        "docs/language.md is stale: run python -m matloom.vocab.docs > docs/language.md")
+        "docs/language.md is stale: run python -m matloom.vocab.docs > docs/language.md"
+    )
 
 
 def _blocks(path: Path, lang: str) -> list[str]:

@@ -23,8 +23,10 @@ BRICK = (DATA / "brick.mat").read_text()
 
 
 def digest(maps) -> dict[str, str]:  # noqa: ANN001
-    return {k: hashlib.sha256(np.ascontiguousarray(getattr(maps, k)).tobytes()).hexdigest()
-            for k in ARRAY_FIELDS}
+    return {
+        k: hashlib.sha256(np.ascontiguousarray(getattr(maps, k)).tobytes()).hexdigest()
+        for k in ARRAY_FIELDS
+    }
 
 
 @pytest.mark.parametrize("src", [TILE, BRICK], ids=["tile", "brick"])
@@ -43,17 +45,28 @@ def test_evaluation_is_byte_identical_across_processes():
     import os
 
     env = {**os.environ, **env_path}
-    outs = {subprocess.run([sys.executable, "-c", code, str(DATA / "tile.mat")], env=env,
-                           capture_output=True, text=True, check=True).stdout.strip()
-            for _ in range(2)}
-    here = hashlib.sha256(b"".join(np.ascontiguousarray(a).tobytes()
-                                   for a in evaluate(TILE, 96, 80).arrays().values())).hexdigest()
+    outs = {
+        subprocess.run(
+            [sys.executable, "-c", code, str(DATA / "tile.mat")],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        for _ in range(2)
+    }
+    here = hashlib.sha256(
+        b"".join(
+            np.ascontiguousarray(a).tobytes() for a in evaluate(TILE, 96, 80).arrays().values()
+        )
+    ).hexdigest()
     assert outs == {here}
 
 
 def test_tile_roughness_edit_changes_only_roughness():
-    edited = TILE.replace(".roughness((0.04 + (glazeGrain * 0.05)))",
-                          ".roughness((0.09 + (glazeGrain * 0.05)))")
+    edited = TILE.replace(
+        ".roughness((0.04 + (glazeGrain * 0.05)))", ".roughness((0.09 + (glazeGrain * 0.05)))"
+    )
     assert edited != TILE
     a, b = digest(evaluate(TILE, 128, 128)), digest(evaluate(edited, 128, 128))
     for key in ("basecolor_linear", "alpha", "height", "normal", "ao", "metallic", "ior"):

@@ -45,7 +45,8 @@ def _compare(name: str, key: str, ours: np.ndarray, ref: np.ndarray) -> None:
         tol = ABS_TOL.get(key, 1e-5)
     bad = np.abs(a - r) > tol
     assert not bad.any(), (
-        f"{name}.{key}: {bad.sum()} texel(s) differ; max |diff| {np.abs(a - r).max():.3g}")
+        f"{name}.{key}: {bad.sum()} texel(s) differ; max |diff| {np.abs(a - r).max():.3g}"
+    )
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -80,8 +81,12 @@ def test_expression_point_samples(entry, backend):
     program = prepare(_expr_program(entry["expr"]))
     expr = program.layers[0].channel("height").args[0]
     for x, y, expected in entry["points"]:
-        ev = Evaluator(program, np.array([[x]], dtype=np.float64), np.array([[y]], dtype=np.float64),
-                       get_backend(backend))
+        ev = Evaluator(
+            program,
+            np.array([[x]], dtype=np.float64),
+            np.array([[y]], dtype=np.float64),
+            get_backend(backend),
+        )
         got = float(np.broadcast_to(ev.field(expr), (1, 1))[0, 0])
         want = _value(expected)
         if math.isnan(want):

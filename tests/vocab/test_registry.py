@@ -21,8 +21,16 @@ def test_function_entry_is_complete(name):
     assert spec.doc and len(spec.doc) > 10, f"{name} lacks a doc line"
     assert spec.example, f"{name} lacks an example"
     assert name in spec.example, f"{name}'s example does not use it"
-    assert spec.family in {"coord", "math", "noise", "pattern", "mask", "transform", "shape",
-                           "segment"}
+    assert spec.family in {
+        "coord",
+        "math",
+        "noise",
+        "pattern",
+        "mask",
+        "transform",
+        "shape",
+        "segment",
+    }
     for p in spec.params:
         assert p.doc, f"{name}.{p.name} lacks a doc"
         if p.kind in (Kind.FLOAT, Kind.INT) and not p.is_seed:
@@ -44,8 +52,9 @@ def test_function_example_parses_prints_and_reparses(name):
     prog = matloom.parse(src)
     text = matloom.format(prog)
     assert matloom.format(matloom.parse(text)) == text
-    used = {n.func for _, e in A.program_expressions(prog) for n in A.walk(e)
-            if isinstance(n, A.Call)}
+    used = {
+        n.func for _, e in A.program_expressions(prog) for n in A.walk(e) if isinstance(n, A.Call)
+    }
     if spec.print_style is not PrintStyle.OPERATOR:
         assert name in used or name in text
 
@@ -61,9 +70,20 @@ def test_channel_entry_is_complete(name):
 
 
 def test_channel_order_matches_reference():
-    assert list(CHANNELS) == ["alpha", "basecolor", "metallic", "roughness", "sheen", "coat",
-                              "transmission", "ior", "subsurface", "anisotropy", "emissive",
-                              "height"]
+    assert list(CHANNELS) == [
+        "alpha",
+        "basecolor",
+        "metallic",
+        "roughness",
+        "sheen",
+        "coat",
+        "transmission",
+        "ior",
+        "subsurface",
+        "anisotropy",
+        "emissive",
+        "height",
+    ]
 
 
 def test_printer_has_a_path_for_every_function():
@@ -73,11 +93,20 @@ def test_printer_has_a_path_for_every_function():
             if p.kind is Kind.EXPR:
                 args.append(A.Arg(p.name, A.Call("X")))
             elif p.kind is Kind.SHAPE:
-                args.append(A.Arg(p.name, A.Call("Ellipse", tuple(
-                    A.Arg(q, A.Num(1)) for q in ("cx", "cy", "rx", "ry")))))
+                args.append(
+                    A.Arg(
+                        p.name,
+                        A.Call(
+                            "Ellipse", tuple(A.Arg(q, A.Num(1)) for q in ("cx", "cy", "rx", "ry"))
+                        ),
+                    )
+                )
             elif p.required:
                 args.append(A.Arg(p.name, A.Num(1)))
-        extra = (A.Call("LineTo", (A.Arg("x", A.Num(1)), A.Arg("y", A.Num(1)))),) \
-            if spec.variadic else ()
+        extra = (
+            (A.Call("LineTo", (A.Arg("x", A.Num(1)), A.Arg("y", A.Num(1)))),)
+            if spec.variadic
+            else ()
+        )
         text = format_expr(A.Call(name, tuple(args), extra))
         assert text, name
