@@ -150,12 +150,14 @@ class Evaluator:
             return self.eval(call.arg("expr"), self.transform(call, c))  # type: ignore[arg-type]
         if f == "Fill":
             geom = self.shape(call.arg("shape"))  # type: ignore[arg-type]
-            return self.backend.fill(geom, c[0], c[1], mode=self.num(call, "mode"),
-                                     feather=self.num(call, "feather"))
+            return self.backend.fill(
+                geom, c[0], c[1], mode=self.num(call, "mode"), feather=self.num(call, "feather")
+            )
         if f == "Stroke":
             geom = self.shape(call.arg("shape"))  # type: ignore[arg-type]
-            return self.backend.stroke(geom, c[0], c[1], width=self.num(call, "width"),
-                                       feather=self.num(call, "feather"))
+            return self.backend.stroke(
+                geom, c[0], c[1], width=self.num(call, "width"), feather=self.num(call, "feather")
+            )
         raise ValueError(f"{f}(...) cannot be evaluated as a field")
 
     def freqs(self, call: A.Call) -> tuple[float, float]:
@@ -172,11 +174,26 @@ class Evaluator:
         to_01 = bool(self.num(call, "to_01"))
         if call.func == "fBm":
             return self.backend.fbm(
-                c[0], c[1], octaves=self.num(call, "octaves"), lacunarity=self.num(call, "lacunarity"),
-                gain=self.num(call, "gain"), freq_x=fx, freq_y=fy, to_01=to_01, seed=seed)
+                c[0],
+                c[1],
+                octaves=self.num(call, "octaves"),
+                lacunarity=self.num(call, "lacunarity"),
+                gain=self.num(call, "gain"),
+                freq_x=fx,
+                freq_y=fy,
+                to_01=to_01,
+                seed=seed,
+            )
         return self.backend.worley(
-            c[0], c[1], distance=self.num(call, "distance"), combination=self.num(call, "combination"),
-            freq_x=fx, freq_y=fy, to_01=to_01, seed=seed)
+            c[0],
+            c[1],
+            distance=self.num(call, "distance"),
+            combination=self.num(call, "combination"),
+            freq_x=fx,
+            freq_y=fy,
+            to_01=to_01,
+            seed=seed,
+        )
 
     def transform(self, call: A.Call, c: Coords) -> Coords:
         x, y = c
@@ -191,8 +208,9 @@ class Evaluator:
     def shape(self, node: A.Call) -> shapes.Shape:
         vals = {a.param: float(static_number(a.value) or 0.0) for a in node.args}
         if node.func == "Rect":
-            return shapes.make_rect(vals["x"], vals["y"], vals["width"], vals["height"],
-                                    vals.get("radius", 0.0))
+            return shapes.make_rect(
+                vals["x"], vals["y"], vals["width"], vals["height"], vals.get("radius", 0.0)
+            )
         if node.func == "Ellipse":
             return shapes.EllipseGeom(vals["cx"], vals["cy"], vals["rx"], vals["ry"])
         segs = []
@@ -203,8 +221,14 @@ class Evaluator:
         return shapes.PathGeom(vals["start_x"], vals["start_y"], tuple(segs))
 
 
-_UNARY = {"Abs": np.abs, "Sqrt": np.sqrt, "Floor": np.floor, "Ceil": np.ceil, "Sin": np.sin,
-          "Cos": np.cos}
+_UNARY = {
+    "Abs": np.abs,
+    "Sqrt": np.sqrt,
+    "Floor": np.floor,
+    "Ceil": np.ceil,
+    "Sin": np.sin,
+    "Cos": np.cos,
+}
 _BRICKS = ("brick_width", "brick_height", "offset", "mortar", "axis", "feather")
 _THRESHOLD = ("below_at", "below_to", "above_at", "above_to", "transition_width")
 
@@ -267,8 +291,9 @@ def evaluate(
 
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)
-            return evaluate_fused(program, x, y, v, be, ao_radius_units=ao_radius_units,
-                                  stats=stats)
+            return evaluate_fused(
+                program, x, y, v, be, ao_radius_units=ao_radius_units, stats=stats
+            )
     ev = Evaluator(program, x, y, be)
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)

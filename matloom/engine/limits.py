@@ -34,17 +34,22 @@ def estimate_memory_mb(width: int, height: int, n_defines: int, n_layers: int) -
     return width * height * (_MAP_BYTES + 8 * live_fields) / 2**20
 
 
-def check_request(width: int, height: int, n_defines: int, n_layers: int,
-                  limits: Limits = DEFAULT_LIMITS) -> None:
+def check_request(
+    width: int, height: int, n_defines: int, n_layers: int, limits: Limits = DEFAULT_LIMITS
+) -> None:
     """Raise :class:`LimitError` with a clear message if the request exceeds a limit."""
     for name, v in (("width", width), ("height", height)):
         if not isinstance(v, int) or v < 1:
             raise LimitError(f"{name} must be a positive integer, got {v!r}")
         if v > limits.max_resolution:
-            raise LimitError(f"{name} {v} exceeds the maximum resolution {limits.max_resolution} "
-                             "(see docs/limits.md)")
+            raise LimitError(
+                f"{name} {v} exceeds the maximum resolution {limits.max_resolution} "
+                "(see docs/limits.md)"
+            )
     mb = estimate_memory_mb(width, height, n_defines, n_layers)
     if mb > limits.max_memory_mb:
-        raise LimitError(f"evaluating {width}x{height} needs about {mb:.0f} MiB, more than the "
-                         f"budget of {limits.max_memory_mb} MiB; lower the size or raise "
-                         "MATLOOM_MAX_MEMORY_MB")
+        raise LimitError(
+            f"evaluating {width}x{height} needs about {mb:.0f} MiB, more than the "
+            f"budget of {limits.max_memory_mb} MiB; lower the size or raise "
+            "MATLOOM_MAX_MEMORY_MB"
+        )

@@ -56,14 +56,21 @@ def _numpy_backend() -> Backend:
 
 
 def _numba_backend() -> Backend:
-    from matloom.engine.kernels import noise_numba, noise_numba_batch, patterns, shapes, threshold
+    from matloom.engine.kernels import (
+        noise_numba,
+        noise_numba_batch,
+        patterns,
+        patterns_numba,
+        shapes,
+        threshold,
+    )
 
     return Backend(
         "numba",
         fbm=noise_numba.fbm,
         worley=noise_numba.worley,
         fbm_seed_batch=noise_numba_batch.fbm_seed_batch,
-        bricks=patterns.bricks,
+        bricks=patterns_numba.bricks,
         weave=patterns.weave,
         threshold=threshold.threshold,
         fill=partial(shapes.fill, backend="numba"),

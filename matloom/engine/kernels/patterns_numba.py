@@ -1,0 +1,137 @@
+"""numba ``Bricks``: the same numbers as :func:`matloom.engine.kernels.patterns.bricks`.
+
+One pass per texel instead of about a dozen full-size numpy temporaries. Exactness: every
+operation of the numpy version is kept, in the same order and in the coordinate dtype (the
+parameters are converted to that dtype first, as numpy 2's weak-scalar promotion does; the
+Python-float sums ``bw - mortar / 2`` stay float64 sums converted afterwards, as in numpy).
+``np.minimum`` and ``np.clip`` propagate NaN, so the helpers here do too. Inputs the kernel does
+not take (other ranks, mixed or non-float dtypes) go to the numpy version.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import prange
+
+from matloom.engine.kernels import patterns
+from matloom.engine.kernels.noise_numba_core import jit_kernel
+
+
+@jit_kernel(parallel=False, inline=True)
+def _nan_min(a: float, b: float) -> float:
+    """``np.minimum(a, b)`` for scalars: NaN if either is NaN."""
+    if a != a:
+        return a
+    if b != b:
+        return b
+    return a if a < b else b
+
+
+@jit_kernel(parallel=False, inline=True)
+def _floor_mod(a: float, b: float) -> float:
+    """``a - floor(a / b) * b`` (see ``patterns.floor_mod``)."""
+    return a - np.floor(a / b) * b
+
+
+@jit_kernel(parallel=False, inline=True)
+def _coverage(s: float, consts: np.ndarray, hard: bool) -> float:
+    """``patterns.smooth_coverage`` of one inset; consts[4] = feather / 2, consts[5] = feather,
+    consts[6..9] = 0, 1, 2, 3 in the coordinate dtype."""
+    if hard:
+        return 1.0 if s >= consts[6] else 0.0
+    t = (s + consts[4]) / consts[5]
+    if t == t:  # np.clip keeps NaN
+        t = consts[6] if t < consts[6] else (consts[7] if t > consts[7] else t)
+    ramp = consts[9] - consts[8] * t
+    return np.float64(ramp * (t * t))
+
+
+@jit_kernel()
+def _bricks_kernel(
+    x: np.ndarray, y: np.ndarray, consts: np.ndarray, by_row: bool, hard: bool, out: np.ndarray
+) -> None:
+    """Coverage of each texel; x, y broadcast to ``out``'s shape. consts (coordinate dtype):
+    bw, bh, offset, mortar / 2, feather / 2, feather, 0, 1, 2, 3, bw - mortar / 2,
+    bh - mortar / 2."""
+    bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
+    bw_in, bh_in = consts[10], consts[11]
+    for i in prange(out.shape[0]):
+        for j in range(out.shape[1]):
+            xv, yv = x[i, j], y[i, j]
+            if by_row:
+                row = np.floor(yv / bh)
+                lx = _floor_mod(xv - row * offset * bw, bw)
+                ly = _floor_mod(yv, bh)
+            else:
+                col = np.floor(xv / bw)
+                lx = _floor_mod(xv, bw)
+                ly = _floor_mod(yv - col * offset * bh, bh)
+            inset = _nan_min(
+                _nan_min(lx - half, bw_in - lx),
+                _nan_min(ly - half, bh_in - ly),
+            )
+            out[i, j] = _coverage(inset, consts, hard)
+
+
+@jit_kernel()
+def _bricks_rows_kernel(
+    x_axis: np.ndarray, y_axis: np.ndarray, consts: np.ndarray, hard: bool, out: np.ndarray
+) -> None:
+    """``_bricks_kernel`` for axis="row" on a separable grid (x row, y column, as 1-D axes):
+    the row's course, its offset and its y distances are computed once per row."""
+    bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
+    bw_in, bh_in = consts[10], consts[11]
+    for i in prange(out.shape[0]):
+        yv = y_axis[i]
+        row = np.floor(yv / bh)
+        shift = row * offset * bw
+        ly = _floor_mod(yv, bh)
+        y_inset = _nan_min(ly - half, bh_in - ly)
+        out_row = out[i]
+        for j in range(out.shape[1]):
+            lx = _floor_mod(x_axis[j] - shift, bw)
+            out_row[j] = _coverage(_nan_min(_nan_min(lx - half, bw_in - lx), y_inset), consts, hard)
+
+
+def bricks(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    brick_width: float,
+    brick_height: float,
+    offset: float,
+    mortar: float,
+    axis: str,
+    feather: float,
+) -> np.ndarray:
+    """Running-bond brick mask, as :func:`patterns.bricks` (same arguments, same numbers)."""
+    kwargs = dict(
+        brick_width=brick_width,
+        brick_height=brick_height,
+        offset=offset,
+        mortar=mortar,
+        axis=axis,
+        feather=feather,
+    )
+    x, y = np.asarray(x), np.asarray(y)
+    dtype = x.dtype
+    if (
+        axis not in patterns.BRICK_AXES
+        or x.ndim != 2
+        or y.ndim != 2
+        or y.dtype != dtype
+        or dtype not in (np.float32, np.float64)
+    ):
+        return patterns.bricks(x, y, **kwargs)
+    bw, bh, half, feather = float(brick_width), float(brick_height), mortar / 2, float(feather)
+    values = [bw, bh, offset, half, feather / 2, feather, 0, 1, 2, 3, bw - half, bh - half]
+    with np.errstate(all="ignore"):  # huge Python floats become inf in float32, as in numpy
+        consts = np.array(values, dtype=np.float64).astype(dtype)
+    shape = np.broadcast_shapes(x.shape, y.shape)
+    out = np.empty(shape, dtype=np.float64)
+    if axis == "row" and x.shape == (1, shape[1]) and y.shape == (shape[0], 1):
+        _bricks_rows_kernel(x[0], y[:, 0], consts, feather == 0, out)
+        return out
+    xb, yb = np.broadcast_to(x, shape), np.broadcast_to(y, shape)
+    _bricks_kernel(xb, yb, consts, axis == "row", feather == 0, out)
+    return out
