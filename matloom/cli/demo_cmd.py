@@ -56,28 +56,28 @@ def demo_cmd(out_dir: str, size: int) -> None:
 
 
 def _generate_offline(root: Path, size: int) -> list[str]:
-    try:
-        from matloom.author.builtin import author
-    except ImportError:
-        return ["(built-in offline author not installed: skipped text-to-material)"]
-    from matloom.engine.evaluate import evaluate
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.export import export_maps
-    from matloom.io.png import encode_png8
-    from matloom.render.preview import shade
+    """Run the `matloom generate` pipeline with no model (the built-in offline author)."""
+    from matloom.author.config import AuthorConfig
+    from matloom.author.pipeline import author_material
 
-    out = []
+    config = AuthorConfig(scorer="none")
+    out = [
+        "text to material with `matloom generate` (no model configured: built-in offline author):"
+    ]
     for prompt in DEMO_PROMPTS:
         t0 = time.perf_counter()
-        result = author(prompt)
         slug = "".join(c if c.isalnum() else "_" for c in prompt.lower()).strip("_")[:48]
         dest = root / slug
-        maps = evaluate(result.program, size, size)
-        export_maps(maps, dest, program_text=result.program, extra_meta={"prompt": prompt})
-        atomic_write_bytes(dest / "material.mat", (result.program + "\n").encode())
-        atomic_write_bytes(dest / "preview.png", encode_png8(shade(maps)))
-        out.append(f'"{prompt}" (offline author, {time.perf_counter() - t0:.2f} s):')
-        out.append(f"  program  {dest / 'material.mat'}")
-        out.append(f"  maps     {dest}/")
-        out.append(f"  preview  {dest / 'preview.png'}")
+        if (dest / "record.json").exists():  # a previous demo run: start afresh
+            import shutil
+
+            shutil.rmtree(dest)
+        result = author_material(prompt, dest, config)
+        files = result.record.final.files if result.record.final else {}
+        folder = result.folder
+        out.append(f'"{prompt}" ({time.perf_counter() - t0:.2f} s):')
+        out.append(f"  program  {folder / files.get('program', 'material.mat')}")
+        out.append(f"  maps     {folder / files.get('maps', 'maps')}/")
+        out.append(f"  preview  {folder / files.get('preview', 'preview.png')}")
+        out.append(f"  record   {folder / 'record.json'}")
     return out
