@@ -31,9 +31,9 @@ def demo_cmd(out_dir: str, size: int) -> None:
     from matloom.examples import example_text
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import export_maps
-    from matloom.io.png import encode_png8
     from matloom.lang.printer import format_program
     from matloom.render.preview import shade, tile_image
+    from matloom.render.sheet import save_png
 
     root = Path(out_dir).resolve()
     root.mkdir(parents=True, exist_ok=True)
@@ -45,8 +45,9 @@ def demo_cmd(out_dir: str, size: int) -> None:
     dest = root / "paper_tile_program"
     export_maps(maps, dest, program_text=text)
     atomic_write_bytes(dest / "material.mat", (text + "\n").encode())
-    atomic_write_bytes(dest / "preview.png", encode_png8(shade(maps)))
-    atomic_write_bytes(dest / "preview_tiled.png", encode_png8(tile_image(shade(maps), 2)))
+    swatch = shade(maps)
+    save_png(dest / "preview.png", swatch)
+    save_png(dest / "preview_tiled.png", tile_image(swatch, 2))
     lines.append(f"paper tile program ({size}x{size}, {time.perf_counter() - t0:.2f} s):")
     lines.append(f"  program  {dest / 'material.mat'}")
     lines.append(f"  maps     {dest}/ (13 maps + material.json)")

@@ -138,11 +138,10 @@ def render_cmd(
         extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
     )
     if preview:
-        from matloom.io.atomic import atomic_write_bytes
-        from matloom.io.png import encode_png8
         from matloom.render.preview import shade
+        from matloom.render.sheet import save_png
 
-        atomic_write_bytes(Path(out_dir) / "preview.png", encode_png8(shade(maps)))
+        save_png(Path(out_dir) / "preview.png", shade(maps))
     from matloom.io.atomic import atomic_write_bytes as _write
 
     _write(Path(out_dir) / "material.mat", (canonical + "\n").encode("utf-8"))

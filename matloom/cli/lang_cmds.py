@@ -108,17 +108,9 @@ def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | 
 
 
 def _atomic_write(path: Path, text: str) -> None:
-    import os
-    import tempfile
+    from matloom.io.atomic import atomic_write_bytes
 
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    atomic_write_bytes(path, text.encode("utf-8"))
 
 
 @click.command("seeds")

@@ -24,10 +24,9 @@ def _parse_light(value: str | None):  # noqa: ANN202
 
 
 def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.png import encode_png8
+    from matloom.render.sheet import save_png
 
-    atomic_write_bytes(Path(path), encode_png8(img))
+    save_png(path, img)
 
 
 @click.command("preview")

@@ -272,7 +272,6 @@ class Checker:
                 return
             self.nodes += 1
             self.call(v)  # type: ignore[arg-type]
-            self._rect_radius(v)  # type: ignore[arg-type]
             return
         if isinstance(v, A.Lit) and v.value is None and p.nullable:
             return
@@ -364,9 +363,6 @@ class Checker:
                 span,
                 expected=f"octaves <= {MAX_OCTAVES}",
             )
-
-    def _rect_radius(self, shape: A.Call) -> None:
-        return None
 
 
 def _static_alpha(layer: A.Layer) -> float | None:

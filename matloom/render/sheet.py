@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import os
-import tempfile
 from collections.abc import Sequence
 from functools import lru_cache
 
@@ -25,7 +24,6 @@ _LABEL_PADDING = 3
 _ELLIPSIS = "..."
 
 #: Permissions of written PNGs (owner read/write, everyone read).
-_PNG_FILE_MODE = 0o644
 
 
 @lru_cache(maxsize=1)
@@ -114,25 +112,11 @@ def contact_sheet(
 
 
 def save_png(path: str | os.PathLike[str], img: np.ndarray) -> None:
-    """Write ``img`` (uint8 grey, RGB or RGBA) as a PNG, atomically.
+    """Write ``img`` (uint8 grey, RGB or RGBA) as a PNG, atomically (see :mod:`matloom.io.atomic`)."""
+    from matloom.io.atomic import atomic_write_bytes
+    from matloom.io.png import encode_png8
 
-    The image goes to a temporary file in the destination directory, which then replaces
-    ``path`` with ``os.replace``: readers never see a half-written file, and a failed write
-    leaves any previous file untouched. The file gets mode 0o644 (mkstemp creates 0o600).
-    """
     array = np.asarray(img)
     if array.dtype != np.uint8:
         raise ValueError(f"PNG images must be uint8, got {array.dtype}")
-    image = Image.fromarray(np.ascontiguousarray(array))
-    target = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(target))
-    fd, temp_path = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".png")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            image.save(handle, format="PNG")
-        os.chmod(temp_path, _PNG_FILE_MODE)
-        os.replace(temp_path, target)
-    except BaseException:
-        if os.path.exists(temp_path):
-            os.unlink(temp_path)
-        raise
+    atomic_write_bytes(path, encode_png8(array))
