@@ -140,7 +140,7 @@ class Evaluator:
             return self.backend.bricks(c[0], c[1], **{p: self.num(call, p) for p in _BRICKS})
         if f == "Weave":
             fx, fy = self.freqs(call)
-            kw = {p: self.num(call, p) for p in ("over", "under", "shift", "warp_width", "feather")}
+            kw = {p: self.num(call, p) for p in _WEAVE}
             return self.backend.weave(c[0], c[1], freq_x=fx, freq_y=fy, **kw)
         if f == "Threshold":
             v = np.asarray(self.eval(call.arg("expr"), c))  # type: ignore[arg-type]
@@ -229,8 +229,10 @@ _UNARY = {
     "Sin": np.sin,
     "Cos": np.cos,
 }
-_BRICKS = ("brick_width", "brick_height", "offset", "mortar", "axis", "feather")
-_THRESHOLD = ("below_at", "below_to", "above_at", "above_to", "transition_width")
+# Static keyword parameters passed straight to the kernels, read from the registry.
+_BRICKS = FUNCTIONS["Bricks"].param_names
+_WEAVE = tuple(p.name for p in FUNCTIONS["Weave"].params if not p.is_frequency)
+_THRESHOLD = tuple(p.name for p in FUNCTIONS["Threshold"].params if p.name != "expr")
 
 
 def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:
