@@ -18,6 +18,27 @@ from matloom.author.builtin.recipes.snippets import (
     hash01,
 )
 
+
+def glazed_tile_stack(tile_role: str, height: str, accent_mask: str | None = None) -> str:
+    """The Material block shared by the glazed-tile recipes: grout substrate, the ``tile`` mask
+    layer with its micro-texture, and optionally a second tone over ``tile * accent_mask``."""
+    block = f"""Material(
+  Layer(1)
+    .basecolor({{rgb:grout}})
+    .roughness(0.9),
+  Layer(tile)
+    .basecolor({{mcol:{tile_role}}})
+    .roughness({{micro:rough}})
+    {{micro:extra}}
+    .height(((tile * {{h:{height}}}) + {{micro:h}}))"""
+    if accent_mask is not None:
+        block += f""",
+  Layer((tile * {accent_mask}))
+    .basecolor({{mcol:tile_b}})
+    .roughness({{micro:rough}})"""
+    return block + "\n)"
+
+
 TILE_WORDS = {
     "tile": 2.5,
     "tiles": 2.5,
@@ -224,16 +245,8 @@ recipe(
 View(0, 0, {view}, {view})
 Define(tile, Bricks(brick_width=1, brick_height=0.5, offset=0.5, mortar={gap}, feather=0.05))
 {micro:def}
-Material(
-  Layer(1)
-    .basecolor({rgb:grout})
-    .roughness(0.9),
-  Layer(tile)
-    .basecolor({mcol:tile})
-    .roughness({micro:rough})
-    {micro:extra}
-    .height(((tile * {h:0.02}) + {micro:h}))
-)""",
+"""
+    + glazed_tile_stack("tile", "0.02"),
     tags={**TILE_WORDS, "subway": 5, "metro": 4, "backsplash": 3, "rectangular": 1},
     colours=roles(
         ("tile", (236, 236, 232)), ("grout", (170, 168, 162), "grout", ("tile", -0.3, "c"))
@@ -258,19 +271,8 @@ recipe(
 Define(tile, Threshold(((((0.5 - {gap}) - hexD)) * 60), below_at=0, above_at=1))
 Define(pick, Threshold(((hexTone - (1 - {mix_share})) * 50), below_at=0, above_at=1))
 {micro:def}
-Material(
-  Layer(1)
-    .basecolor({rgb:grout})
-    .roughness(0.9),
-  Layer(tile)
-    .basecolor({mcol:tile})
-    .roughness({micro:rough})
-    {micro:extra}
-    .height(((tile * {h:0.02}) + {micro:h})),
-  Layer((tile * pick))
-    .basecolor({mcol:tile_b})
-    .roughness({micro:rough})
-)""",
+"""
+    + glazed_tile_stack("tile", "0.02", "pick"),
     tags={**TILE_WORDS, "hexagon": 2, "hex": 2, "hexagonal": 2},
     colours=roles(
         ("tile", (230, 230, 226)),
@@ -292,19 +294,8 @@ recipe(
     + """
 Define(tile, Threshold(((triEdge - {gap}) * 80), below_at=0, above_at=1))
 {micro:def}
-Material(
-  Layer(1)
-    .basecolor({rgb:grout})
-    .roughness(0.9),
-  Layer(tile)
-    .basecolor({mcol:tile})
-    .roughness({micro:rough})
-    {micro:extra}
-    .height(((tile * {h:0.02}) + {micro:h})),
-  Layer((tile * triUp))
-    .basecolor({mcol:tile_b})
-    .roughness({micro:rough})
-)""",
+"""
+    + glazed_tile_stack("tile", "0.02", "triUp"),
     tags={**TILE_WORDS, "triangle": 2, "triangular": 2, "triangles": 2},
     colours=roles(
         ("tile", (220, 218, 210)),
@@ -326,19 +317,8 @@ View(0, 0, {view}, {view})
 Define(tile, Bricks(brick_width=1, brick_height=1, offset=0, mortar={gap}, feather=0.03))
 Define(checker, Threshold((Sin((X() * 3.1416)) * Sin((Y() * 3.1416))), below_at=0, above_at=0, above_to=1))
 {micro:def}
-Material(
-  Layer(1)
-    .basecolor({rgb:grout})
-    .roughness(0.9),
-  Layer(tile)
-    .basecolor({mcol:tile_a})
-    .roughness({micro:rough})
-    {micro:extra}
-    .height(((tile * {h:0.015}) + {micro:h})),
-  Layer((tile * checker))
-    .basecolor({mcol:tile_b})
-    .roughness({micro:rough})
-)""",
+"""
+    + glazed_tile_stack("tile_a", "0.015", "checker"),
     tags={**TILE_WORDS, "checkerboard": 2, "chess": 2, "diner": 1.5},
     colours=roles(
         ("tile_a", (24, 24, 26)),
