@@ -90,10 +90,3 @@ def channel_dependencies(program: A.Program) -> dict[str, frozenset[ParamRef]]:
 def seed_dependent_outputs(program: A.Program) -> set[str]:
     """Outputs whose maps change when any noise seed changes."""
     return {k for k, ps in channel_dependencies(program).items() if any(p.is_seed for p in ps)}
-
-
-def used_defines(program: A.Program) -> dict[str, set[str]]:
-    """Define name -> names of Defines it references directly."""
-    return {
-        d.name: {n.name for n in A.walk(d.expr) if isinstance(n, A.Ref)} for d in program.defines
-    }
