@@ -39,6 +39,9 @@ class EvalStats:
     zero_divisions: int = 0
     define_evaluations: int = 0
     notes: list[str] = field(default_factory=list)
+    #: Texels of culled fBm fields (engine.cull): considered, and actually computed.
+    noise_texels: int = 0
+    noise_texels_computed: int = 0
 
 
 class Evaluator:
@@ -167,33 +170,18 @@ class Evaluator:
         return (base if fx is None else fx), (base if fy is None else fy)
 
     def noise(self, call: A.Call, c: Coords) -> Field:
+        if call.func == "fBm":
+            return self.backend.fbm(c[0], c[1], **self.noise_args(call))
+        return self.backend.worley(c[0], c[1], **self.noise_args(call))
+
+    def noise_args(self, call: A.Call) -> dict[str, Any]:
+        """The keyword arguments of the fBm/Worley kernel for ``call``."""
         fx, fy = self.freqs(call)
         seed = self.num(call, "seed")
         if seed is None:
             raise ValueError(f"{call.func} has no seed; canonicalise the program first")
-        to_01 = bool(self.num(call, "to_01"))
-        if call.func == "fBm":
-            return self.backend.fbm(
-                c[0],
-                c[1],
-                octaves=self.num(call, "octaves"),
-                lacunarity=self.num(call, "lacunarity"),
-                gain=self.num(call, "gain"),
-                freq_x=fx,
-                freq_y=fy,
-                to_01=to_01,
-                seed=seed,
-            )
-        return self.backend.worley(
-            c[0],
-            c[1],
-            distance=self.num(call, "distance"),
-            combination=self.num(call, "combination"),
-            freq_x=fx,
-            freq_y=fy,
-            to_01=to_01,
-            seed=seed,
-        )
+        kw = dict(freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seed=seed)
+        return {**kw, **{name: self.num(call, name) for name in _NOISE[call.func]}}
 
     def transform(self, call: A.Call, c: Coords) -> Coords:
         x, y = c
@@ -233,6 +221,16 @@ _UNARY = {
 _BRICKS = FUNCTIONS["Bricks"].param_names
 _WEAVE = tuple(p.name for p in FUNCTIONS["Weave"].params if not p.is_frequency)
 _THRESHOLD = tuple(p.name for p in FUNCTIONS["Threshold"].params if p.name != "expr")
+#: Kernel keywords of the noise functions besides frequencies, to_01 and seed (fBm: octaves,
+#: lacunarity, gain; Worley: distance, combination).
+_NOISE = {
+    f: tuple(
+        p.name
+        for p in FUNCTIONS[f].params
+        if not p.is_frequency and p.name not in ("to_01", "seed")
+    )
+    for f in ("fBm", "Worley")
+}
 
 
 def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:

@@ -25,6 +25,7 @@ import numpy as np
 
 from matloom.engine import composite as C
 from matloom.engine.backends import Backend
+from matloom.engine.cull import resolve
 from matloom.engine.evaluate import EvalStats, layer_fields
 from matloom.engine.kernels import composite_numba as K
 from matloom.engine.kernels import register_numba as R
@@ -317,6 +318,7 @@ def run_kernel(
         maps["emissive_linear"],
         row0,
         flags,
+        True,  # allocate_maps zero-fills
     )
     parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(*args, a, b))
 
@@ -327,7 +329,9 @@ def _recomposite(
     """Redo the flagged texels of a band with the numpy reference compositing."""
     if not flags.any():  # the common case: much cheaper than nonzero
         return
-    rows, cols = np.nonzero(flags)
+    hit = np.flatnonzero(flags.any(axis=1))  # flags are rare: search only the rows with any
+    sub_rows, cols = np.nonzero(flags[hit])
+    rows = hit[sub_rows]
     shape = band["alpha"].shape
     cache: dict[int, Any] = {}
 
@@ -363,18 +367,28 @@ def _band_slices(height: int, width: int) -> list[slice]:
 
 
 def composite_program(
-    program: A.Program, x: np.ndarray, y: np.ndarray, backend: Backend, stats: EvalStats
+    program: A.Program,
+    x: np.ndarray,
+    y: np.ndarray,
+    backend: Backend,
+    stats: EvalStats,
+    cull: bool = True,
 ) -> dict[str, np.ndarray]:
-    """Evaluate and composite every band; returns the blended maps (no normal/AO yet)."""
+    """Evaluate and composite every band; returns the blended maps (no normal/AO yet).
+    ``cull``: compute fBm fields only where a layer can see them (:mod:`matloom.engine.cull`)."""
     height, width = y.shape[0], x.shape[1]
     maps = allocate_maps(width, height)
     for index, rows in enumerate(_band_slices(height, width)):
         ev = LazyEvaluator(program, x, y[rows], backend)
         ev.count_row_invariant_zero_divisions = index == 0
+        ev.defer_noise = cull
+        shape = (rows.stop - rows.start, width)
         with np.errstate(all="ignore"):
             layers = [layer_fields(ev, layer) for layer in program.layers]
+            culled = resolve(layers, shape, ev.concrete)
+        stats.noise_texels += culled.deferred_texels
+        stats.noise_texels_computed += culled.computed_texels
         band = {name: array[rows] for name, array in maps.items()}
-        shape = (rows.stop - rows.start, width)
         try:
             prog = compile_layers(layers, shape)
         except UnsupportedProgram:
@@ -414,12 +428,14 @@ def evaluate_fused(
     *,
     ao_radius_units: float | None = None,
     stats: EvalStats | None = None,
+    cull: bool = True,
 ) -> MaterialMaps:
-    """Fused evaluation of ``program`` on the sample axes ``x`` (1, W) and ``y`` (H, 1)."""
+    """Fused evaluation of ``program`` on the sample axes ``x`` (1, W) and ``y`` (H, 1);
+    ``cull=False`` computes every fBm field everywhere (same maps, for comparison)."""
     height, width = y.shape[0], x.shape[1]
     stats = stats if stats is not None else EvalStats()
     radius_x, radius_y = C._ao_radii(view, width, height, None, ao_radius_units)
-    maps = composite_program(program, x, y, backend, stats)
+    maps = composite_program(program, x, y, backend, stats, cull)
     dx, dy = view.texel_size(width, height)
     maps["normal"] = relief_numba.normals(maps["height"], dx, dy)
     maps["ao"] = relief_numba.ambient_occlusion(maps["height"], dx, radius_x, radius_y)

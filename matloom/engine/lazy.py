@@ -14,13 +14,16 @@ evaluates it with the very numpy operations the evaluator uses, so both give ide
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from matloom.engine.evaluate import _UNARY, Coords, Evaluator, Field
 from matloom.engine.kernels import mathops, threshold
+from matloom.engine.kernels.opensimplex import octave_schedule
 from matloom.lang import ast as A
 
 #: dtypes the fused kernel can hold exactly in its float64 registers.
@@ -39,9 +42,36 @@ class Lazy:
     shape: tuple[int, ...]
 
 
+@dataclass(eq=False)
+class DeferredField:
+    """An fBm field (see :mod:`matloom.engine.cull`) of one band whose evaluation waits for the coverage masks.
+
+    ``compute(mask)`` evaluates it (``mask=None``: everywhere). Once resolved, ``array`` holds
+    what the compositing kernel reads; ``np.asarray(field)`` resolves it in full if needed.
+    """
+
+    compute: Callable[[np.ndarray | None], np.ndarray]
+    shape: tuple[int, ...]
+    lo: float
+    hi: float
+    finite_coords: bool
+    dtype: np.dtype = field(default_factory=lambda: np.dtype(np.float64))
+    array: np.ndarray | None = None
+    computed_share: float = 1.0
+
+    def full(self) -> np.ndarray:
+        if self.array is None:
+            self.array = self.compute(None)
+        return self.array
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        array = self.full()
+        return array if dtype is None else array.astype(dtype)
+
+
 def is_scalar(value: Any) -> bool:
     """True for Python/numpy scalars and 0-d arrays (values the evaluator keeps unexpanded)."""
-    return not isinstance(value, Lazy) and np.ndim(value) == 0
+    return not isinstance(value, Lazy | DeferredField) and np.ndim(value) == 0
 
 
 def _numpy_op(op: str, args: list[Any]) -> Any:
@@ -65,7 +95,10 @@ def _numpy_op(op: str, args: list[Any]) -> Any:
 
 
 def materialise(value: Any, cache: dict[int, tuple[Any, Any]] | None = None) -> Any:
-    """Evaluate a :class:`Lazy` tree with numpy (other values are returned unchanged)."""
+    """Evaluate a :class:`Lazy` tree with numpy (other values are returned unchanged; a
+    :class:`~matloom.engine.cull.DeferredField` becomes its array, computed in full if needed)."""
+    if isinstance(value, DeferredField):
+        return np.asarray(value)
     if not isinstance(value, Lazy):
         return value
     cache = {} if cache is None else cache
@@ -99,7 +132,7 @@ def gather(
 
 
 def _dtype(value: Any) -> np.dtype:
-    return value.dtype if isinstance(value, Lazy) else np.asarray(value).dtype
+    return value.dtype if isinstance(value, Lazy | DeferredField) else np.asarray(value).dtype
 
 
 def fusable(*values: Any) -> bool:
@@ -114,8 +147,19 @@ def make_lazy(op: str, *args: Any) -> Lazy:
     """A :class:`Lazy` with numpy's result dtype and broadcast shape for ``args``."""
     dtypes = {_dtype(a) for a in args}
     dtype = np.dtype(np.float32) if dtypes == {np.dtype(np.float32)} else np.dtype(np.float64)
-    shape = np.broadcast_shapes(*(a.shape if isinstance(a, Lazy) else np.shape(a) for a in args))
+    shape = np.broadcast_shapes(
+        *(a.shape if isinstance(a, Lazy | DeferredField) else np.shape(a) for a in args)
+    )
     return Lazy(op, args, dtype, shape)
+
+
+def _finite_noise_coords(x: Any, y: Any, kw: dict[str, Any]) -> bool:
+    """True when every octave's scaled coordinates are finite, so that the fBm is finite (it
+    is clamped to its range) everywhere: the condition for culling it (engine.cull)."""
+    sched = octave_schedule(kw["octaves"], kw["lacunarity"], kw["gain"], kw["freq_x"], kw["freq_y"])
+    top = max(map(abs, (*sched.freqs_x, *sched.freqs_y, 1.0)))
+    extent = max(float(np.max(np.abs(x), initial=0.0)), float(np.max(np.abs(y), initial=0.0)))
+    return math.isfinite(extent) and extent * top < 1e300
 
 
 class LazyEvaluator(Evaluator):
@@ -130,6 +174,26 @@ class LazyEvaluator(Evaluator):
     def concrete(self, value: Any) -> Any:
         """The numpy value of ``value`` (materialises a Lazy once)."""
         return materialise(value, self.materialised)
+
+    def noise(self, call: A.Call, c: Coords) -> Field:
+        masked = self.backend.fbm_masked
+        if not (self.defer_noise and call.func == "fBm" and masked is not None):
+            return super().noise(call, c)
+        kw = self.noise_args(call)
+        x, y = c
+
+        def compute(mask: np.ndarray | None) -> np.ndarray:
+            if mask is None:
+                return self.backend.fbm(x, y, **kw)
+            return masked(x, y, mask, fill=0.0, **kw)
+
+        return DeferredField(
+            compute,
+            np.broadcast_shapes(np.shape(x), np.shape(y)),
+            0.0 if kw["to_01"] else -1.0,
+            1.0,
+            _finite_noise_coords(x, y, kw),
+        )
 
     def eval(self, node: A.Node, c: Coords) -> Field:
         if isinstance(node, A.Neg):

@@ -251,6 +251,7 @@ class _Renderer:
             dummy,
             0,
             flags,
+            False,  # buffers are reused across candidates
             0,
             self.size,
         )

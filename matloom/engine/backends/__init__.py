@@ -36,6 +36,8 @@ class Backend:
     worley_seed_batch: Kernel
     #: Evaluate through the fused numba compositing path (identical results, less memory).
     fused: bool = False
+    #: ``fbm`` at the texels of a boolean mask only (coverage culling, see engine.cull).
+    fbm_masked: Kernel | None = None
 
 
 def _numpy_backend() -> Backend:
@@ -77,6 +79,7 @@ def _numba_backend() -> Backend:
         stroke=partial(shapes.stroke, backend="numba"),
         worley_seed_batch=noise_numba.worley_seed_batch,
         fused=True,
+        fbm_masked=noise_numba.fbm_masked,
     )
 
 

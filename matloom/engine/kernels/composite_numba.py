@@ -179,23 +179,17 @@ def _add_colour(acc, w, src, strength, mode, emissive, luts, margin, flags, lin)
     elif mode == RAW:
         decode_row(src, luts[0], lin[0], lin[1])
         values = lin[0]
+    check = (mode == RAW or not emissive) and margin > 0.0
     if emissive:
         for j in range(n):
             s = strength[j]
-            y = values[j] * (0.0 if s < 0.0 else s)
-            if mode == RAW and margin > 0.0 and _uncertain(y, margin):
-                flags[j] = 1
-            acc[j] += w[j] * np.float32(y)
-        return
-    if margin < 0.0:
-        for j in range(n):
-            acc[j] += w[j] * np.float32(values[j])
-        return
+            lin[1, j] = values[j] * (0.0 if s < 0.0 else s)
+        values = lin[1]
     for j in range(n):
-        y = values[j]
-        if _uncertain(y, margin):
-            flags[j] = 1
-        acc[j] += w[j] * np.float32(y)
+        acc[j] += w[j] * np.float32(values[j])
+    if check:  # branch-free so that the loop vectorises (flags are rare)
+        for j in range(n):
+            flags[j] |= np.uint8(_uncertain(values[j], margin))
 
 
 @_jit()
@@ -239,10 +233,11 @@ def _accumulate(
 
 
 @_jit()
-def _finish(acc, touched, running, planes, basecolor, emissive, i):  # type: ignore[no-untyped-def]
+def _finish(acc, touched, running, planes, basecolor, emissive, i, zeroed):  # type: ignore[no-untyped-def]
     """Coverage = 1 - running; un-premultiply (0 where not covered); settle the height; write
     output row ``i`` (colours interleaved). ``acc[0]`` is reused for the divisor; untouched
-    accumulators are 0 and stay 0 (0 / divisor = 0), so they are not divided."""
+    accumulators are 0 and stay 0 (0 / divisor = 0), so they are not divided, and with
+    ``zeroed`` (outputs freshly zero-allocated) not even written: their pages stay untouched."""
     zero, one = np.float32(0.0), np.float32(1.0)
     cover, divisor = planes[0, i], acc[0]
     for j in range(running.size):
@@ -256,7 +251,8 @@ def _finish(acc, touched, running, planes, basecolor, emissive, i):  # type: ign
         src = acc[p]
         dst = planes[p, i] if (p < 9 or planar) else src
         if not touched[p]:
-            dst[:] = zero
+            if not zeroed:
+                dst[:] = zero
             continue
         for j in range(src.size):
             q = src[j] / divisor[j]
@@ -266,7 +262,10 @@ def _finish(acc, touched, running, planes, basecolor, emissive, i):  # type: ign
         for j in range(cover.size):
             for k in range(3):
                 base[j, k] = acc[10 + k, j]
-                emit[j, k] = acc[13 + k, j]
+        if not zeroed or touched[13] or touched[14] or touched[15]:
+            for j in range(cover.size):
+                for k in range(3):
+                    emit[j, k] = acc[13 + k, j]
     top, height = acc[9], planes[9, i]
     for j in range(height.size):
         h = top[j]
@@ -291,16 +290,19 @@ def composite_rows(
     emissive,
     row0,
     flags,
+    zeroed,
     first,
     last,
 ):  # type: ignore[no-untyped-def]
     """Evaluate and composite rows ``first``..``last - 1`` of one band (leaf rows and ``flags``
     rows are band-local; output row = ``row0`` + band row).
 
-    Outputs (fully overwritten on those rows): ``planes`` (10, H, W) float32 = alpha, the 7
-    scalars, ior, height; ``basecolor`` and ``emissive`` (H, W, 3); ``flags`` (band rows, W)
-    uint8 is set to 1 at uncertain texels (never cleared). Serial and ``nogil``: callers run
-    row ranges on threads (numba's parallel loops cannot take tuples of arrays).
+    Outputs (fully overwritten on those rows, except that with ``zeroed`` -- the caller
+    zero-filled them -- channels no layer writes are left alone): ``planes`` (10, H, W) float32
+    = alpha, the 7 scalars, ior, height; ``basecolor`` and ``emissive`` (H, W, 3); ``flags``
+    (band rows, W) uint8 is set to 1 at uncertain texels (never cleared). Serial and
+    ``nogil``: callers run row ranges on threads (numba's parallel loops cannot take tuples
+    of arrays).
 
     ``luts`` = (:func:`decode_table`, :func:`fast_decode_table`). Preview mode (``margin`` < 0):
     the sRGB decode uses the linear table and nothing is flagged; with (16, H, W) ``planes`` the colours are written as
@@ -339,4 +341,4 @@ def composite_rows(
             flags[i],
             lin,
         )
-        _finish(acc, touched, running, planes, basecolor, emissive, row0 + i)
+        _finish(acc, touched, running, planes, basecolor, emissive, row0 + i, zeroed)

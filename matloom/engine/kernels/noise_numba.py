@@ -34,7 +34,41 @@ from matloom.engine.kernels.opensimplex import (
     scale_coords,
 )
 
-__all__ = ["fbm", "worley", "fbm_seed_batch", "worley_seed_batch", "warm_up"]
+__all__ = ["fbm", "fbm_masked", "worley", "fbm_seed_batch", "worley_seed_batch", "warm_up"]
+
+
+@jit_kernel(parallel=False)
+def _fbm_segment(
+    i: int,
+    first: int,
+    stop: int,
+    xs: np.ndarray,
+    ys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+    scratch: tuple,
+) -> None:
+    """Texels ``first``..``stop - 1`` of row i of the separable fBm: pre-scaled float64
+    per-octave axes xs (O, W), ys (O, H); ``scratch`` from ``new_scratch``."""
+    values = scratch[3]
+    yb = np.empty(CHUNK)
+    total = np.empty(CHUNK)
+    for j0 in range(first, stop, CHUNK):
+        n = min(CHUNK, stop - j0)
+        for j in range(n):
+            total[j] = 0.0
+        for k in range(amps.size):
+            for j in range(n):
+                yb[j] = ys[k, i]
+            noise_chunk(xs[k, j0 : j0 + n], yb, n, grad_table, scratch)
+            for j in range(n):
+                total[j] += values[j] * FBM_SCALE * amps[k]
+        out_chunk = out[i, j0 : j0 + n]
+        for j in range(n):
+            out_chunk[j] = finish_fbm(total[j], norm, to_01)
 
 
 @jit_kernel(parallel=False)
@@ -48,25 +82,8 @@ def _fbm_row(
     grad_table: np.ndarray,
     out: np.ndarray,
 ) -> None:
-    """Row i of the separable fBm: pre-scaled float64 per-octave axes xs (O, W), ys (O, H)."""
-    width = out.shape[1]
-    scratch = new_scratch()
-    values = scratch[3]
-    yb = np.empty(CHUNK)
-    total = np.empty(CHUNK)
-    for j0 in range(0, width, CHUNK):
-        n = min(CHUNK, width - j0)
-        for j in range(n):
-            total[j] = 0.0
-        for k in range(amps.size):
-            for j in range(n):
-                yb[j] = ys[k, i]
-            noise_chunk(xs[k, j0 : j0 + n], yb, n, grad_table, scratch)
-            for j in range(n):
-                total[j] += values[j] * FBM_SCALE * amps[k]
-        out_chunk = out[i, j0 : j0 + n]
-        for j in range(n):
-            out_chunk[j] = finish_fbm(total[j], norm, to_01)
+    """Row i of the separable fBm (see ``_fbm_segment``)."""
+    _fbm_segment(i, 0, out.shape[1], xs, ys, amps, norm, to_01, grad_table, out, new_scratch())
 
 
 @jit_kernel()
@@ -135,6 +152,173 @@ def _fbm_grid_kernel(
         _fbm_grid_chunk(c, xg, yg, fxs, fys, amps, norm, to_01, grad_table, out)
 
 
+#: Flat texels per parallel block of the masked grid kernel.
+_MASK_BLOCK = 4096
+
+
+@jit_kernel(parallel=False)
+def _fbm_points(
+    xk: np.ndarray,
+    yk: np.ndarray,
+    idx: np.ndarray,
+    m: int,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """fBm at the points ``idx[:m]`` of the flat ``out``; ``xk``/``yk`` (O, N) hold each
+    octave's float64 coordinates of every point (the same values the dense kernels use)."""
+    scratch = new_scratch()
+    values = scratch[3]
+    xb = np.empty(CHUNK)
+    yb = np.empty(CHUNK)
+    total = np.empty(CHUNK)
+    for j0 in range(0, m, CHUNK):
+        n = min(CHUNK, m - j0)
+        for j in range(n):
+            total[j] = 0.0
+        for k in range(amps.size):
+            for j in range(n):
+                xb[j] = xk[k, idx[j0 + j]]
+                yb[j] = yk[k, idx[j0 + j]]
+            noise_chunk(xb, yb, n, grad_table, scratch)
+            for j in range(n):
+                total[j] += values[j] * FBM_SCALE * amps[k]
+        for j in range(n):
+            out[idx[j0 + j]] = finish_fbm(total[j], norm, to_01)
+
+
+@jit_kernel(parallel=False)
+def _fbm_row_masked(
+    i: int,
+    xs: np.ndarray,
+    ys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    mask: np.ndarray,
+    fill: float,
+    out: np.ndarray,
+) -> None:
+    """Row i of the separable fBm at the texels where ``mask`` is set, ``fill`` elsewhere.
+
+    The runs of set texels (masks are coherent: tiles, mortar lines) are copied into one
+    compact row of coordinates per octave, which runs through the dense ``_fbm_segment`` in
+    full chunks; the results are copied back run by run. Values equal the dense kernel's.
+    """
+    width = out.shape[1]
+    starts = np.empty(width, np.int64)
+    stops = np.empty(width, np.int64)
+    runs = 0
+    j = 0
+    while j < width:
+        if not mask[i, j]:
+            out[i, j] = fill
+            j += 1
+            continue
+        starts[runs] = j
+        while j < width and mask[i, j]:
+            j += 1
+        stops[runs] = j
+        runs += 1
+    m = 0
+    for r in range(runs):
+        m += stops[r] - starts[r]
+    if m == 0:
+        return
+    octaves = amps.size
+    cx = np.empty((octaves, m))
+    cy = np.empty((octaves, 1))
+    for k in range(octaves):
+        cy[k, 0] = ys[k, i]
+        q = 0
+        for r in range(runs):
+            for j in range(starts[r], stops[r]):
+                cx[k, q] = xs[k, j]
+                q += 1
+    compact = np.empty((1, m))
+    _fbm_segment(0, 0, m, cx, cy, amps, norm, to_01, grad_table, compact, new_scratch())
+    q = 0
+    for r in range(runs):
+        for j in range(starts[r], stops[r]):
+            out[i, j] = compact[0, q]
+            q += 1
+
+
+@jit_kernel()
+def _fbm_separable_masked_kernel(
+    xs: np.ndarray,
+    ys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    mask: np.ndarray,
+    fill: float,
+    out: np.ndarray,
+) -> None:
+    """Parallel over rows; the work is in ``_fbm_row_masked``."""
+    for i in prange(out.shape[0]):
+        _fbm_row_masked(i, xs, ys, amps, norm, to_01, grad_table, mask, fill, out)
+
+
+@jit_kernel(parallel=False)
+def _fbm_grid_block_masked(
+    b: int,
+    xg: np.ndarray,
+    yg: np.ndarray,
+    fxs: np.ndarray,
+    fys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    mask: np.ndarray,
+    fill: float,
+    out: np.ndarray,
+) -> None:
+    """Block b of the flat-grid fBm at the texels where ``mask`` is set; ``fill`` elsewhere.
+    Coordinates are scaled in the grid dtype, exactly as in ``_fbm_grid_chunk``."""
+    j0 = b * _MASK_BLOCK
+    n = min(_MASK_BLOCK, out.size - j0)
+    idx = np.empty(n, np.int64)
+    m = 0
+    for j in range(n):
+        out[j0 + j] = fill
+        if mask[j0 + j]:
+            idx[m] = j
+            m += 1
+    xk = np.empty((amps.size, n))
+    yk = np.empty((amps.size, n))
+    for k in range(amps.size):
+        for q in range(m):
+            xk[k, idx[q]] = np.float64(xg[j0 + idx[q]] * fxs[k])
+            yk[k, idx[q]] = np.float64(yg[j0 + idx[q]] * fys[k])
+    _fbm_points(xk, yk, idx, m, amps, norm, to_01, grad_table, out[j0 : j0 + n])
+
+
+@jit_kernel()
+def _fbm_grid_masked_kernel(
+    xg: np.ndarray,
+    yg: np.ndarray,
+    fxs: np.ndarray,
+    fys: np.ndarray,
+    amps: np.ndarray,
+    norm: float,
+    to_01: bool,
+    grad_table: np.ndarray,
+    mask: np.ndarray,
+    fill: float,
+    out: np.ndarray,
+) -> None:
+    """Parallel over blocks of the flat grid; the work is in ``_fbm_grid_block_masked``."""
+    for b in prange((out.size + _MASK_BLOCK - 1) // _MASK_BLOCK):
+        _fbm_grid_block_masked(b, xg, yg, fxs, fys, amps, norm, to_01, grad_table, mask, fill, out)
+
+
 def fbm(
     x: np.ndarray,
     y: np.ndarray,
@@ -162,6 +346,55 @@ def fbm(
     fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
     flat = np.empty(lay.x_grid.size, dtype=np.float64)
     _fbm_grid_kernel(lay.x_grid, lay.y_grid, fxs, fys, amps, sched.norm, bool(to_01), table, flat)
+    return flat.reshape(lay.shape)
+
+
+def fbm_masked(
+    x: np.ndarray,
+    y: np.ndarray,
+    mask: np.ndarray,
+    *,
+    fill: float = 0.0,
+    octaves: int,
+    lacunarity: float,
+    gain: float,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seed: int,
+) -> np.ndarray:
+    """:func:`fbm` at the texels where the boolean ``mask`` (the broadcast shape of x and y) is
+    set, ``fill`` elsewhere. Computed texels are bit-identical to :func:`fbm`'s."""
+    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
+    table = gradient_table(int(seed))
+    amps = np.array(sched.amps, dtype=np.float64)
+    lay = coord_layout(x, y)
+    flat_mask = np.ascontiguousarray(np.broadcast_to(mask, lay.shape), dtype=np.bool_)
+    if lay.separable:
+        xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
+        ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
+        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
+        rows_mask = flat_mask.reshape(out.shape)
+        _fbm_separable_masked_kernel(
+            xs, ys, amps, sched.norm, bool(to_01), table, rows_mask, float(fill), out
+        )
+        return out.reshape(lay.shape)
+    fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
+    fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
+    flat = np.empty(lay.x_grid.size, dtype=np.float64)
+    _fbm_grid_masked_kernel(
+        lay.x_grid,
+        lay.y_grid,
+        fxs,
+        fys,
+        amps,
+        sched.norm,
+        bool(to_01),
+        table,
+        flat_mask.reshape(-1),
+        float(fill),
+        flat,
+    )
     return flat.reshape(lay.shape)
 
 

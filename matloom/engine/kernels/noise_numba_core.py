@@ -15,9 +15,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-import numba
 import numpy as np
 
+from matloom.engine.kernels.jit import jit
 from matloom.engine.kernels.opensimplex import (
     NORM_CONSTANT2,
     SQUISH_CONSTANT2,
@@ -35,22 +35,12 @@ _SAFE_FLOOR = 4.0e18
 
 
 def jit_kernel(parallel: bool = True, inline: bool = False) -> Callable[[Callable[..., Any]], Any]:
-    """``njit(cache=True, fastmath=False)``; uncached if numba finds no writable cache dir.
+    """:func:`matloom.engine.kernels.jit.jit` with ``fastmath=False`` (bit-exact arithmetic).
 
     ``error_model="numpy"``: float division by zero gives inf/NaN like numpy instead of raising.
     ``inline=True`` inlines the function into its callers at numba IR level (small helpers).
     """
-    options: dict[str, Any] = {"parallel": parallel, "fastmath": False, "error_model": "numpy"}
-    if inline:
-        options["inline"] = "always"
-
-    def decorate(func: Callable[..., Any]) -> Any:
-        try:
-            return numba.njit(cache=True, **options)(func)
-        except RuntimeError:  # "cannot cache function ...: no locator available for file"
-            return numba.njit(cache=False, **options)(func)
-
-    return decorate
+    return jit(parallel=parallel, inline=inline, fastmath=False, error_model="numpy")
 
 
 @jit_kernel(parallel=False, inline=True)

@@ -20,8 +20,9 @@ from __future__ import annotations
 
 from typing import Any
 
-import numba
 import numpy as np
+
+from matloom.engine.kernels.jit import jit
 
 #: Register-program opcodes (rows of ``code``: op, dst, a, b, round_to_f32, const_mask).
 OP_LOAD64, OP_LOAD32 = 0, 1
@@ -37,18 +38,8 @@ _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": F
 
 
 def _jit(parallel: bool = False, inline: bool = False) -> Any:
-    """``numba.njit(cache=True)`` (uncached if numba finds no writable cache directory)."""
-    options = dict(_OPTIONS, parallel=parallel)
-    if inline:
-        options["inline"] = "always"
-
-    def decorate(func: Any) -> Any:
-        try:
-            return numba.njit(cache=True, **options)(func)
-        except RuntimeError:
-            return numba.njit(cache=False, **options)(func)
-
-    return decorate
+    """:func:`matloom.engine.kernels.jit.jit` with the register machine's options."""
+    return jit(parallel=parallel, inline=inline, **_OPTIONS)
 
 
 @_jit(inline=True)

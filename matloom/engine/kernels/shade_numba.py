@@ -7,25 +7,11 @@ numba (about 0.4 s): the numpy shader is used unless numba is already loaded or 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import Any
 
-import numba
 import numpy as np
 
-
-def _jit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
-    """``numba.njit(cache=True, **options)``; uncached when numba finds no writable cache
-    directory (it raises at decoration time then)."""
-
-    def decorate(func: Callable[..., Any]) -> Any:
-        try:
-            return numba.njit(cache=True, **options)(func)
-        except RuntimeError:
-            return numba.njit(cache=False, **options)(func)
-
-    return decorate
-
+from matloom.engine.kernels.jit import jit
 
 #: Options of the two per-texel kernels. ``nogil`` lets callers shade previews on threads;
 #: ``error_model="numpy"`` makes x/0 give inf/NaN instead of raising. The fast-math subset only
@@ -38,7 +24,7 @@ _KERNEL_OPTIONS: dict[str, Any] = {
 }
 
 
-@_jit(inline="always")
+@jit(inline=True)
 def _clip01(v: float) -> float:
     """Clamp to [0, 1] keeping NaN, like ``np.clip``."""
     if v < 0.0:
@@ -52,7 +38,7 @@ _SRGB_EXPONENT = 1.0 / 2.4
 _SRGB_KNEE = 0.0031308
 
 
-@_jit(inline="always")
+@jit(inline=True)
 def _srgb_from_power(v: float, v_pow: float) -> float:
     """Linear -> sRGB given v^(1/2.4) precomputed: 12.92 v at or below 0.0031308."""
     if v <= _SRGB_KNEE:
@@ -60,7 +46,7 @@ def _srgb_from_power(v: float, v_pow: float) -> float:
     return 1.055 * v_pow - 0.055
 
 
-@_jit(inline="always")
+@jit(inline=True)
 def _quantise(v: float) -> np.uint8:
     """Clip to [0, 1] and round half up to 8 bits; NaN becomes 0 (the reference's cast)."""
     if v != v:
@@ -68,12 +54,12 @@ def _quantise(v: float) -> np.uint8:
     return np.uint8(math.floor(255.0 * _clip01(v) + 0.5))
 
 
-@_jit(inline="always")
+@jit(inline=True)
 def _finite_or(v: float, fallback: float) -> float:
     return v if math.isfinite(v) else fallback
 
 
-@_jit(inline="always")
+@jit(inline=True)
 def _clean_normal(normal: np.ndarray, i: int, j: int) -> tuple[float, float, float]:
     """The reference's normal sanitising: non-finite nx, ny -> 0 and nz -> 1; nz in [-1, 1]."""
     nx = _finite_or(np.float64(normal[i, j, 0]), 0.0)
@@ -82,7 +68,7 @@ def _clean_normal(normal: np.ndarray, i: int, j: int) -> tuple[float, float, flo
     return nx, ny, (-1.0 if nz < -1.0 else (1.0 if nz > 1.0 else nz))
 
 
-@_jit(**_KERNEL_OPTIONS)
+@jit(**_KERNEL_OPTIONS)
 def _specular_base_kernel(
     normal: np.ndarray,
     roughness: np.ndarray,
@@ -102,7 +88,7 @@ def _specular_base_kernel(
             shininess[i, j] = ((1.0 - rough) ** 2 * 100.0 + 2.0) / (1.0 + 4.0 * aniso)
 
 
-@_jit(**_KERNEL_OPTIONS)
+@jit(**_KERNEL_OPTIONS)
 def _shade_kernel(
     maps: tuple,
     basecolor_pow: np.ndarray,

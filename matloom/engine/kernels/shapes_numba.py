@@ -14,6 +14,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from matloom.engine.kernels.jit import jit
 from matloom.engine.kernels.shapes import as_grid_2d, cull_margin, path_edges
 
 MODE_NONE = 0
@@ -22,7 +23,7 @@ MODE_EVENODD = 2
 _MODE_CODES = {None: MODE_NONE, "NonZero": MODE_NONZERO, "EvenOdd": MODE_EVENODD}
 
 
-@numba.njit(cache=True)
+@jit()
 def _segment_dist2(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
     """Squared point-to-segment distance, same operation order as the numpy path."""
     ex = bx - ax
@@ -42,7 +43,7 @@ def _segment_dist2(px: float, py: float, ax: float, ay: float, bx: float, by: fl
     return qx * qx + qy * qy
 
 
-@numba.njit(cache=True)
+@jit()
 def _winding_step(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> int:
     """Winding contribution of one edge: +1 upward with a left turn, -1 downward right turn."""
     side = (bx - ax) * (py - ay) - (px - ax) * (by - ay)
@@ -55,7 +56,7 @@ def _winding_step(px: float, py: float, ax: float, ay: float, bx: float, by: flo
     return 0
 
 
-@numba.njit(cache=True)
+@jit()
 def _ray_crosses(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> bool:
     """Whether the +x ray from the point crosses the edge (even-odd rule)."""
     if (ay <= py) == (by <= py):
@@ -63,13 +64,13 @@ def _ray_crosses(px: float, py: float, ax: float, ay: float, bx: float, by: floa
     return px < (bx - ax) * (py - ay) / (by - ay) + ax
 
 
-@numba.njit(cache=True)
+@jit()
 def _gap(value: float, lo: float, hi: float) -> float:
     """Distance from ``value`` to the interval [lo, hi] (0 inside)."""
     return max(lo - value, value - hi, 0.0)
 
 
-@numba.njit(cache=True)
+@jit()
 def _row_candidates(
     px_row: np.ndarray, py_row: np.ndarray, boxes: np.ndarray, limit: float
 ) -> tuple[np.ndarray, int, np.ndarray, int, bool]:
@@ -100,7 +101,7 @@ def _row_candidates(
     return near, n_near, crossing, n_crossing, cull
 
 
-@numba.njit(cache=True)
+@jit()
 def _generic_row(
     px_row: np.ndarray,
     py_row: np.ndarray,
@@ -141,7 +142,7 @@ def _generic_row(
         inside_row[j] = winding != 0 if mode == MODE_NONZERO else winding % 2 == 1
 
 
-@numba.njit(cache=True)
+@jit()
 def _scan_order(px_row: np.ndarray, py_row: np.ndarray) -> int:
     """+1 / -1 for a finite row at one constant y with non-decreasing / non-increasing x
     (separable axes, possibly a mirrored View); 0 for anything else (e.g. after Rotate)."""
@@ -157,7 +158,7 @@ def _scan_order(px_row: np.ndarray, py_row: np.ndarray) -> int:
     return 1 if rising else (-1 if falling else 0)
 
 
-@numba.njit(cache=True)
+@jit()
 def _prefix_end(px_row: np.ndarray, y: float, edge: np.ndarray, mode: int) -> int:
     """Length of the pixel prefix for which one crossing edge counts at height ``y``.
 
@@ -181,7 +182,7 @@ def _prefix_end(px_row: np.ndarray, y: float, edge: np.ndarray, mode: int) -> in
     return lo
 
 
-@numba.njit(cache=True)
+@jit()
 def _scanline_row(
     px_row: np.ndarray,
     y: float,
@@ -224,7 +225,7 @@ def _scanline_row(
             inside_row[j] = total != 0 if mode == MODE_NONZERO else total % 2 == 1
 
 
-@numba.njit(cache=True)
+@jit()
 def _load_row(coords: np.ndarray, i: int, out: np.ndarray) -> None:
     """Row ``i`` of a coordinate array that broadcasts to the grid ((1|H), (1|W))."""
     row = np.int64(i) if coords.shape[0] > 1 else np.int64(0)  # prange indices may be uint64
@@ -234,7 +235,7 @@ def _load_row(coords: np.ndarray, i: int, out: np.ndarray) -> None:
         out[:] = coords[row, :]
 
 
-@numba.njit(cache=True)
+@jit()
 def _process_row(
     px: np.ndarray,
     py: np.ndarray,
@@ -270,7 +271,7 @@ def _process_row(
         distance_row[j] = np.inf if dist > cutoff else dist
 
 
-@numba.njit(cache=True, parallel=True)
+@jit(parallel=True)
 def _path_kernel(
     px: np.ndarray,
     py: np.ndarray,

@@ -1,0 +1,217 @@
+"""Coverage culling: compute a noise field only where some layer can see it.
+
+In the fused path (:mod:`matloom.engine.fused`) the fBm fields of a band are *deferred*
+(:class:`DeferredField`) while the layers' channels are evaluated. :func:`resolve` then looks at
+how each deferred field is used:
+
+* in an **alpha** channel (or anywhere its value is needed in full, e.g. under ``Sin``): computed
+  everywhere;
+* in a **height** channel of layer l: needed where that layer's clamped alpha is > 0 (the height
+  rule ignores layers that do not cover a texel);
+* in any **other channel** of layer l: needed where that layer's visible coverage
+  ``V_l = alpha_l * prod(1 - alpha_above)`` is not 0, because compositing adds ``V_l * value``.
+
+Elsewhere the field holds a placeholder (0, inside every fBm range). That is exact only if the
+channel value built from the placeholder is a finite number, since ``0 * x`` is 0 for finite x
+but NaN for inf/NaN. :func:`channel_bounds` proves this with interval arithmetic over the channel
+expression (the deferred fields' ranges, the other leaves' finite min/max, the constants); a use
+it cannot prove safe makes the field computed everywhere. So the maps are bit-identical to the
+unculled evaluation (tests/engine/test_cull.py compares every fixture program and random ones).
+
+For the paper's tile program the grout noise is only computed in the mortar lines and the glaze
+noises only on the tiles: about a third of the noise work at any size.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from matloom.engine.lazy import DeferredField, Lazy
+
+#: Placeholder written where a deferred field is not needed (inside [0, 1] and [-1, 1]).
+FILL = 0.0
+#: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
+BOUND_LIMIT = 1e37
+#: Compute a field everywhere when it is needed on more than this share of the band.
+FULL_SHARE = 0.85
+
+Bounds = tuple[float, float] | None  # None: unbounded, or NaN possible
+
+
+@dataclass
+class CullStats:
+    """Texels of deferred fields computed vs deferred (for reports and tests)."""
+
+    deferred_texels: int = 0
+    computed_texels: int = 0
+
+
+def leaves(value: Any, seen: set[int] | None = None) -> Iterator[Any]:
+    """Every non-Lazy operand (arrays, scalars, deferred fields) of a channel value, once."""
+    seen = set() if seen is None else seen
+    if id(value) in seen:
+        return
+    seen.add(id(value))
+    if isinstance(value, Lazy):
+        operands = (value.args[0],) if value.op == "threshold" else value.args
+        for arg in operands:
+            yield from leaves(arg, seen)
+    else:
+        yield value
+
+
+def _array_bounds(array: np.ndarray) -> Bounds:
+    if array.size == 0:
+        return (0.0, 0.0)
+    lo, hi = float(np.min(array)), float(np.max(array))  # NaN in -> NaN out
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return None
+    return (lo, hi)
+
+
+def _combine(op: str, a: tuple[float, float], b: tuple[float, float]) -> Bounds:
+    """Bounds of a binary operation; None where NaN/inf can arise."""
+    if op in ("+", "-", "*"):
+        if op == "+":
+            candidates = [a[0] + b[0], a[1] + b[1]]
+        elif op == "-":
+            candidates = [a[0] - b[1], a[1] - b[0]]
+        else:
+            candidates = [a[i] * b[k] for i in (0, 1) for k in (0, 1)]
+        return (min(candidates), max(candidates))
+    if op == "/":
+        if b == (0.0, 0.0):
+            return (0.0, 0.0)  # safe division gives 0 wherever the divisor is 0
+        if b[0] <= 0.0 <= b[1]:
+            return None  # near-zero divisors are unbounded
+        quotients = [a[i] / b[k] for i in (0, 1) for k in (0, 1)]
+        return (min(quotients), max(quotients))
+    if op == "min":
+        return (min(a[0], b[0]), min(a[1], b[1]))
+    if op == "max":
+        return (max(a[0], b[0]), max(a[1], b[1]))
+    return None
+
+
+def _unary(op: str, a: tuple[float, float]) -> Bounds:
+    if op == "abs":
+        lo = 0.0 if a[0] <= 0.0 <= a[1] else min(abs(a[0]), abs(a[1]))
+        return (lo, max(abs(a[0]), abs(a[1])))
+    if op == "floor":
+        return (math.floor(a[0]), math.floor(a[1]))
+    if op == "ceil":
+        return (math.ceil(a[0]), math.ceil(a[1]))
+    if op == "sqrt" and a[0] >= 0.0:
+        return (math.sqrt(a[0]), math.sqrt(a[1]))
+    return None  # sqrt of negatives; Threshold is not analysed
+
+
+def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
+    """Interval of a channel value over all texels, treating deferred fields as their range.
+
+    None when the value may be NaN or beyond ``BOUND_LIMIT`` anywhere (then culling a field
+    used by it is not proven exact). ``memo`` caches shared sub-expressions and leaves.
+    """
+    key = id(value)
+    if key in memo:
+        return memo[key]
+    result: Bounds
+    if isinstance(value, DeferredField):
+        result = (value.lo, value.hi) if value.finite_coords else None
+    elif isinstance(value, Lazy):
+        if value.op == "threshold":
+            result = None
+        else:
+            args = [channel_bounds(a, memo) for a in value.args]
+            if any(a is None for a in args):
+                result = None
+            elif len(args) == 1:
+                result = _unary(value.op, args[0])  # type: ignore[arg-type]
+            else:
+                result = _combine(value.op, args[0], args[1])  # type: ignore[arg-type]
+    else:
+        result = _array_bounds(np.asarray(value, dtype=np.float64))
+    if result is not None and not (abs(result[0]) <= BOUND_LIMIT and abs(result[1]) <= BOUND_LIMIT):
+        result = None
+    memo[key] = result
+    return result
+
+
+def _gated_values(layer: Any) -> list[Any]:
+    """The channel values of a layer that compositing multiplies by its visible coverage."""
+    from matloom.engine.maps import SCALAR_CHANNELS
+
+    return [
+        *layer.basecolor,
+        *(getattr(layer, name) for name in SCALAR_CHANNELS),
+        layer.ior,
+        *layer.emissive,
+    ]
+
+
+def _deferred_in(value: Any) -> list[DeferredField]:
+    return [v for v in leaves(value) if isinstance(v, DeferredField) and v.array is None]
+
+
+def _coverage(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any], Any]) -> tuple:
+    """(clamped alpha, visible coverage) per layer in float32, as the compositing kernel has
+    them: a = clip(float32(alpha), 0, 1), V = a * running, running *= 1 - a (top layer first)."""
+    alphas: list[np.ndarray] = [np.empty(0, np.float32)] * len(layers)
+    weights: list[np.ndarray] = [np.empty(0, np.float32)] * len(layers)
+    running = np.ones(shape, np.float32)
+    for index in range(len(layers) - 1, -1, -1):
+        raw = np.asarray(concrete(layers[index].alpha), dtype=np.float64)
+        a = np.clip(np.broadcast_to(raw.astype(np.float32), shape), np.float32(0), np.float32(1))
+        alphas[index] = a
+        weights[index] = a * running
+        running = running * (np.float32(1) - a)
+    return alphas, weights
+
+
+def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any], Any]) -> CullStats:
+    """Compute every deferred field of the band's ``layers`` where it is needed (see the module
+    docstring). ``concrete`` materialises a Lazy value with numpy (for the alpha channels)."""
+    stats = CullStats()
+    gated: dict[int, list[int]] = {}  # field id -> layers whose coverage gates it
+    height_of: dict[int, list[int]] = {}  # field id -> layers whose alpha gates it
+    fields: dict[int, DeferredField] = {}
+    memo: dict[int, Bounds] = {}
+    for index, layer in enumerate(layers):
+        for f in _deferred_in(layer.alpha):
+            f.full()
+        for value in _gated_values(layer):
+            found = _deferred_in(value)
+            if found and channel_bounds(value, memo) is None:
+                for f in found:
+                    f.full()  # not provably exact when culled
+                continue
+            for f in found:
+                fields[id(f)] = f
+                gated.setdefault(id(f), []).append(index)
+        for f in _deferred_in(layer.height):
+            fields[id(f)] = f
+            height_of.setdefault(id(f), []).append(index)
+    pending = [f for f in fields.values() if f.array is None]
+    if pending:
+        alphas, weights = _coverage(layers, shape, concrete)
+        for f in pending:
+            if f.array is not None:
+                continue
+            need = np.zeros(shape, np.bool_)
+            for index in gated.get(id(f), []):
+                need |= weights[index] != 0  # NaN coverage counts as needed
+            for index in height_of.get(id(f), []):
+                need |= alphas[index] > 0
+            share = float(np.count_nonzero(need)) / max(need.size, 1)
+            f.array = f.compute(None if share > FULL_SHARE else need)
+            f.computed_share = 1.0 if share > FULL_SHARE else share
+            stats.deferred_texels += need.size
+            stats.computed_texels += need.size if share > FULL_SHARE else int(share * need.size)
+    for f in fields.values():
+        f.full()
+    return stats
