@@ -154,19 +154,26 @@ def _gated_values(layer: Any) -> list[Any]:
     ]
 
 
+def _shape(value: Any) -> tuple[int, ...]:
+    """Shape of a channel value without computing it."""
+    return value.shape if isinstance(value, Lazy | DeferredField) else np.shape(value)
+
+
 def _deferred_in(value: Any) -> list[DeferredField]:
     return [v for v in leaves(value) if isinstance(v, DeferredField) and v.array is None]
 
 
-def _coverage(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any], Any]) -> tuple:
+def _coverage(raws: list[np.ndarray], shape: tuple[int, ...]) -> tuple:
     """(clamped alpha, visible coverage) per layer in float32, as the compositing kernel has
-    them: a = clip(float32(alpha), 0, 1), V = a * running, running *= 1 - a (top layer first)."""
-    alphas: list[np.ndarray] = [np.empty(0, np.float32)] * len(layers)
-    weights: list[np.ndarray] = [np.empty(0, np.float32)] * len(layers)
+    them: a = clip(float32(alpha), 0, 1), V = a * running, running *= 1 - a (top layer first).
+    ``raws``: the layers' alpha values (float64, broadcastable to ``shape``)."""
+    alphas: list[np.ndarray] = [np.empty(0, np.float32)] * len(raws)
+    weights: list[np.ndarray] = [np.empty(0, np.float32)] * len(raws)
     running = np.ones(shape, np.float32)
-    for index in range(len(layers) - 1, -1, -1):
-        raw = np.asarray(concrete(layers[index].alpha), dtype=np.float64)
-        a = np.clip(np.broadcast_to(raw.astype(np.float32), shape), np.float32(0), np.float32(1))
+    for index in range(len(raws) - 1, -1, -1):
+        a = np.clip(
+            np.broadcast_to(raws[index].astype(np.float32), shape), np.float32(0), np.float32(1)
+        )
         alphas[index] = a
         weights[index] = a * running
         running = running * (np.float32(1) - a)
@@ -197,8 +204,11 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
             fields[id(f)] = f
             height_of.setdefault(id(f), []).append(index)
     pending = [f for f in fields.values() if f.array is None]
+    if any(len(_shape(layer.alpha)) > len(shape) for layer in layers):
+        pending = []  # coverage differs per seed (sweeps): not worth a mask per candidate
     if pending:
-        alphas, weights = _coverage(layers, shape, concrete)
+        raws = [np.asarray(concrete(layer.alpha), dtype=np.float64) for layer in layers]
+        alphas, weights = _coverage(raws, shape)
         for f in pending:
             if f.array is not None:
                 continue

@@ -153,7 +153,7 @@ def make_lazy(op: str, *args: Any) -> Lazy:
     return Lazy(op, args, dtype, shape)
 
 
-def _finite_noise_coords(x: Any, y: Any, kw: dict[str, Any]) -> bool:
+def finite_noise_coords(x: Any, y: Any, kw: dict[str, Any]) -> bool:
     """True when every octave's scaled coordinates are finite, so that the fBm is finite (it
     is clamped to its range) everywhere: the condition for culling it (engine.cull)."""
     sched = octave_schedule(kw["octaves"], kw["lacunarity"], kw["gain"], kw["freq_x"], kw["freq_y"])
@@ -170,6 +170,9 @@ class LazyEvaluator(Evaluator):
         self.materialised: dict[int, tuple[Any, Any]] = {}
         #: Count zero divisors only when they vary per row (set by band-wise callers).
         self.count_row_invariant_zero_divisions = True
+        #: Return fBm fields as :class:`DeferredField` (coverage culling, engine.cull); the
+        #: caller must then :func:`~matloom.engine.cull.resolve` the layers.
+        self.defer_noise = False
 
     def concrete(self, value: Any) -> Any:
         """The numpy value of ``value`` (materialises a Lazy once)."""
@@ -192,7 +195,7 @@ class LazyEvaluator(Evaluator):
             np.broadcast_shapes(np.shape(x), np.shape(y)),
             0.0 if kw["to_01"] else -1.0,
             1.0,
-            _finite_noise_coords(x, y, kw),
+            finite_noise_coords(x, y, kw),
         )
 
     def eval(self, node: A.Node, c: Coords) -> Field:

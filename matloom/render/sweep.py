@@ -121,26 +121,22 @@ def _sweep_evaluator_class() -> type:
             return self.persistent[key]
 
         def noise(self, call: A.Call, c: Any) -> Any:
-            seed = self.num(call, "seed")
-            seeds = [m.get(seed, seed) for m in self.seed_maps]
-            fx, fy = self.freqs(call)
-            common = dict(freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seeds=seeds)
-            if call.func == "fBm":
-                return self.backend.fbm_seed_batch(
-                    c[0],
-                    c[1],
-                    octaves=self.num(call, "octaves"),
-                    lacunarity=self.num(call, "lacunarity"),
-                    gain=self.num(call, "gain"),
-                    **common,
-                )
-            return self.backend.worley_seed_batch(
-                c[0],
-                c[1],
-                distance=self.num(call, "distance"),
-                combination=self.num(call, "combination"),
-                **common,
-            )
+            from matloom.engine.lazy import DeferredField, finite_noise_coords
+
+            kw = self.noise_args(call)
+            seed = kw.pop("seed")
+            kw["seeds"] = [m.get(seed, seed) for m in self.seed_maps]
+            if call.func != "fBm":
+                return self.backend.worley_seed_batch(c[0], c[1], **kw)
+            if self.backend.fbm_masked is None:  # its seed batch takes no mask
+                return self.backend.fbm_seed_batch(c[0], c[1], **kw)
+
+            def compute(mask: np.ndarray | None) -> np.ndarray:
+                return self.backend.fbm_seed_batch(c[0], c[1], mask=mask, **kw)
+
+            shape = (len(kw["seeds"]), *np.broadcast_shapes(np.shape(c[0]), np.shape(c[1])))
+            low = 0.0 if kw["to_01"] else -1.0
+            return DeferredField(compute, shape, low, 1.0, finite_noise_coords(c[0], c[1], kw))
 
     return SweepEvaluator
 
@@ -187,12 +183,14 @@ class _Renderer:
     def chunk_program(self, seed_maps: list[dict[int, int]]) -> Any:
         """Evaluate one chunk and compile its layers for the compositing kernel."""
         from matloom.engine import fused
+        from matloom.engine.cull import resolve
         from matloom.engine.evaluate import layer_fields
 
         ev = self.evaluator
         ev.begin_chunk(seed_maps)
         with np.errstate(all="ignore"):
             layers = [layer_fields(ev, layer) for layer in self.program.layers]
+            resolve(layers, (self.size, self.size), ev.concrete)
             return fused.compile_layers(layers, (self.size, self.size))
 
     def render_chunk(

@@ -67,11 +67,16 @@ def _mark_used_keys(
     separable: bool,
     height: int,
     width: int,
+    mask: np.ndarray,
     used: np.ndarray,
 ) -> None:
-    """used[key] = True for every lattice-vertex key any pixel/octave touches."""
+    """used[key] = True for every lattice-vertex key any pixel/octave touches (only pixels
+    where ``mask`` is set, unless it is the (1, 1) "everywhere" mask)."""
+    masked = mask.shape[0] > 1 or mask.shape[1] > 1
     for i in range(height):
         for j in range(width):
+            if masked and not mask[i, j]:
+                continue
             for k in range(xs.shape[0]):
                 x, y = _point(xs, ys, separable, k, i, j, width)
                 xsb, ysb, _, _, ext_x, ext_y, base = frame(x, y)
@@ -142,20 +147,25 @@ def _fbm_batch_row(
     unit: float,
     to_01: bool,
     grads: np.ndarray,
+    mask: np.ndarray,
     out: np.ndarray,
 ) -> None:
     """Row i of out[s, i, j] = fBm for seed s; ``unit`` = 2**-k converts the int32 sums.
+    Pixels where ``mask`` is clear (unless it is (1, 1)) get the fBm of 0, a placeholder.
 
     Pixels are accumulated in blocks of ``_PIXEL_BLOCK`` along the row so that the output for
     each seed is written as contiguous runs (the (S, H, W) layout is seed-major).
     """
     n_seeds, _, width = out.shape
+    masked = mask.shape[0] > 1 or mask.shape[1] > 1
     acc = np.empty((_PIXEL_BLOCK, n_seeds), dtype=np.int32)
     for j0 in range(0, width, _PIXEL_BLOCK):
         n = min(_PIXEL_BLOCK, width - j0)
         for jj in range(n):
             row_acc = acc[jj]
             row_acc[:] = 0
+            if masked and not mask[i, j0 + jj]:
+                continue
             for k in range(coefs.size):
                 x, y = _point(xs, ys, separable, k, i, j0 + jj, width)
                 xsb, ysb, dx0, dy0, ext_x, ext_y, base = frame(x, y)
@@ -181,13 +191,14 @@ def _fbm_batch_kernel(
     coefs: np.ndarray,
     unit: float,
     to_01: bool,
+    mask: np.ndarray,
     out: np.ndarray,
 ) -> None:
     """Fill the gradient rows of the used vertex keys, then the rows of the output (parallel)."""
     for r in prange(keys.size):
         _fill_gradient_row(keys[r], perm_cols, grad_half, grads)
     for i in prange(out.shape[1]):
-        _fbm_batch_row(i, xs, ys, separable, coefs, unit, to_01, grads, out)
+        _fbm_batch_row(i, xs, ys, separable, coefs, unit, to_01, grads, mask, out)
 
 
 def fixed_point_shift(coefs: Sequence[float]) -> int | None:
@@ -241,8 +252,14 @@ def fbm_seed_batch(
     freq_y: float,
     to_01: bool,
     seeds: Sequence[int],
+    mask: np.ndarray | None = None,
 ) -> np.ndarray:
-    """fBm for every seed in ``seeds`` at once: float32 (S, *broadcast(x, y).shape)."""
+    """fBm for every seed in ``seeds`` at once: float32 (S, *broadcast(x, y).shape).
+
+    With a boolean ``mask`` (the 2-D broadcast shape of x and y) only the texels where it is
+    set are computed; the others hold the fBm of a zero sum (0.5 with ``to_01``, else 0), a
+    placeholder inside the fBm's range (coverage culling, see matloom.engine.cull).
+    """
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     xs, ys, separable, height, width, shape = _octave_coords(x, y, sched.freqs_x, sched.freqs_y)
     seeds = [int(s) for s in seeds]
@@ -258,8 +275,10 @@ def fbm_seed_batch(
         return np.array(layers, dtype=np.float32).reshape((len(seeds), *shape))
     if out.size == 0:
         return out.reshape((len(seeds), *shape))
+    everywhere = mask is None or np.ndim(mask) != 2
+    mask2 = np.ones((1, 1), np.bool_) if everywhere else np.ascontiguousarray(mask, np.bool_)
     used = np.zeros(1 << 16, dtype=np.bool_)
-    _mark_used_keys(xs, ys, separable, height, width, used)
+    _mark_used_keys(xs, ys, separable, height, width, mask2, used)
     perms = perms_for_seeds(seeds)
     perm_cols = np.ascontiguousarray(perms.T.astype(np.int32))
     grad_half = np.ascontiguousarray(((perms & 0x0E) >> 1).astype(np.uint8))
@@ -267,6 +286,6 @@ def fbm_seed_batch(
     keys = np.flatnonzero(used)
     scaled = coefs * 2.0**shift
     unit = 2.0**-shift
-    args = (xs, ys, separable, scaled, unit, bool(to_01), out)
+    args = (xs, ys, separable, scaled, unit, bool(to_01), mask2, out)
     _fbm_batch_kernel(keys, perm_cols, grad_half, grads, *args)
     return out.reshape((len(seeds), *shape))
