@@ -364,16 +364,22 @@ def run_sweep(
     """
     del backend
     from matloom.engine.evaluate import prepare
+    from matloom.lang.deps import seed_dependent_outputs
 
     t0 = time.perf_counter()
-    text = format_program(prepare(program_text))
+    program = prepare(program_text)
+    text = format_program(program)
     spans = seed_literal_spans(text)
-    maps: list[dict[int, int]] = [{}] + seed_assignments(text, variants, seed)
+    # seeds that feed no output (e.g. an unused Define) would only give identical candidates
+    seed_free = not spans or not seed_dependent_outputs(program)
+    maps: list[dict[int, int]] = [{}]
+    if not seed_free:
+        maps += seed_assignments(text, variants, seed)
     message = ""
     if len(maps) == 1:
         message = (
             "no field depends on a noise seed: the sweep has a single candidate"
-            if not spans
+            if seed_free
             else "no variants requested: only the original is rendered"
         )
     jobs = max(1, jobs or (os.cpu_count() or 1))
@@ -397,7 +403,7 @@ def run_sweep(
         secs,
         n / secs if secs else 0.0,
         n,
-        seed_free=not spans,
+        seed_free=seed_free,
         top_images=top,
         message=message,
     )

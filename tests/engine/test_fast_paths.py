@@ -207,6 +207,18 @@ def test_seed_free_program_sweeps_as_one_candidate() -> None:
     assert "single candidate" in result.message
 
 
+def test_program_whose_seeds_feed_no_output_sweeps_as_one_candidate() -> None:
+    text = (
+        "View(0, 0, 2, 2)\nDefine(unused, fBm(octaves=3, base_freq=4, seed=77))\n"
+        "Material(Layer(1).basecolor(200, 30, 30).roughness(0.4))"
+    )
+    result = run_sweep(text, variants=20, size=32)
+    assert result.n_candidates == 1 and result.seed_free
+    assert "single candidate" in result.message
+    used = text.replace("roughness(0.4)", "roughness(unused)")
+    assert run_sweep(used, variants=20, size=32).n_candidates == 21
+
+
 def test_sweep_falls_back_for_unsupported_programs(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(fused, "MAX_REGISTERS", 2)
     text = _source("tile")
