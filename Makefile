@@ -7,7 +7,7 @@ DEMO_OUT ?= demo-output
 
 .PHONY: demo test lint bench clean clip-venv test-clip
 
-$(VENV)/.installed-%: pyproject.toml
+$(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
 	$(PIP) install --quiet --upgrade pip
 	$(PIP) install --quiet -e ".[$*]"

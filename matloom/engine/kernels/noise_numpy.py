@@ -12,10 +12,12 @@ so the ``>> 33`` shifts are arithmetic (sign-propagating), not logical.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 
 import numpy as np
 
+from matloom.engine.kernels import noise_c
 from matloom.engine.kernels.opensimplex import (
     FBM_SCALE,
     GRADIENTS2,
@@ -35,7 +37,7 @@ from matloom.engine.kernels.opensimplex import (
     worley_seed_term,
 )
 
-__all__ = ["fbm", "worley", "fbm_seed_batch", "worley_seed_batch", "noise2"]
+__all__ = ["fbm", "fbm_numpy", "worley", "fbm_seed_batch", "worley_seed_batch", "noise2"]
 
 _CHUNK = 1 << 15  # elements per vectorised block
 _TWO_SQUISH = 2.0 * SQUISH_CONSTANT2
@@ -139,6 +141,11 @@ def _row_blocks(height: int, width: int) -> list[slice]:
     return [slice(r, min(r + rows, height)) for r in range(0, height, rows)]
 
 
+def use_c_kernel() -> bool:
+    """True when the compiled ``_cnoise`` fBm is built and ``MATLOOM_PURE_NUMPY`` is not "1"."""
+    return os.environ.get("MATLOOM_PURE_NUMPY") != "1" and noise_c.available()
+
+
 def fbm(
     x: np.ndarray,
     y: np.ndarray,
@@ -155,7 +162,28 @@ def fbm(
 
     Per octave k the coordinates are ``x * f_k`` in the coordinate dtype (float32 axes round
     each octave's coordinates to float32, like the reference); the noise runs in float64.
+    Runs the compiled kernel (``noise_c``, bit-identical) when :func:`use_c_kernel`, else
+    :func:`fbm_numpy`.
     """
+    kw = dict(octaves=octaves, lacunarity=lacunarity, gain=gain, freq_x=freq_x, freq_y=freq_y)
+    if use_c_kernel():
+        return noise_c.fbm(x, y, to_01=to_01, seed=seed, **kw)
+    return fbm_numpy(x, y, to_01=to_01, seed=seed, **kw)
+
+
+def fbm_numpy(
+    x: np.ndarray,
+    y: np.ndarray,
+    *,
+    octaves: int,
+    lacunarity: float,
+    gain: float,
+    freq_x: float,
+    freq_y: float,
+    to_01: bool,
+    seed: int,
+) -> np.ndarray:
+    """The pure-numpy fBm (what ``fbm`` runs without the C kernel); see :func:`fbm`."""
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     perm = perm_from_seed(seed)
     lay = coord_layout(x, y)
