@@ -184,10 +184,11 @@ class LazyEvaluator(Evaluator):
             return super().noise(call, c)
         kw = self.noise_args(call)
         x, y = c
+        dense = self.backend.fbm  # no reference to self: the field must not form a cycle
 
         def compute(mask: np.ndarray | None) -> np.ndarray:
             if mask is None:
-                return self.backend.fbm(x, y, **kw)
+                return dense(x, y, **kw)
             return masked(x, y, mask, fill=0.0, **kw)
 
         return DeferredField(

@@ -131,8 +131,10 @@ def _sweep_evaluator_class() -> type:
             if self.backend.fbm_masked is None:  # its seed batch takes no mask
                 return self.backend.fbm_seed_batch(c[0], c[1], **kw)
 
+            batch = self.backend.fbm_seed_batch  # no reference to self (no cycle)
+
             def compute(mask: np.ndarray | None) -> np.ndarray:
-                return self.backend.fbm_seed_batch(c[0], c[1], mask=mask, **kw)
+                return batch(c[0], c[1], mask=mask, **kw)
 
             shape = (len(kw["seeds"]), *np.broadcast_shapes(np.shape(c[0]), np.shape(c[1])))
             low = 0.0 if kw["to_01"] else -1.0
