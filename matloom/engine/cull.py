@@ -163,21 +163,31 @@ def _deferred_in(value: Any) -> list[DeferredField]:
     return [v for v in leaves(value) if isinstance(v, DeferredField) and v.array is None]
 
 
-def _coverage(raws: list[np.ndarray], shape: tuple[int, ...]) -> tuple:
-    """(clamped alpha, visible coverage) per layer in float32, as the compositing kernel has
-    them: a = clip(float32(alpha), 0, 1), V = a * running, running *= 1 - a (top layer first).
-    ``raws``: the layers' alpha values (float64, broadcastable to ``shape``)."""
-    alphas: list[np.ndarray] = [np.empty(0, np.float32)] * len(raws)
-    weights: list[np.ndarray] = [np.empty(0, np.float32)] * len(raws)
-    running = np.ones(shape, np.float32)
-    for index in range(len(raws) - 1, -1, -1):
-        a = np.clip(
-            np.broadcast_to(raws[index].astype(np.float32), shape), np.float32(0), np.float32(1)
-        )
-        alphas[index] = a
-        weights[index] = a * running
-        running = running * (np.float32(1) - a)
-    return alphas, weights
+def _visibility_masks(
+    layers: list[Any],
+    shape: tuple[int, ...],
+    concrete: Callable[[Any], Any],
+    want_weight: set[int],
+    want_alpha: set[int],
+) -> tuple[dict[int, np.ndarray], dict[int, np.ndarray]]:
+    """Boolean masks ``V_l != 0`` (layers in ``want_weight``) and ``a_l > 0`` (``want_alpha``)
+    with a_l and V_l in float32 as the compositing kernel has them: a = clip(float32(alpha),
+    0, 1), V = a * running, running *= 1 - a, top layer first. Only the running product and
+    one layer's values are alive at a time (bands are large; memory is part of the budget)."""
+    visible: dict[int, np.ndarray] = {}
+    covers: dict[int, np.ndarray] = {}
+    running: Any = np.float32(1)
+    lowest = min(want_weight | want_alpha)
+    for index in range(len(layers) - 1, lowest - 1, -1):
+        raw = np.asarray(concrete(layers[index].alpha), dtype=np.float64)
+        a = np.clip(raw.astype(np.float32), np.float32(0), np.float32(1))
+        if index in want_weight:
+            visible[index] = np.broadcast_to((a * running) != 0, shape)  # NaN counts as visible
+        if index in want_alpha:
+            covers[index] = np.broadcast_to(a > 0, shape)
+        if index > lowest:
+            running = running * (np.float32(1) - a)
+    return visible, covers
 
 
 def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any], Any]) -> CullStats:
@@ -207,16 +217,21 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
     if any(len(_shape(layer.alpha)) > len(shape) for layer in layers):
         pending = []  # coverage differs per seed (sweeps): not worth a mask per candidate
     if pending:
-        raws = [np.asarray(concrete(layer.alpha), dtype=np.float64) for layer in layers]
-        alphas, weights = _coverage(raws, shape)
+        visible, covers = _visibility_masks(
+            layers,
+            shape,
+            concrete,
+            {i for f in pending for i in gated.get(id(f), [])},
+            {i for f in pending for i in height_of.get(id(f), [])},
+        )
         for f in pending:
             if f.array is not None:
                 continue
             need = np.zeros(shape, np.bool_)
             for index in gated.get(id(f), []):
-                need |= weights[index] != 0  # NaN coverage counts as needed
+                need |= visible[index]
             for index in height_of.get(id(f), []):
-                need |= alphas[index] > 0
+                need |= covers[index]
             share = float(np.count_nonzero(need)) / max(need.size, 1)
             f.array = f.compute(None if share > FULL_SHARE else need)
             f.computed_share = 1.0 if share > FULL_SHARE else share

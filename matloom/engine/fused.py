@@ -36,7 +36,7 @@ from matloom.engine.maps import SCALAR_CHANNELS, MaterialMaps, View
 from matloom.lang import ast as A
 
 #: Texels per band (the fields of one band are alive at a time).
-BAND_TEXELS = 1 << 18
+BAND_TEXELS = 1 << 19
 #: Register cap of the kernel (each register is one float64 row per thread).
 MAX_REGISTERS = 256
 _PLANES = ("alpha", *SCALAR_CHANNELS, "ior", "height")
@@ -323,36 +323,63 @@ def run_kernel(
     parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(*args, a, b))
 
 
-def _recomposite(
-    layers: Sequence[C.RawLayer], band: dict[str, np.ndarray], flags: np.ndarray
-) -> None:
-    """Redo the flagged texels of a band with the numpy reference compositing."""
-    if not flags.any():  # the common case: much cheaper than nonzero
-        return
-    hit = np.flatnonzero(flags.any(axis=1))  # flags are rare: search only the rows with any
+def _map_layer(fn: Any, *layers: C.RawLayer) -> C.RawLayer:
+    """A RawLayer whose every channel value is ``fn(values of that channel in layers)``."""
+    return C.RawLayer(
+        fn(*(ly.alpha for ly in layers)),
+        tuple(fn(*vs) for vs in zip(*(ly.basecolor for ly in layers))),  # type: ignore[arg-type]
+        *(fn(*(getattr(ly, n) for ly in layers)) for n in SCALAR_CHANNELS),
+        fn(*(ly.ior for ly in layers)),
+        tuple(fn(*vs) for vs in zip(*(ly.emissive for ly in layers))),  # type: ignore[arg-type]
+        fn(*(ly.height for ly in layers)),
+    )  # type: ignore[arg-type]
+
+
+@dataclass
+class _Flagged:
+    """Texels the kernel flagged (output rows and columns) and the layers' values there."""
+
+    rows: np.ndarray
+    cols: np.ndarray
+    layers: list[C.RawLayer]
+
+
+def _flagged(layers: Sequence[C.RawLayer], flags: np.ndarray, row0: int) -> _Flagged | None:
+    """The flagged texels of a band (``flags`` rows are band rows from output row ``row0``)
+    with every channel value gathered there, or None (the common case)."""
+    words = flags.view(np.uint64) if flags.shape[1] % 8 == 0 else flags  # 8 flags per test
+    if not words.any():
+        return None
+    hit = np.flatnonzero(words.any(axis=1))  # flags are rare: search only the rows with any
     sub_rows, cols = np.nonzero(flags[hit])
     rows = hit[sub_rows]
-    shape = band["alpha"].shape
     cache: dict[int, Any] = {}
 
-    def pick(v: Any) -> Any:
-        return gather(v, rows, cols, shape, cache)
+    def pick(value: Any) -> Any:
+        return gather(value, rows, cols, flags.shape, cache)  # (1, k) array, or the scalar
 
-    picked = [
-        C.RawLayer(
-            pick(ly.alpha),
-            tuple(pick(v) for v in ly.basecolor),  # type: ignore[arg-type]
-            *(pick(getattr(ly, n)) for n in SCALAR_CHANNELS),
-            pick(ly.ior),
-            tuple(pick(v) for v in ly.emissive),
-            pick(ly.height),
-        )  # type: ignore[arg-type]
-        for ly in layers
-    ]
+    return _Flagged(rows + row0, cols, [_map_layer(pick, ly) for ly in layers])
+
+
+def _join(*values: Any) -> Any:
+    """One band-independent scalar as it is (numpy promotes scalars and arrays differently),
+    else the bands' (1, k) values side by side."""
+    if np.ndim(values[0]) == 0:
+        return values[0]
+    return np.concatenate(values, axis=1)
+
+
+def _recomposite(maps: dict[str, np.ndarray], found: list[_Flagged]) -> None:
+    """Redo the flagged texels of all bands at once with the numpy reference compositing."""
+    if not found:
+        return
+    rows = np.concatenate([f.rows for f in found])
+    cols = np.concatenate([f.cols for f in found])
+    layers = [_map_layer(_join, *band_layers) for band_layers in zip(*(f.layers for f in found))]
     fixed = C._allocate_maps(rows.size, 1)
-    C._composite_band(picked, fixed, slice(0, 1))
+    C._composite_band(layers, fixed, slice(0, 1))
     for name, array in fixed.items():
-        band[name][rows, cols] = array[0]
+        maps[name][rows, cols] = array[0]
 
 
 def _band_slices(height: int, width: int) -> list[slice]:
@@ -378,6 +405,7 @@ def composite_program(
     ``cull``: compute fBm fields only where a layer can see them (:mod:`matloom.engine.cull`)."""
     height, width = y.shape[0], x.shape[1]
     maps = allocate_maps(width, height)
+    flagged: list[_Flagged] = []
     for index, rows in enumerate(_band_slices(height, width)):
         ev = LazyEvaluator(program, x, y[rows], backend)
         ev.count_row_invariant_zero_divisions = index == 0
@@ -399,10 +427,14 @@ def composite_program(
             flags = np.zeros(shape, np.uint8)
             run_kernel(prog, maps, rows.start, flags)
             with np.errstate(all="ignore"):
-                _recomposite(layers, band, flags)
+                found = _flagged(layers, flags, rows.start)
+            if found is not None:
+                flagged.append(found)
         stats.zero_divisions += ev.stats.zero_divisions
         if index == 0:
             stats.define_evaluations = ev.stats.define_evaluations
+    with np.errstate(all="ignore"):
+        _recomposite(maps, flagged)
     return maps
 
 

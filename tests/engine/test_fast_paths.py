@@ -87,6 +87,17 @@ def test_uncertain_decode_texels_are_recomposited(
     _assert_bit_identical(_source(name), 40, 24, name)
 
 
+@pytest.mark.parametrize("name", ["tile", "brick", "nan_inf_fields"])
+def test_flagged_texels_of_many_bands_are_recomposited_together(
+    monkeypatch: pytest.MonkeyPatch, name: str
+) -> None:
+    """Small bands (several per image) with most colour texels flagged: one joint numpy pass."""
+    monkeypatch.setattr(composite_numba, "DECODE_MARGIN", 1e-3)
+    monkeypatch.setattr(fused, "BAND_TEXELS", 40 * 5)
+    assert len(fused._band_slices(27, 40)) > 3
+    _assert_bit_identical(_source(name), 40, 27, name)
+
+
 def test_decode_table_is_within_its_margin() -> None:
     """The cubic sRGB table is far more accurate than the 2**-44 certainty margin."""
     rng = np.random.default_rng(5)
