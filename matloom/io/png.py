@@ -5,28 +5,34 @@ add 0.5 and truncate, all in float32 (round half up). Non-finite values never cr
 to 255, -inf to 0, and NaN is written as **0** (the reference's float-to-uint8 cast of NaN is
 undefined behaviour; 0 is what it produced on the fixture platform).
 
-8-bit files are encoded with Pillow, 16-bit grey with pypng (exact 16-bit samples, big-endian
-as PNG requires). Every writer goes through :func:`matloom.io.atomic.atomic_write_bytes`.
+8-bit files are encoded here with numpy + zlib (the PNG container is a few fixed chunks; the
+"Up" row filter is one vectorised subtraction), 16-bit grey with pypng (exact 16-bit samples,
+big-endian as PNG requires). Pillow is not used for writing: importing it and initialising its
+plugins costs ~30 ms, about 7 % of a whole ``matloom render --size 256`` process. Every writer
+goes through :func:`matloom.io.atomic.atomic_write_bytes`.
 """
 
 from __future__ import annotations
 
 import io
 import os
+import struct
+import zlib
 from pathlib import Path
 
 import numpy as np
-import png as pypng
 from numpy.typing import ArrayLike
-from PIL import Image
 
 from matloom.io.atomic import atomic_write_bytes
 
 #: zlib level for 8-bit PNGs: 1 (fastest), as OpenCV's default in the reference; the pixel
 #: values never depend on it, only speed and file size (level 6 is ~25 % smaller, ~3x slower).
 PNG_COMPRESS_LEVEL = 1
-#: Pillow modes by number of channels.
-_MODES = {1: "L", 3: "RGB", 4: "RGBA"}
+#: PNG colour types by number of channels (grey, RGB, RGBA).
+_COLOUR_TYPES = {1: 0, 3: 2, 4: 6}
+_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+#: Row filter "Up" (each byte minus the byte above, mod 256): smooth maps compress well.
+_FILTER_UP = 2
 
 
 def quantize_unit8(values: ArrayLike) -> np.ndarray:
@@ -47,24 +53,42 @@ def quantize_unit16(values: ArrayLike) -> np.ndarray:
     return scaled.astype(np.uint16)
 
 
+def _chunk(kind: bytes, data: bytes) -> bytes:
+    """One PNG chunk: length, type, data, CRC-32 of type + data."""
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+
 def encode_png8(pixels: np.ndarray, compress_level: int = PNG_COMPRESS_LEVEL) -> bytes:
     """Encode a uint8 array of shape (H, W), (H, W, 3) or (H, W, 4) as PNG bytes."""
     array = np.ascontiguousarray(pixels)
     if array.dtype != np.uint8:
         raise TypeError(f"8-bit PNG needs uint8 pixels, got {array.dtype}")
     channels = 1 if array.ndim == 2 else array.shape[-1]
-    if array.ndim not in (2, 3) or channels not in _MODES:
+    if array.ndim not in (2, 3) or channels not in _COLOUR_TYPES:
         raise ValueError(f"8-bit PNG needs (H, W), (H, W, 3) or (H, W, 4), got {array.shape}")
-    image = Image.fromarray(array)
-    if image.mode != _MODES[channels]:  # pragma: no cover - Pillow maps these shapes directly
-        raise ValueError(f"unexpected Pillow mode {image.mode} for shape {array.shape}")
-    buffer = io.BytesIO()
-    image.save(buffer, format="PNG", compress_level=compress_level)
-    return buffer.getvalue()
+    height, width = array.shape[:2]
+    if height == 0 or width == 0:
+        raise ValueError(f"PNG needs at least one pixel, got {array.shape}")
+    rows = array.reshape(height, width * channels)
+    filtered = np.empty((height, 1 + width * channels), np.uint8)
+    filtered[:, 0] = _FILTER_UP
+    filtered[0, 1:] = rows[0]
+    np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])  # uint8 arithmetic wraps mod 256
+    header = struct.pack(">IIBBBBB", width, height, 8, _COLOUR_TYPES[channels], 0, 0, 0)
+    return b"".join(
+        (
+            _SIGNATURE,
+            _chunk(b"IHDR", header),
+            _chunk(b"IDAT", zlib.compress(filtered.tobytes(), compress_level)),
+            _chunk(b"IEND", b""),
+        )
+    )
 
 
 def encode_png16_grey(pixels: np.ndarray) -> bytes:
     """Encode a uint16 (H, W) array as a 16-bit greyscale PNG (pypng, exact samples)."""
+    import png as pypng
+
     array = np.asarray(pixels)
     if array.dtype != np.uint16 or array.ndim != 2:
         raise ValueError(f"16-bit PNG needs a (H, W) uint16 array, got {array.dtype} {array.shape}")
@@ -107,6 +131,8 @@ def write_grey16(path: str | os.PathLike[str], values: ArrayLike) -> Path:
 
 def read_png(path: str | os.PathLike[str]) -> np.ndarray:
     """Read a PNG as (H, W) or (H, W, C) uint8/uint16 samples, exactly as stored (pypng)."""
+    import png as pypng
+
     width, height, rows, info = pypng.Reader(filename=os.fspath(path)).asDirect()
     dtype = np.uint16 if info["bitdepth"] > 8 else np.uint8
     planes = info["planes"]

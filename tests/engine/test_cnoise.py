@@ -107,6 +107,17 @@ def test_rotated_grids(dtype: type, shape: tuple[int, int], deg: float) -> None:
     check(gx, gy, freq_x=-5.0, freq_y=40.0, octaves=6, seed=-12)
 
 
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_work_split_over_threads(dtype: type, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Row slices (separable) and flat spans (grids) on several threads give the same bits."""
+    monkeypatch.setattr(noise_c, "MIN_TEXELS_PER_THREAD", 7)
+    monkeypatch.setattr(noise_c.os, "cpu_count", lambda: 3)
+    x, y = axes(61, 29, dtype)
+    assert noise_c._threads(61 * 29, 29) == 3
+    check(x, y, octaves=5)
+    check(*rotated(x, y, 21.0), octaves=5)
+
+
 def test_mixed_and_unusual_layouts() -> None:
     """float32 x with float64 y, 1-D/0-D/3-D inputs, int inputs and empty outputs."""
     x32, y32 = axes(29, 23, np.float32)

@@ -16,6 +16,9 @@ numba.
 from __future__ import annotations
 
 import functools
+import os
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from types import ModuleType
 
 import numpy as np
@@ -35,6 +38,30 @@ except ImportError:  # not built (no C compiler at install time): pure numpy is 
     _cnoise = None
 
 __all__ = ["fbm", "available"]
+
+#: Texels per thread below which the kernel runs on the calling thread only.
+MIN_TEXELS_PER_THREAD = 32768
+_POOL: list[ThreadPoolExecutor] = []
+
+
+def _in_parallel(parts: int, work: Callable[[int, int], None], total: int) -> None:
+    """Run ``work(start, stop)`` on ``parts`` contiguous slices of ``range(total)`` on threads
+    (the kernels release the GIL)."""
+    bounds = [total * k // parts for k in range(parts + 1)]
+    if parts <= 1:
+        work(0, total)
+        return
+    if not _POOL:
+        _POOL.append(ThreadPoolExecutor(parts - 1, thread_name_prefix="matloom-cnoise"))
+    futures = [_POOL[0].submit(work, bounds[k], bounds[k + 1]) for k in range(1, parts)]
+    work(bounds[0], bounds[1])
+    for future in futures:
+        future.result()
+
+
+def _threads(texels: int, rows: int) -> int:
+    """Threads for a kernel call: the CPU count, fewer for small images."""
+    return max(1, min(os.cpu_count() or 1, texels // MIN_TEXELS_PER_THREAD, rows))
 
 
 @functools.cache
@@ -94,13 +121,23 @@ def fbm(
         xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
         ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
-        _cnoise.fbm_separable(out, xs, ys, amps, perm, cast_values, sched.norm, bool(to_01))
+
+        def rows(start: int, stop: int) -> None:
+            part_ys = np.ascontiguousarray(ys[:, start:stop])
+            args = (amps, perm, cast_values, sched.norm, bool(to_01))
+            _cnoise.fbm_separable(out[start:stop], xs, part_ys, *args)  # type: ignore[union-attr]
+
+        _in_parallel(_threads(out.size, out.shape[0]), rows, out.shape[0])
         return out.reshape(lay.shape)
     with np.errstate(over="ignore"):  # numpy's own scalar conversion overflows the same way
         fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
         fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
     flat = np.empty(lay.x_grid.size, dtype=np.float64)
-    _cnoise.fbm_grid(
-        flat, lay.x_grid, lay.y_grid, fxs, fys, amps, perm, cast_values, sched.norm, bool(to_01)
-    )
+    xg, yg = lay.x_grid, lay.y_grid
+
+    def span(start: int, stop: int) -> None:
+        args = (fxs, fys, amps, perm, cast_values, sched.norm, bool(to_01))
+        _cnoise.fbm_grid(flat[start:stop], xg[start:stop], yg[start:stop], *args)  # type: ignore[union-attr]
+
+    _in_parallel(_threads(flat.size, flat.size), span, flat.size)
     return flat.reshape(lay.shape)
