@@ -31,9 +31,9 @@ def demo_cmd(out_dir: str, size: int) -> None:
     from matloom.examples import example_text
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import export_maps
+    from matloom.io.png import save_png
     from matloom.lang.printer import format_program
     from matloom.render.preview import shade, tile_image
-    from matloom.render.sheet import save_png
 
     root = Path(out_dir).resolve()
     root.mkdir(parents=True, exist_ok=True)

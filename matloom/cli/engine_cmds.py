@@ -138,8 +138,8 @@ def render_cmd(
         extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
     )
     if preview:
+        from matloom.io.png import save_png
         from matloom.render.preview import shade
-        from matloom.render.sheet import save_png
 
         save_png(Path(out_dir) / "preview.png", shade(maps))
     from matloom.io.atomic import atomic_write_bytes as _write

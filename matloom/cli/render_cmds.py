@@ -24,7 +24,7 @@ def _parse_light(value: str | None):  # noqa: ANN202
 
 
 def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
-    from matloom.render.sheet import save_png
+    from matloom.io.png import save_png
 
     save_png(path, img)
 

@@ -124,6 +124,14 @@ def write_rgba8(path: str | os.PathLike[str], rgb: ArrayLike, alpha: ArrayLike) 
     return atomic_write_bytes(path, encode_png8(pixels))
 
 
+def save_png(path: str | os.PathLike[str], img: np.ndarray) -> Path:
+    """Write ``img`` (uint8 grey, RGB or RGBA) as a PNG, atomically (see :mod:`matloom.io.atomic`)."""
+    array = np.asarray(img)
+    if array.dtype != np.uint8:
+        raise ValueError(f"PNG images must be uint8, got {array.dtype}")
+    return atomic_write_bytes(path, encode_png8(array))
+
+
 def write_grey16(path: str | os.PathLike[str], values: ArrayLike) -> Path:
     """Quantise a (H, W) unit-range map to 16 bits and write it as a 16-bit grey PNG."""
     return atomic_write_bytes(path, encode_png16_grey(quantize_unit16(values)))

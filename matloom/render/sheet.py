@@ -8,12 +8,13 @@ a refinement trajectory can be inspected in one picture.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Sequence
 from functools import lru_cache
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
+
+from matloom.io.png import save_png  # noqa: F401  (re-exported: sheets are saved with it)
 
 #: Sheet background and label colours (RGB).
 BACKGROUND: tuple[int, int, int] = (24, 24, 24)
@@ -109,14 +110,3 @@ def contact_sheet(
         text_left = left + (cell - int(font.getlength(text))) // 2
         draw.text((text_left, top + cell + _LABEL_PADDING), text, fill=LABEL_COLOUR, font=font)
     return np.asarray(sheet, dtype=np.uint8)
-
-
-def save_png(path: str | os.PathLike[str], img: np.ndarray) -> None:
-    """Write ``img`` (uint8 grey, RGB or RGBA) as a PNG, atomically (see :mod:`matloom.io.atomic`)."""
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.png import encode_png8
-
-    array = np.asarray(img)
-    if array.dtype != np.uint8:
-        raise ValueError(f"PNG images must be uint8, got {array.dtype}")
-    atomic_write_bytes(path, encode_png8(array))

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import functools
 import os
+import threading
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from types import ModuleType
 
 import numpy as np
@@ -41,22 +41,29 @@ __all__ = ["fbm", "available"]
 
 #: Texels per thread below which the kernel runs on the calling thread only.
 MIN_TEXELS_PER_THREAD = 32768
-_POOL: list[ThreadPoolExecutor] = []
 
 
 def _in_parallel(parts: int, work: Callable[[int, int], None], total: int) -> None:
-    """Run ``work(start, stop)`` on ``parts`` contiguous slices of ``range(total)`` on threads
-    (the kernels release the GIL)."""
+    """Run ``work(start, stop)`` on ``parts`` contiguous slices of ``range(total)``, each but the
+    first on its own thread (the kernels release the GIL; plain threads: no executor import
+    on the cold-start path)."""
     bounds = [total * k // parts for k in range(parts + 1)]
-    if parts <= 1:
-        work(0, total)
-        return
-    if not _POOL:
-        _POOL.append(ThreadPoolExecutor(parts - 1, thread_name_prefix="matloom-cnoise"))
-    futures = [_POOL[0].submit(work, bounds[k], bounds[k + 1]) for k in range(1, parts)]
-    work(bounds[0], bounds[1])
-    for future in futures:
-        future.result()
+    errors: list[BaseException] = []
+
+    def run(k: int) -> None:
+        try:
+            work(bounds[k], bounds[k + 1])
+        except BaseException as exc:  # re-raised on the calling thread
+            errors.append(exc)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(1, parts)]
+    for thread in threads:
+        thread.start()
+    run(0)
+    for thread in threads:
+        thread.join()
+    if errors:
+        raise errors[0]
 
 
 def _threads(texels: int, rows: int) -> int:
