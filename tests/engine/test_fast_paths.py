@@ -87,6 +87,30 @@ def test_uncertain_decode_texels_are_recomposited(
     _assert_bit_identical(_source(name), 40, 24, name)
 
 
+_COVER = "Bricks(brick_width=0.5, brick_height=0.25, mortar=0.04, feather=0.01)"
+_HIDDEN_NOISE = "fBm(octaves=3, base_freq=6, to_01=True, seed=4)"
+
+
+@pytest.mark.parametrize(
+    "bottom",
+    [
+        f"basecolor(40 + {_HIDDEN_NOISE} * 90, 30, 20)",  # finite: decoded where visible only
+        f"basecolor(Sqrt({_HIDDEN_NOISE} - 0.5) * 255, 30, 20)",  # NaN under the top layer
+        f"emissive(255, 128, 0, {_HIDDEN_NOISE} * 1e308 * 10)",  # inf strength where hidden
+        f"emissive(255, 128, 0, 2 - {_HIDDEN_NOISE})",  # finite emission
+        "basecolor(10, 20, 30).emissive(200, 100, 50, 3)",  # constant colours
+    ],
+)
+def test_hidden_layer_colours_are_skipped_only_when_exact(bottom: str) -> None:
+    """A layer visible on under half of a row decodes its colours only where visible, unless
+    a hidden colour is NaN/inf (then 0 x colour is not 0): maps equal the numpy path's."""
+    text = (
+        f"View(0, 0, 2, 2)\nMaterial(\n  Layer(1).{bottom},\n"
+        f"  Layer({_COVER}).basecolor(200, 200, 190).roughness(0.3)\n)"
+    )
+    _assert_bit_identical(text, 64, 40, bottom)
+
+
 @pytest.mark.parametrize("name", ["tile", "brick", "nan_inf_fields"])
 def test_flagged_texels_of_many_bands_are_recomposited_together(
     monkeypatch: pytest.MonkeyPatch, name: str

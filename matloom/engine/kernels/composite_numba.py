@@ -193,15 +193,88 @@ def _add_colour(acc, w, src, strength, mode, emissive, luts, margin, flags, lin)
 
 
 @_jit()
+def _visible_index(w, idx):  # type: ignore[no-untyped-def]
+    """Compact the texels with w != 0 (NaN included) into ``idx``; returns their count, or -1
+    when they are at least half of the row (the dense loops are faster then)."""
+    n = w.size
+    count = 0
+    for j in range(n):
+        count += w[j] != np.float32(0.0)
+    if 2 * count >= n:
+        return -1
+    m = 0
+    for j in range(n):
+        if w[j] != np.float32(0.0):
+            idx[m] = j
+            m += 1
+    return m
+
+
+@_jit()
+def _all_finite(values, nan_only):  # type: ignore[no-untyped-def]
+    """True when no value is NaN (and, unless ``nan_only``, none is +-inf)."""
+    bad = False
+    for j in range(values.size):
+        v = values[j]
+        bad |= (v != v) if nan_only else (v - v != v - v)
+    return not bad
+
+
+@_jit()
+def _add_colour_visible(acc, w, src, strength, mode, emissive, luts, margin, flags, idx, m, work):  # type: ignore[no-untyped-def]
+    """:func:`_add_colour` on the texels ``idx[:m]`` only. Exact when every other texel has
+    w == +0 and a finite colour (the caller checks): their term ``0 * colour`` is +0."""
+    gathered, lin, scaled = work[0, :m], work[1, :m], work[2, :m]
+    for q in range(m):
+        gathered[q] = src[idx[q]]
+    values = gathered
+    if mode == RAW and margin < 0.0:
+        decode_row_fast(gathered, luts[1], lin)
+        values = lin
+    elif mode == RAW:
+        decode_row(gathered, luts[0], lin, scaled)
+        values = lin
+    check = (mode == RAW or not emissive) and margin > 0.0
+    if emissive:
+        for q in range(m):
+            s = strength[idx[q]]
+            scaled[q] = values[q] * (0.0 if s < 0.0 else s)
+        values = scaled
+    for q in range(m):
+        j = idx[q]
+        acc[j] += w[j] * np.float32(values[q])
+    if check:
+        for q in range(m):
+            flags[idx[q]] |= np.uint8(_uncertain(values[q], margin))
+
+
+@_jit()
 def _accumulate(
-    regs, chan_reg, chan_mode, alphas, weights, weight_nan, acc, touched, luts, margin, flags, lin
+    regs,
+    chan_reg,
+    chan_mode,
+    alphas,
+    weights,
+    weight_nan,
+    acc,
+    touched,
+    luts,
+    margin,
+    flags,
+    lin,
+    idx,
+    work,
 ):  # type: ignore[no-untyped-def]
     """Bottom-up: add every layer's weighted channels to the row accumulators ``acc`` (16, W):
     rows 1..8 the 7 scalars and ior, 9 the height max, 10..12 basecolor, 13..15 emissive.
-    ``touched[p]`` is set for every accumulator row that received a value (others stay 0)."""
+    ``touched[p]`` is set for every accumulator row that received a value (others stay 0).
+    Colours of a layer visible on under half of the row are decoded only where it is visible
+    (``idx``/``work`` scratch), unless a colour could be NaN/inf where it is hidden."""
     for layer in range(chan_reg.shape[0]):
         w = weights[layer]
         skip_zero = not weight_nan[layer]
+        m = _visible_index(w, idx)
+        strength_finite = m >= 0 and _all_finite(regs[chan_reg[layer, CH_STRENGTH]], False)
         for c in range(8):
             ch = CH_SCALARS + c if c < 7 else CH_IOR
             if not (chan_mode[layer, ch] == ZERO and skip_zero):
@@ -213,6 +286,29 @@ def _accumulate(
             mode = chan_mode[layer, ch]
             if not (mode == ZERO and skip_zero):
                 touched[10 + k] = True
+                src = regs[chan_reg[layer, ch]]
+                if (
+                    m >= 0
+                    and mode != READY
+                    and mode != ZERO
+                    and (k < 3 or strength_finite)
+                    and _all_finite(src, True)
+                ):
+                    _add_colour_visible(
+                        acc[10 + k],
+                        w,
+                        src,
+                        strength,
+                        mode,
+                        k >= 3,
+                        luts,
+                        margin,
+                        flags,
+                        idx,
+                        m,
+                        work,
+                    )
+                    continue
                 _add_colour(
                     acc[10 + k],
                     w,
@@ -320,6 +416,8 @@ def composite_rows(
     acc = np.empty((16, width), np.float32)
     touched = np.zeros(16, np.bool_)
     lin = np.empty((2, width))
+    idx = np.empty(width, np.int64)
+    work = np.empty((3, width))
     for i in range(first, last):
         load_leaves(loads, regs, leaves64, leaves32, cand, i)
         run_code(code, consts, regs)
@@ -340,5 +438,7 @@ def composite_rows(
             margin,
             flags[i],
             lin,
+            idx,
+            work,
         )
         _finish(acc, touched, running, planes, basecolor, emissive, row0 + i, zeroed)
