@@ -195,17 +195,22 @@ class _Renderer:
             resolve(layers, (self.size, self.size), ev.concrete)
             return fused.compile_layers(layers, (self.size, self.size))
 
-    def render_chunk(
-        self, seed_maps: list[dict[int, int]], pool: ThreadPoolExecutor
-    ) -> list[np.ndarray]:
-        """Previews of one chunk of candidates, shaded on ``pool``. A program the fused kernel
-        cannot take (see :class:`fused.UnsupportedProgram`) is previewed variant by variant
-        with the exact engine."""
+    def prepare_chunk(self, seed_maps: list[dict[int, int]]) -> Any:
+        """The compiled chunk program, or None when the fused kernel cannot take the program
+        (see :class:`fused.UnsupportedProgram`; its variants are then previewed one by one with
+        the exact engine). Runs on the preparation thread, one chunk ahead of the shading."""
         from matloom.engine import fused
 
         try:
-            prog = self.chunk_program(seed_maps)
+            return self.chunk_program(seed_maps)
         except fused.UnsupportedProgram:
+            return None
+
+    def render_prepared(
+        self, prog: Any, seed_maps: list[dict[int, int]], pool: ThreadPoolExecutor
+    ) -> list[np.ndarray]:
+        """Previews of one prepared chunk of candidates, shaded on ``pool``."""
+        if prog is None:
             return [self.exact_preview(m) for m in seed_maps]
         return list(pool.map(lambda cand: self.render(prog, cand), range(len(seed_maps))))
 
@@ -267,8 +272,13 @@ class _ExactRenderer:
     program: A.Program
     size: int
 
-    def render_chunk(self, seed_maps: list[dict[int, int]], pool: Any) -> list[np.ndarray]:
-        del pool
+    def prepare_chunk(self, seed_maps: list[dict[int, int]]) -> None:
+        del seed_maps
+
+    def render_prepared(
+        self, prog: None, seed_maps: list[dict[int, int]], pool: Any
+    ) -> list[np.ndarray]:
+        del prog, pool
         from matloom.render.api import preview
 
         text = format_program(self.program)
@@ -315,10 +325,18 @@ def _render_all(
     chunk = _chunk_size(program, size)
     results: list[tuple[int, float | None]] = []
     heap: list[tuple[float, int, np.ndarray]] = []
-    with ThreadPoolExecutor(max_workers=jobs, thread_name_prefix="matloom-sweep") as pool:
-        for start in range(0, len(maps), chunk):
-            indices = list(range(start, min(start + chunk, len(maps))))
-            images = renderer.render_chunk([maps[i] for i in indices], pool)
+    chunks = [list(range(s, min(s + chunk, len(maps)))) for s in range(0, len(maps), chunk)]
+    with (
+        ThreadPoolExecutor(max_workers=jobs, thread_name_prefix="matloom-sweep") as pool,
+        ThreadPoolExecutor(max_workers=1, thread_name_prefix="matloom-sweep-prep") as prep,
+    ):
+        # chunk k + 1 is evaluated (noise, compile) while chunk k is shaded
+        ahead = prep.submit(renderer.prepare_chunk, [maps[i] for i in chunks[0]])
+        for k, indices in enumerate(chunks):
+            prepared = ahead.result()
+            if k + 1 < len(chunks):
+                ahead = prep.submit(renderer.prepare_chunk, [maps[i] for i in chunks[k + 1]])
+            images = renderer.render_prepared(prepared, [maps[i] for i in indices], pool)
             scores = scorer.score(images, prompt or "") if scorer else [None] * len(indices)
             for i, img, s in zip(indices, images, scores, strict=True):
                 value = None if s is None else float(s)
