@@ -255,10 +255,20 @@ def _parse_cached(text: str) -> A.Program:
 
 def prepare(program_or_text: A.Program | str, program_seed: int = 0) -> A.Program:
     """Parse (if text) and make omitted seeds explicit so evaluation is deterministic."""
-    text = program_or_text
-    program = _parse_cached(text) if isinstance(text, str) else program_or_text
+    if isinstance(program_or_text, str):
+        return _prepare_text(program_or_text, program_seed)
+    return _with_seeds(program_or_text, program_seed)
+
+
+@lru_cache(maxsize=64)
+def _prepare_text(text: str, program_seed: int) -> A.Program:
+    """:func:`prepare` of a text, memoised (the AST is immutable, so sharing it is safe)."""
+    return _with_seeds(_parse_cached(text), program_seed)
+
+
+def _with_seeds(program: A.Program, program_seed: int) -> A.Program:
     if has_seedless_noise(program):
-        program = canonicalize_seeds(program, program_seed)
+        return canonicalize_seeds(program, program_seed)
     return program
 
 
