@@ -285,11 +285,11 @@ def leaf_tuples(prog: FusedProgram) -> tuple[tuple[np.ndarray, ...], tuple[np.nd
 
 
 def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
-    """Output maps as :func:`composite._allocate_maps` makes them, except that the ten planes
+    """Zeroed output maps like :func:`composite._allocate_maps`, except that the ten planes
     (alpha, the 7 scalars, ior, height) are views of one (10, H, W) buffer, the kernel's
-    ``planes`` argument (see :func:`planes_of`)."""
+    ``planes`` argument (see :func:`planes_of`), and that the height is not pre-set to the -inf
+    accumulator start: the kernel writes every height row (the numpy fallback sets its band)."""
     buffer = np.zeros((len(_PLANES), height, width), np.float32)
-    buffer[-1] = -np.inf
     maps = {name: buffer[p] for p, name in enumerate(_PLANES)}
     maps["basecolor_linear"] = np.zeros((height, width, 3), np.float32)
     maps["emissive_linear"] = np.zeros((height, width, 3), np.float32)
@@ -429,6 +429,7 @@ def composite_program(
             prog = compile_layers(layers, shape)
         except UnsupportedProgram:
             layers = [_materialised(layer, ev) for layer in layers]
+            band["height"][...] = -np.inf  # the numpy compositing's max accumulator
             with np.errstate(all="ignore"):
                 C._composite_band(layers, band, slice(0, shape[0]))
         else:
