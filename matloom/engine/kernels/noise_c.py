@@ -26,9 +26,9 @@ import numpy as np
 from matloom.engine.kernels.opensimplex import (
     coord_layout,
     freq_in_dtype,
+    octave_axes,
     octave_schedule,
     perm_from_seed,
-    scale_coords,
 )
 
 _cnoise: ModuleType | None
@@ -125,8 +125,7 @@ def fbm(
     amps = np.array(sched.amps, dtype=np.float64)
     lay = coord_layout(x, y)
     if lay.separable:
-        xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
-        ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
+        xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
 
         def rows(start: int, stop: int) -> None:

@@ -30,8 +30,8 @@ from matloom.engine.kernels.opensimplex import (
     coord_layout,
     freq_in_dtype,
     gradient_table,
+    octave_axes,
     octave_schedule,
-    scale_coords,
 )
 
 __all__ = ["fbm", "fbm_masked", "worley", "fbm_seed_batch", "worley_seed_batch", "warm_up"]
@@ -337,8 +337,7 @@ def fbm(
     amps = np.array(sched.amps, dtype=np.float64)
     lay = coord_layout(x, y)
     if lay.separable:
-        xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
-        ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
+        xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
         _fbm_separable_kernel(xs, ys, amps, sched.norm, bool(to_01), table, out)
         return out.reshape(lay.shape)
@@ -371,8 +370,7 @@ def fbm_masked(
     lay = coord_layout(x, y)
     flat_mask = np.ascontiguousarray(np.broadcast_to(mask, lay.shape), dtype=np.bool_)
     if lay.separable:
-        xs = np.stack([scale_coords(lay.x_axis, f) for f in sched.freqs_x])
-        ys = np.stack([scale_coords(lay.y_axis, f) for f in sched.freqs_y])
+        xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
         rows_mask = flat_mask.reshape(out.shape)
         _fbm_separable_masked_kernel(

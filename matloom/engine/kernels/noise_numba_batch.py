@@ -33,9 +33,9 @@ from matloom.engine.kernels.opensimplex import (
     FBM_SCALE,
     NORM_CONSTANT2,
     coord_layout,
+    octave_axes,
     octave_schedule,
     perms_for_seeds,
-    scale_coords,
 )
 
 __all__ = ["fbm_seed_batch"]
@@ -231,11 +231,9 @@ def _octave_coords(
     """
     lay = coord_layout(x, y)
     if lay.separable:
-        xs = np.stack([scale_coords(lay.x_axis, f) for f in freqs_x])
-        ys = np.stack([scale_coords(lay.y_axis, f) for f in freqs_y])
+        xs, ys = octave_axes(lay.x_axis, lay.y_axis, freqs_x, freqs_y)
         return xs, ys, True, lay.y_axis.size, lay.x_axis.size, lay.shape
-    xs = np.stack([scale_coords(lay.x_grid, f) for f in freqs_x])
-    ys = np.stack([scale_coords(lay.y_grid, f) for f in freqs_y])
+    xs, ys = octave_axes(lay.x_grid, lay.y_grid, freqs_x, freqs_y)
     size = lay.x_grid.size
     width = lay.shape[-1] if len(lay.shape) >= 2 and lay.shape[-1] > 0 else max(size, 1)
     return xs, ys, False, size // width, width, lay.shape

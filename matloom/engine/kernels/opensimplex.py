@@ -236,6 +236,16 @@ def scale_coords(coords: np.ndarray, freq: float) -> np.ndarray:
     return np.asarray(coords * freq, dtype=np.float64)
 
 
+def octave_axes(
+    x_axis: np.ndarray, y_axis: np.ndarray, freqs_x: tuple[float, ...], freqs_y: tuple[float, ...]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per-octave float64 coordinates of separable axes: (O, W) and (O, H), each octave scaled
+    in the axes' dtype (:func:`scale_coords`)."""
+    xs = np.stack([scale_coords(x_axis, f) for f in freqs_x])
+    ys = np.stack([scale_coords(y_axis, f) for f in freqs_y])
+    return xs, ys
+
+
 def freq_in_dtype(freqs: tuple[float, ...], dtype: np.dtype) -> np.ndarray:
     """Per-octave frequencies rounded to the coordinate dtype (what numpy does to the scalar)."""
     return np.array(freqs, dtype=np.float64).astype(dtype)
