@@ -137,16 +137,16 @@ def _coverage(regs, chan_reg, alphas, weights, running, weight_nan):  # type: ig
     """Top-down walk: alpha_l, V_l = alpha_l * running, running *= 1 - alpha_l (float32)."""
     running[:] = np.float32(1.0)
     for layer in range(chan_reg.shape[0] - 1, -1, -1):
-        src = regs[chan_reg[layer, CH_ALPHA]]
-        has_nan = False
+        src, alpha, weight = regs[chan_reg[layer, CH_ALPHA]], alphas[layer], weights[layer]
+        nans = 0  # an integer count (not a boolean "or"), so that the loop vectorises
         for j in range(running.size):
             a = _clip01_f32(src[j])
             w = a * running[j]
-            alphas[layer, j] = a
-            weights[layer, j] = w
-            has_nan |= w != w
+            alpha[j] = a
+            weight[j] = w
+            nans += np.int32(w != w)
             running[j] *= np.float32(1.0) - a
-        weight_nan[layer] = has_nan
+        weight_nan[layer] = nans > 0
 
 
 @_jit()
