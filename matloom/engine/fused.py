@@ -18,7 +18,7 @@ output maps (about 88 bytes per texel) instead of growing with the number of fie
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -40,6 +40,7 @@ from matloom.engine.lazy import (
     materialise,
 )
 from matloom.engine.maps import SCALAR_CHANNELS, MaterialMaps, View
+from matloom.engine.plans import Plan, PlanCache, leaf_array, signature
 from matloom.lang import ast as A
 
 #: Texels per band (the fields of one band are alive at a time): 384 rows at 1024 wide keeps
@@ -84,6 +85,9 @@ class _Compiler:
     leaves64: list[np.ndarray] = field(default_factory=list)
     leaves32: list[np.ndarray] = field(default_factory=list)
     keep: list[Any] = field(default_factory=list)
+    #: ids of the channel values behind each leaf slot (for :mod:`matloom.engine.plans`)
+    sources64: list[int] = field(default_factory=list)
+    sources32: list[int] = field(default_factory=list)
 
     def const(self, value: Any) -> int:
         v = float(value)
@@ -114,17 +118,18 @@ class _Compiler:
         )
         return (R.OP_THRESHOLD, 0, self.value(source), base, f32)
 
-    def leaf(self, array: np.ndarray) -> int:
+    def leaf(self, source: Any) -> int:
+        array = np.asarray(source)
         if array.dtype not in FUSABLE_DTYPES or array.ndim > 3:
             raise UnsupportedProgram(f"leaf dtype {array.dtype} / ndim {array.ndim}")
-        np.broadcast_shapes(array.shape, self.shape)
-        leaf = np.ascontiguousarray(array.reshape((1,) * (3 - array.ndim) + array.shape))
-        pool, op = (
-            (self.leaves32, R.OP_LOAD32)
+        leaf = leaf_array(array, self.shape)
+        pool, op, sources = (
+            (self.leaves32, R.OP_LOAD32, self.sources32)
             if array.dtype == np.float32
-            else (self.leaves64, R.OP_LOAD64)
+            else (self.leaves64, R.OP_LOAD64, self.sources64)
         )
         pool.append(leaf)
+        sources.append(id(source))
         self.ops.append((op, 0, len(pool) - 1, 0, 0))
         return len(self.ops) - 1
 
@@ -147,7 +152,7 @@ class _Compiler:
                 self.ops.append((code, 0, refs[0], refs[1], f32))
                 self.nodes[key] = len(self.ops) - 1
             else:
-                self.nodes[key] = self.leaf(np.asarray(value))
+                self.nodes[key] = self.leaf(value)
         return self.nodes[key]
 
 
@@ -196,8 +201,27 @@ def compile_layers(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> Fuse
     Constants occupy the first registers (the compositing stage reads channel constants from
     registers); operations read constants directly. Other registers are reused once their value
     is dead, except those the channel tables read. Raises ``UnsupportedProgram`` past the kernel's
-    fixed limits.
+    fixed limits. A program of the same structure compiled before is reused with the new leaves
+    (:mod:`matloom.engine.plans`).
     """
+    key, leaves = signature(list(layers), shape)
+    plan = _PLANS.get(key)
+    if plan is not None:
+        return plan.bind(leaves, shape)
+    prog, comp = _compile(layers, shape)
+    order = {id(v): k for k, v in enumerate(leaves)}
+    if all(i in order for i in comp.sources64 + comp.sources32):
+        empty = replace(prog, leaves64=[], leaves32=[])
+        slots64 = tuple(order[i] for i in comp.sources64)
+        _PLANS.put(key, Plan(empty, slots64, tuple(order[i] for i in comp.sources32)))
+    return prog
+
+
+_PLANS = PlanCache()
+
+
+def _compile(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> tuple[FusedProgram, Any]:
+    """:func:`compile_layers` without the plan cache; also returns the compiler state."""
     comp = _Compiler(shape)
     tables = [_channel_refs(comp, layer) for layer in layers]
     if len(comp.leaves64) > K.MAX_LEAVES64 or len(comp.leaves32) > K.MAX_LEAVES32:
@@ -215,7 +239,7 @@ def compile_layers(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> Fuse
     chan_mode = np.array([modes for _, modes in tables], dtype=np.int64)
     loads = code[code[:, 0] <= R.OP_LOAD32]
     code = code[code[:, 0] > R.OP_LOAD32]
-    return FusedProgram(
+    prog = FusedProgram(
         loads,
         code,
         np.array(comp.const_values, np.float64),
@@ -225,6 +249,7 @@ def compile_layers(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> Fuse
         chan_reg,
         chan_mode,
     )
+    return prog, comp
 
 
 def _allocate(
