@@ -63,6 +63,8 @@ def signature(layers: list[Any], shape: tuple[int, ...]) -> tuple[Hashable, list
         return ("A", np.asarray(array).dtype.str, np.shape(array))
 
     key = (tuple(shape), tuple(tuple(token(v) for v in _layer_values(ly)) for ly in layers))
+    keep.clear()
+    token = None  # type: ignore[assignment]  # break the closure's self-reference (no cycle)
     return key, leaves
 
 

@@ -47,3 +47,25 @@ def test_programs_differing_in_a_constant_or_in_sharing_get_their_own_plans() ->
             got = evaluate(text, 24, 16, backend="numba").arrays()
             _same(got, evaluate(text, 24, 16, backend="numpy").arrays(), text)
     assert len(fused._PLANS.plans) == len(texts)
+
+
+def test_an_evaluation_leaves_nothing_alive_but_its_maps() -> None:
+    """No reference cycle keeps band fields alive after evaluate() returns (the garbage
+    collector is off, so only reference counting frees memory)."""
+    import gc
+    import tracemalloc
+
+    text = example_text("black_ceramic_tiles")
+    evaluate(text, 160, 160, backend="numba")  # warm caches (plans, gradient tables)
+    gc.collect()
+    gc.disable()
+    try:
+        tracemalloc.start()
+        maps = evaluate(text, 160, 160, backend="numba")
+        current = tracemalloc.get_traced_memory()[0]
+        tracemalloc.stop()
+    finally:
+        gc.enable()
+    kept = sum(a.nbytes for a in maps.arrays().values())
+    band_field = 160 * 160 * 8  # one float64 field of the band
+    assert current - kept < band_field, (current, kept)
