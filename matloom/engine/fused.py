@@ -118,6 +118,24 @@ class _Compiler:
         )
         return (R.OP_THRESHOLD, 0, self.value(source), base, f32)
 
+    def axpb(self, value: Any) -> tuple[int, ...] | None:
+        """One ``x * c1 + c2`` row for ``x * c1 + c2``, ``c2 + x * c1`` or ``x * c1 - c2``
+        (float64 nodes, non-NaN constants; IEEE + and * commute exactly and ``p - c`` is
+        ``p + (-c)``), or None. The product node is still compiled if used elsewhere."""
+        if not isinstance(value, Lazy) or value.op not in ("+", "-") or value.dtype != np.float64:
+            return None
+        left, right = value.args
+        if value.op == "+" and _const(left) is not None:
+            left, right = right, left
+        c2 = _const(right)
+        product = _scaled(left)
+        if c2 is None or product is None:
+            return None
+        x, c1 = product
+        base = len(self.const_values)
+        self.const_values.extend([c1, -c2 if value.op == "-" else c2])
+        return (R.OP_AXPB, 0, self.value(x), base, 0)
+
     def leaf(self, source: Any) -> int:
         array = np.asarray(source)
         if array.dtype not in FUSABLE_DTYPES or array.ndim > 3:
@@ -142,7 +160,11 @@ class _Compiler:
         key = id(value)
         if key not in self.nodes:
             self.keep.append(value)
-            if isinstance(value, Lazy) and value.op == "threshold":
+            fused_row = self.axpb(value)
+            if fused_row is not None:
+                self.ops.append(fused_row)
+                self.nodes[key] = len(self.ops) - 1
+            elif isinstance(value, Lazy) and value.op == "threshold":
                 self.ops.append(self.threshold(value))
                 self.nodes[key] = len(self.ops) - 1
             elif isinstance(value, Lazy):
@@ -154,6 +176,27 @@ class _Compiler:
             else:
                 self.nodes[key] = self.leaf(value)
         return self.nodes[key]
+
+
+def _const(value: Any) -> float | None:
+    """A non-NaN float64 scalar operand as a float, else None."""
+    if not is_scalar(value) or np.asarray(value).dtype != np.float64:
+        return None
+    v = float(value)
+    return None if v != v else v
+
+
+def _scaled(value: Any) -> tuple[Any, float] | None:
+    """(x, c) for a float64 ``x * c`` or ``c * x`` node with a non-NaN constant c, else None."""
+    if not isinstance(value, Lazy) or value.op != "*" or value.dtype != np.float64:
+        return None
+    a, b = value.args
+    if _const(a) is not None and _const(b) is None:
+        a, b = b, a
+    c = _const(b)
+    if c is None or _const(a) is not None:
+        return None
+    return a, c
 
 
 class UnsupportedProgram(Exception):
@@ -288,7 +331,7 @@ def _allocate(
         if not refs:
             rows.append((op, dst, a, 0, 0, 0))
             continue
-        if op == R.OP_THRESHOLD:  # b is the index of its constant block
+        if op in (R.OP_THRESHOLD, R.OP_AXPB):  # b is the index of its constant block
             rows.append((op, dst, regs[a] if a >= 0 else -1 - a, b, f32, int(a < 0)))
             continue
         mask = sum(bit for bit, ref in zip((1, 2), refs) if ref < 0)

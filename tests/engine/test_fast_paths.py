@@ -111,6 +111,30 @@ def test_hidden_layer_colours_are_skipped_only_when_exact(bottom: str) -> None:
     _assert_bit_identical(text, 64, 40, bottom)
 
 
+_WILD = "Log(fBm(octaves=2, base_freq=3, seed=8), base=10)"  # NaN below 0, -inf at 0
+
+
+@pytest.mark.parametrize(
+    "expr",
+    [
+        f"{_WILD} * 3 + 0.25",
+        f"0.25 + 3 * {_WILD}",
+        f"{_WILD} * -2 - 0.5",
+        f"0.5 - {_WILD} * 2",  # not fused: c - x * k
+        f"({_WILD} * 0) + 0",  # 0 * inf = NaN, -0 + 0
+        f"{_WILD} * 1e308 + 1e308",  # overflow to inf
+    ],
+)
+def test_fused_multiply_add_rows_equal_numpy(expr: str) -> None:
+    """``x * c1 + c2`` runs as one register row with two roundings: bit-identical maps, NaN and
+    infinities included."""
+    text = (
+        "View(0, 0, 2, 2)\nMaterial(Layer(1)"
+        f".basecolor({expr} * 40 + 100, 50, 50).roughness({expr}).height({expr} * 0.01))"
+    )
+    _assert_bit_identical(text, 40, 30, expr)
+
+
 @pytest.mark.parametrize("name", ["tile", "brick", "nan_inf_fields"])
 def test_flagged_texels_of_many_bands_are_recomposited_together(
     monkeypatch: pytest.MonkeyPatch, name: str

@@ -31,6 +31,8 @@ OP_ABS, OP_FLOOR, OP_CEIL, OP_SQRT = 8, 9, 10, 11
 #: Threshold (grid-path rules of ``kernels.threshold``); ``b`` = first of its 6 constants
 #: (below_at, below_to, above_at, above_to, transition_width, 1 * has_above + 2 * has_below).
 OP_THRESHOLD = 12
+#: ``r[a] * c1 + c2`` (two roundings, as the separate * and + give); ``b`` = index of c1, c2.
+OP_AXPB = 13
 BINARY_OPS = {"+": OP_ADD, "-": OP_SUB, "*": OP_MUL, "/": OP_DIV, "min": OP_MIN, "max": OP_MAX}
 UNARY_OPS = {"abs": OP_ABS, "floor": OP_FLOOR, "ceil": OP_CEIL, "sqrt": OP_SQRT}
 
@@ -140,6 +142,14 @@ def _binary_left_const(op: int, r: np.ndarray, d: int, x: float, b: int) -> None
 
 
 @_jit(inline=True)
+def _axpb(r: np.ndarray, d: int, a: int, c1: float, c2: float) -> None:
+    """r[d] = r[a] * c1 + c2, rounded after the product and after the sum (no FMA: fastmath is
+    off), so it equals the ``*`` then ``+`` rows it replaces bit for bit."""
+    for j in range(r.shape[1]):
+        r[d, j] = r[a, j] * c1 + c2
+
+
+@_jit(inline=True)
 def _unary(op: int, r: np.ndarray, d: int, a: int) -> None:
     """r[d] = abs/floor/ceil/sqrt(r[a]) (sqrt of a negative number is NaN)."""
     n = r.shape[1]
@@ -218,6 +228,8 @@ def run_code(code, consts, regs):  # type: ignore[no-untyped-def]
         mask = code[k, 5]
         if op == OP_THRESHOLD:
             _threshold(regs, dst, a, consts, b)
+        elif op == OP_AXPB:
+            _axpb(regs, dst, a, consts[b], consts[b + 1])
         elif op >= OP_ABS:
             _unary(op, regs, dst, a)
         elif mask == 2:
