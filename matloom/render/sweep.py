@@ -256,7 +256,10 @@ class _Renderer:
             dummy,
             0,
             flags,
-            False,  # buffers are reused across candidates
+            # Reused buffers: a channel no layer writes is never anything but 0 (where a NaN
+            # coverage makes the kernel write it, the coverage is NaN too and 0 is written), so
+            # the zeros of the first allocation need not be written again.
+            True,
             0,
             self.size,
         )

@@ -225,6 +225,27 @@ def test_sweep_variants_match_their_previews() -> None:
         assert np.abs(image.astype(np.int16) - preview.astype(np.int16)).max() <= 1
 
 
+def test_sweep_buffers_stay_clean_after_nan_coverage() -> None:
+    """One shading thread reuses its buffers without re-zeroing the channels no layer writes:
+    a candidate whose coverage is NaN somewhere touches them (NaN x 0), but only where its
+    coverage is NaN, where 0 is written; the next candidate must match its exact preview."""
+    from matloom.render.sweep import variant_program
+
+    text = (
+        "View(0, 0, 1, 1)\nMaterial(\n  Layer(1).basecolor(40, 40, 200).roughness(0.6),\n"
+        "  Layer(Sqrt(fBm(octaves=1, base_freq=0.6, to_01=True, seed=3) - 0.5))"
+        ".basecolor(220, 30, 30)\n)"
+    )
+    canonical = matloom.format(text)
+    variants = [variant_program(canonical, k, 12) for k in range(13)]
+    nan_coverage = [bool(np.isnan(evaluate(v, 24, 24).alpha).any()) for v in variants]
+    assert any(nan_coverage) and not all(nan_coverage)  # both kinds, in sequence
+    result = run_sweep(text, variants=12, size=24, jobs=1, keep=13)
+    for index, image in result.top_images:
+        preview = matloom.preview(variants[index], 24)
+        assert np.abs(image.astype(np.int16) - preview.astype(np.int16)).max() <= 1, index
+
+
 class MeanRedScorer:
     """Deterministic test scorer: mean red level of each image."""
 
