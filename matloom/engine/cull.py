@@ -37,7 +37,8 @@ from matloom.engine.lazy import DeferredField, Lazy
 FILL = 0.0
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
-#: Compute a field everywhere when it is needed on more than this share of the band.
+#: Compute a field everywhere when it is needed on more than this share of the band (the dense
+#: kernels beat the masked ones above it); a field can set its own (``DeferredField.full_share``).
 FULL_SHARE = 0.85
 
 Bounds = tuple[float, float] | None  # None: unbounded, or NaN possible
@@ -233,10 +234,11 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
             for index in height_of.get(id(f), []):
                 need |= covers[index]
             share = float(np.count_nonzero(need)) / max(need.size, 1)
-            f.array = f.compute(None if share > FULL_SHARE else need)
-            f.computed_share = 1.0 if share > FULL_SHARE else share
+            dense = share > (FULL_SHARE if f.full_share is None else f.full_share)
+            f.array = f.compute(None if dense else need)
+            f.computed_share = 1.0 if dense else share
             stats.deferred_texels += need.size
-            stats.computed_texels += need.size if share > FULL_SHARE else int(share * need.size)
+            stats.computed_texels += need.size if dense else int(share * need.size)
     for f in fields.values():
         f.full()
     return stats

@@ -58,6 +58,8 @@ class DeferredField:
     dtype: np.dtype = field(default_factory=lambda: np.dtype(np.float64))
     array: np.ndarray | None = None
     computed_share: float = 1.0
+    #: Needed share above which the field is computed everywhere (None: ``cull.FULL_SHARE``).
+    full_share: float | None = None
 
     def full(self) -> np.ndarray:
         if self.array is None:

@@ -138,7 +138,9 @@ def _sweep_evaluator_class() -> type:
 
             shape = (len(kw["seeds"]), *np.broadcast_shapes(np.shape(c[0]), np.shape(c[1])))
             low = 0.0 if kw["to_01"] else -1.0
-            return DeferredField(compute, shape, low, 1.0, finite_noise_coords(c[0], c[1], kw))
+            # the batch kernel skips a masked pixel at no cost: mask unless every pixel is needed
+            finite = finite_noise_coords(c[0], c[1], kw)
+            return DeferredField(compute, shape, low, 1.0, finite, full_share=1.0)
 
     return SweepEvaluator
 
