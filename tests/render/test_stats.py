@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import json
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import matloom
 from matloom.engine.colour import srgb_to_linear
-from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
+from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps, View
 from matloom.render.stats import (
     STAT_DEFINITIONS,
     STAT_NAMES,
@@ -382,3 +385,29 @@ def test_emissive_luminance_clips_negatives() -> None:
     assert stats["emissive_mean"] == pytest.approx(0.7152)
     stats = material_stats(make_maps(emissive_linear=(2.0, 2.0, 2.0)))
     assert stats["emissive_mean"] == pytest.approx(2.0)  # may exceed 1
+
+
+# --------------------------------------------------------------------------------------------
+# Fixture programs: the statistics of our maps equal those of the reference's own maps.
+
+_PARITY = Path(__file__).resolve().parents[1] / "data" / "parity"
+_MANIFEST = json.loads((_PARITY / "manifest.json").read_text())["programs"]
+
+
+@pytest.mark.parametrize("name", sorted(_MANIFEST))
+def test_fixture_statistics_match_those_of_the_reference_maps(name: str) -> None:
+    """The fixtures hold the reference's maps (64x64), not its statistics: the 28 statistics of
+    our evaluation must equal those computed from the reference's arrays, and the critic text
+    must be the same line for line."""
+    entry = _MANIFEST[name]
+    view = View(*entry["view"])
+    with np.load(_PARITY / f"{name}_64x64.npz") as data:
+        reference = MaterialMaps.from_arrays(dict(data), view=view, n_layers=entry["n_layers"])
+    baked = _PARITY / f"{name}.baked.mat"
+    text = (baked if baked.exists() else _PARITY / f"{name}.mat").read_text()
+    ours = matloom.evaluate(text, 64, 64)
+    want, got = material_stats(reference), material_stats(ours)
+    assert list(got) == list(want)
+    for key, value in want.items():
+        assert got[key] == pytest.approx(value, rel=1e-5, abs=1e-6), (name, key)
+    assert format_stats(got) == format_stats(want)
