@@ -66,6 +66,16 @@ class RawLayer:
     emissive: tuple[ArrayOrFloat, ArrayOrFloat, ArrayOrFloat, ArrayOrFloat] = (0.0, 0.0, 0.0, 0.0)
     height: ArrayOrFloat = 0.0
 
+    def blended_values(self) -> list[ArrayOrFloat]:
+        """The values compositing weights by the layer's visible coverage: basecolor, the seven
+        scalars, ior, emissive (r, g, b, strength). The others are ``alpha`` and ``height``."""
+        return [
+            *self.basecolor,
+            *(getattr(self, name) for name in SCALAR_CHANNELS),
+            self.ior,
+            *self.emissive,
+        ]
+
 
 # --------------------------------------------------------------------------------------------
 # Channel conversion (per band)

@@ -33,8 +33,6 @@ import numpy as np
 
 from matloom.engine.lazy import DeferredField, Lazy
 
-#: Placeholder written where a deferred field is not needed (inside [0, 1] and [-1, 1]).
-FILL = 0.0
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
 #: Compute a field everywhere when it is needed on more than this share of the band (the dense
@@ -143,18 +141,6 @@ def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     return result
 
 
-def _gated_values(layer: Any) -> list[Any]:
-    """The channel values of a layer that compositing multiplies by its visible coverage."""
-    from matloom.engine.maps import SCALAR_CHANNELS
-
-    return [
-        *layer.basecolor,
-        *(getattr(layer, name) for name in SCALAR_CHANNELS),
-        layer.ior,
-        *layer.emissive,
-    ]
-
-
 def _shape(value: Any) -> tuple[int, ...]:
     """Shape of a channel value without computing it."""
     return value.shape if isinstance(value, Lazy | DeferredField) else np.shape(value)
@@ -202,7 +188,7 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
     for index, layer in enumerate(layers):
         for f in _deferred_in(layer.alpha):
             f.full()
-        for value in _gated_values(layer):
+        for value in layer.blended_values():
             found = _deferred_in(value)
             if found and channel_bounds(value, memo) is None:
                 for f in found:
@@ -236,7 +222,6 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
             share = float(np.count_nonzero(need)) / max(need.size, 1)
             dense = share > (FULL_SHARE if f.full_share is None else f.full_share)
             f.array = f.compute(None if dense else need)
-            f.computed_share = 1.0 if dense else share
             stats.deferred_texels += need.size
             stats.computed_texels += need.size if dense else int(share * need.size)
     for f in fields.values():

@@ -496,7 +496,7 @@ def composite_program(
         try:
             prog = compile_layers(layers, shape)
         except UnsupportedProgram:
-            layers = [_materialised(layer, ev) for layer in layers]
+            layers = [_map_layer(ev.concrete, layer) for layer in layers]
             band["height"][...] = -np.inf  # the numpy compositing's max accumulator
             with np.errstate(all="ignore"):
                 C._composite_band(layers, band, slice(0, shape[0]))
@@ -513,19 +513,6 @@ def composite_program(
     with np.errstate(all="ignore"):
         _recomposite(maps, flagged)
     return maps
-
-
-def _materialised(layer: C.RawLayer, ev: LazyEvaluator) -> C.RawLayer:
-    """A copy of ``layer`` with every Lazy channel value computed with numpy."""
-    m = ev.concrete
-    return C.RawLayer(
-        m(layer.alpha),
-        tuple(m(v) for v in layer.basecolor),  # type: ignore[arg-type]
-        *(m(getattr(layer, n)) for n in SCALAR_CHANNELS),
-        m(layer.ior),
-        tuple(m(v) for v in layer.emissive),
-        m(layer.height),
-    )  # type: ignore[arg-type]
 
 
 def evaluate_fused(

@@ -42,6 +42,11 @@ class Lazy:
     shape: tuple[int, ...]
 
 
+#: Value of a deferred fBm field where no layer needs it (inside both fBm ranges, [0, 1] and
+#: [-1, 1]; see :mod:`matloom.engine.cull`).
+PLACEHOLDER = 0.0
+
+
 @dataclass(eq=False)
 class DeferredField:
     """An fBm field (see :mod:`matloom.engine.cull`) of one band whose evaluation waits for the coverage masks.
@@ -57,7 +62,6 @@ class DeferredField:
     finite_coords: bool
     dtype: np.dtype = field(default_factory=lambda: np.dtype(np.float64))
     array: np.ndarray | None = None
-    computed_share: float = 1.0
     #: Needed share above which the field is computed everywhere (None: ``cull.FULL_SHARE``).
     full_share: float | None = None
 
@@ -164,6 +168,25 @@ def finite_noise_coords(x: Any, y: Any, kw: dict[str, Any]) -> bool:
     return math.isfinite(extent) and extent * top < 1e300
 
 
+def defer_fbm(
+    compute: Callable[[np.ndarray | None], np.ndarray],
+    x: Any,
+    y: Any,
+    kw: dict[str, Any],
+    seeds: int | None = None,
+    full_share: float | None = None,
+) -> DeferredField:
+    """A :class:`DeferredField` for the fBm with kernel keywords ``kw`` on coordinates x, y
+    (``seeds``: the leading seed axis of a seed batch): its shape, clamped range and whether
+    its coordinates allow culling."""
+    shape = np.broadcast_shapes(np.shape(x), np.shape(y))
+    if seeds is not None:
+        shape = (seeds, *shape)
+    low = 0.0 if kw["to_01"] else -1.0
+    finite = finite_noise_coords(x, y, kw)
+    return DeferredField(compute, shape, low, 1.0, finite, full_share=full_share)
+
+
 class LazyEvaluator(Evaluator):
     """An :class:`Evaluator` that defers element-wise arithmetic (see the module docstring)."""
 
@@ -191,15 +214,9 @@ class LazyEvaluator(Evaluator):
         def compute(mask: np.ndarray | None) -> np.ndarray:
             if mask is None:
                 return dense(x, y, **kw)
-            return masked(x, y, mask, fill=0.0, **kw)
+            return masked(x, y, mask, fill=PLACEHOLDER, **kw)
 
-        return DeferredField(
-            compute,
-            np.broadcast_shapes(np.shape(x), np.shape(y)),
-            0.0 if kw["to_01"] else -1.0,
-            1.0,
-            finite_noise_coords(x, y, kw),
-        )
+        return defer_fbm(compute, x, y, kw)
 
     def eval(self, node: A.Node, c: Coords) -> Field:
         if isinstance(node, A.Neg):

@@ -19,7 +19,6 @@ from typing import Any
 import numpy as np
 
 from matloom.engine.lazy import DeferredField, Lazy, is_scalar
-from matloom.engine.maps import SCALAR_CHANNELS
 
 #: Compiled programs kept (least recently used dropped first).
 MAX_PLANS = 32
@@ -27,14 +26,7 @@ MAX_PLANS = 32
 
 def _layer_values(layer: Any) -> list[Any]:
     """Every channel value of a layer in a fixed order."""
-    return [
-        layer.alpha,
-        layer.height,
-        *layer.emissive,
-        *(getattr(layer, name) for name in SCALAR_CHANNELS),
-        layer.ior,
-        *layer.basecolor,
-    ]
+    return [layer.alpha, layer.height, *layer.blended_values()]
 
 
 def signature(layers: list[Any], shape: tuple[int, ...]) -> tuple[Hashable, list[Any]]:

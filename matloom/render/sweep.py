@@ -121,7 +121,7 @@ def _sweep_evaluator_class() -> type:
             return self.persistent[key]
 
         def noise(self, call: A.Call, c: Any) -> Any:
-            from matloom.engine.lazy import DeferredField, finite_noise_coords
+            from matloom.engine.lazy import defer_fbm
 
             kw = self.noise_args(call)
             seed = kw.pop("seed")
@@ -136,11 +136,8 @@ def _sweep_evaluator_class() -> type:
             def compute(mask: np.ndarray | None) -> np.ndarray:
                 return batch(c[0], c[1], mask=mask, **kw)
 
-            shape = (len(kw["seeds"]), *np.broadcast_shapes(np.shape(c[0]), np.shape(c[1])))
-            low = 0.0 if kw["to_01"] else -1.0
             # the batch kernel skips a masked pixel at no cost: mask unless every pixel is needed
-            finite = finite_noise_coords(c[0], c[1], kw)
-            return DeferredField(compute, shape, low, 1.0, finite, full_share=1.0)
+            return defer_fbm(compute, c[0], c[1], kw, seeds=len(kw["seeds"]), full_share=1.0)
 
     return SweepEvaluator
 

@@ -17,8 +17,6 @@ from __future__ import annotations
 
 import functools
 import os
-import threading
-from collections.abc import Callable
 from types import ModuleType
 
 import numpy as np
@@ -30,6 +28,7 @@ from matloom.engine.kernels.opensimplex import (
     octave_schedule,
     perm_from_seed,
 )
+from matloom.engine.kernels.threads import run_split
 
 _cnoise: ModuleType | None
 try:
@@ -41,29 +40,6 @@ __all__ = ["fbm", "available"]
 
 #: Texels per thread below which the kernel runs on the calling thread only.
 MIN_TEXELS_PER_THREAD = 32768
-
-
-def _in_parallel(parts: int, work: Callable[[int, int], None], total: int) -> None:
-    """Run ``work(start, stop)`` on ``parts`` contiguous slices of ``range(total)``, each but the
-    first on its own thread (the kernels release the GIL; plain threads: no executor import
-    on the cold-start path)."""
-    bounds = [total * k // parts for k in range(parts + 1)]
-    errors: list[BaseException] = []
-
-    def run(k: int) -> None:
-        try:
-            work(bounds[k], bounds[k + 1])
-        except BaseException as exc:  # re-raised on the calling thread
-            errors.append(exc)
-
-    threads = [threading.Thread(target=run, args=(k,)) for k in range(1, parts)]
-    for thread in threads:
-        thread.start()
-    run(0)
-    for thread in threads:
-        thread.join()
-    if errors:
-        raise errors[0]
 
 
 def _threads(texels: int, rows: int) -> int:
@@ -133,7 +109,7 @@ def fbm(
             args = (amps, perm, cast_values, sched.norm, bool(to_01))
             _cnoise.fbm_separable(out[start:stop], xs, part_ys, *args)  # type: ignore[union-attr]
 
-        _in_parallel(_threads(out.size, out.shape[0]), rows, out.shape[0])
+        run_split(_threads(out.size, out.shape[0]), rows, out.shape[0])
         return out.reshape(lay.shape)
     with np.errstate(over="ignore"):  # numpy's own scalar conversion overflows the same way
         fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
@@ -145,5 +121,5 @@ def fbm(
         args = (fxs, fys, amps, perm, cast_values, sched.norm, bool(to_01))
         _cnoise.fbm_grid(flat[start:stop], xg[start:stop], yg[start:stop], *args)  # type: ignore[union-attr]
 
-    _in_parallel(_threads(flat.size, flat.size), span, flat.size)
+    run_split(_threads(flat.size, flat.size), span, flat.size)
     return flat.reshape(lay.shape)

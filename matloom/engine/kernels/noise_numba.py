@@ -13,6 +13,8 @@ sweeps in ``noise_numba_batch``.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numba import prange
 
@@ -330,70 +332,46 @@ def fbm(
     freq_y: float,
     to_01: bool,
     seed: int,
-) -> np.ndarray:
-    """fBm of OpenSimplex noise on the broadcast of x and y (float64); see ``noise_numpy.fbm``."""
-    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
-    table = gradient_table(int(seed))
-    amps = np.array(sched.amps, dtype=np.float64)
-    lay = coord_layout(x, y)
-    if lay.separable:
-        xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
-        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
-        _fbm_separable_kernel(xs, ys, amps, sched.norm, bool(to_01), table, out)
-        return out.reshape(lay.shape)
-    fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
-    fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
-    flat = np.empty(lay.x_grid.size, dtype=np.float64)
-    _fbm_grid_kernel(lay.x_grid, lay.y_grid, fxs, fys, amps, sched.norm, bool(to_01), table, flat)
-    return flat.reshape(lay.shape)
-
-
-def fbm_masked(
-    x: np.ndarray,
-    y: np.ndarray,
-    mask: np.ndarray,
-    *,
+    mask: np.ndarray | None = None,
     fill: float = 0.0,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
 ) -> np.ndarray:
-    """:func:`fbm` at the texels where the boolean ``mask`` (the broadcast shape of x and y) is
-    set, ``fill`` elsewhere. Computed texels are bit-identical to :func:`fbm`'s."""
+    """fBm of OpenSimplex noise on the broadcast of x and y (float64); see ``noise_numpy.fbm``.
+
+    With a boolean ``mask`` (the broadcast shape of x and y) only the texels where it is set are
+    computed (bit-identical to the unmasked values); the others hold ``fill``.
+    """
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     table = gradient_table(int(seed))
     amps = np.array(sched.amps, dtype=np.float64)
+    common = (amps, sched.norm, bool(to_01), table)
     lay = coord_layout(x, y)
-    flat_mask = np.ascontiguousarray(np.broadcast_to(mask, lay.shape), dtype=np.bool_)
+    where = None
+    if mask is not None:
+        where = np.ascontiguousarray(np.broadcast_to(mask, lay.shape), dtype=np.bool_)
     if lay.separable:
         xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
-        rows_mask = flat_mask.reshape(out.shape)
-        _fbm_separable_masked_kernel(
-            xs, ys, amps, sched.norm, bool(to_01), table, rows_mask, float(fill), out
-        )
+        if where is None:
+            _fbm_separable_kernel(xs, ys, *common, out)
+        else:
+            _fbm_separable_masked_kernel(
+                xs, ys, *common, where.reshape(out.shape), float(fill), out
+            )
         return out.reshape(lay.shape)
     fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
     fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
     flat = np.empty(lay.x_grid.size, dtype=np.float64)
-    _fbm_grid_masked_kernel(
-        lay.x_grid,
-        lay.y_grid,
-        fxs,
-        fys,
-        amps,
-        sched.norm,
-        bool(to_01),
-        table,
-        flat_mask.reshape(-1),
-        float(fill),
-        flat,
-    )
+    grids = (lay.x_grid, lay.y_grid, fxs, fys)
+    if where is None:
+        _fbm_grid_kernel(*grids, *common, flat)
+    else:
+        _fbm_grid_masked_kernel(*grids, *common, where.reshape(-1), float(fill), flat)
     return flat.reshape(lay.shape)
+
+
+def fbm_masked(x: np.ndarray, y: np.ndarray, mask: np.ndarray, **kw: Any) -> np.ndarray:
+    """:func:`fbm` with a mask (the backend's ``fbm_masked`` entry point)."""
+    return fbm(x, y, mask=mask, **kw)
 
 
 def warm_up(*, include_batch: bool = False) -> None:

@@ -1,44 +1,47 @@
-"""A small process-wide thread pool for ``nogil`` numba kernels that take tuples of arrays.
+"""Splitting work over threads for kernels that release the GIL (``nogil`` numba, ``_cnoise``).
 
 numba's ``prange`` cannot pass tuples of arrays into its parallel region, so such kernels are
 serial and release the GIL; :func:`parallel_rows` runs them on row ranges from several threads.
 The thread count follows ``numba.get_num_threads()`` (``NUMBA_NUM_THREADS``), so
-``numba.set_num_threads(1)`` also makes these kernels serial.
+``numba.set_num_threads(1)`` also makes these kernels serial. :func:`run_split` is the runner
+underneath, also used by the C fBm; importing this module imports neither numba nor an
+executor (cold-start path).
 """
 
 from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-
-import numba
 
 #: Below this many texels per thread the work runs on the calling thread only.
 MIN_TEXELS_PER_THREAD = 16384
 
-_POOL: list[ThreadPoolExecutor] = []
-_LOCK = threading.Lock()
 
+def run_split(parts: int, work: Callable[[int, int], None], total: int) -> None:
+    """Run ``work(start, stop)`` on ``parts`` contiguous slices of ``range(total)``, each but
+    the first on its own thread; the first error is re-raised on the calling thread."""
+    bounds = [total * k // parts for k in range(parts + 1)]
+    errors: list[BaseException] = []
 
-def _pool(workers: int) -> ThreadPoolExecutor:
-    with _LOCK:
-        if not _POOL or _POOL[0]._max_workers < workers:  # noqa: SLF001 - size check only
-            if _POOL:
-                _POOL.pop().shutdown(wait=False)
-            _POOL.append(ThreadPoolExecutor(workers, thread_name_prefix="matloom-rows"))
-        return _POOL[0]
+    def run(k: int) -> None:
+        try:
+            work(bounds[k], bounds[k + 1])
+        except BaseException as exc:  # re-raised on the calling thread
+            errors.append(exc)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(1, parts)]
+    for thread in threads:
+        thread.start()
+    run(0)
+    for thread in threads:
+        thread.join()
+    if errors:
+        raise errors[0]
 
 
 def parallel_rows(rows: int, width: int, work: Callable[[int, int], None]) -> None:
     """Call ``work(first, last)`` on disjoint row ranges covering ``range(rows)``, in parallel."""
+    import numba
+
     threads = min(numba.get_num_threads(), max(1, rows * width // MIN_TEXELS_PER_THREAD), rows)
-    if threads <= 1:
-        work(0, rows)
-        return
-    bounds = [rows * k // threads for k in range(threads + 1)]
-    pool = _pool(threads - 1)
-    futures = [pool.submit(work, bounds[k], bounds[k + 1]) for k in range(1, threads)]
-    work(bounds[0], bounds[1])
-    for future in futures:
-        future.result()
+    run_split(max(threads, 1), work, rows)
