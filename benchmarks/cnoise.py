@@ -20,38 +20,16 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.noise import TILE_FIELDS, best_ms, view_axes  # noqa: E402
 from matloom.engine.kernels import noise_c, noise_numpy  # noqa: E402
 
-#: (octaves, base_freq) of glazeRipple, glazeGrain, groutNoise in tests/data/parity/tile.mat.
-TILE_FIELDS = [(3, 7.0), (5, 35.0), (4, 30.0)]
 TILE_PROGRAM = ROOT / "tests" / "data" / "parity" / "tile.mat"
-
-
-def view_axes(size: int, x1: float, y1: float, x2: float, y2: float) -> tuple[np.ndarray, ...]:
-    """Reference-style float32 pixel-centre axes for a View: x (1, W), y (H, 1), row 0 on top."""
-    idx = np.arange(size, dtype=np.float32) + np.float32(0.5)
-    x = idx * np.float32((x2 - x1) / size) + np.float32(x1)
-    y = idx * np.float32((y1 - y2) / size) + np.float32(y2)
-    return x[None, :], y[:, None]
-
-
-def best_ms(fn: Callable[[], Any], repeat: int) -> tuple[float, float]:
-    """(best wall ms, best process-CPU ms) over ``repeat`` runs after one warm-up run."""
-    fn()
-    walls, cpus = [], []
-    for _ in range(repeat):
-        w0, c0 = time.perf_counter(), time.process_time()
-        fn()
-        walls.append(time.perf_counter() - w0)
-        cpus.append(time.process_time() - c0)
-    return min(walls) * 1e3, min(cpus) * 1e3
 
 
 def tile_fields(fbm: Callable[..., np.ndarray], x: np.ndarray, y: np.ndarray) -> None:

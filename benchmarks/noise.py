@@ -26,7 +26,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from matloom.engine.grid import sample_axes  # noqa: E402
 from matloom.engine.kernels import noise_numpy  # noqa: E402
+from matloom.engine.maps import View  # noqa: E402
 
 FBM_KW: dict[str, Any] = dict(
     octaves=4, lacunarity=2.0, gain=0.5, freq_x=8.0, freq_y=8.0, to_01=False, seed=3
@@ -39,11 +41,8 @@ TILE_FIELDS = [(3, 7.0), (5, 35.0), (4, 30.0)]
 
 
 def view_axes(size: int, x1: float, y1: float, x2: float, y2: float) -> tuple[np.ndarray, ...]:
-    """Reference-style float32 pixel-centre axes for a View: x (1, W), y (H, 1), row 0 on top."""
-    idx = np.arange(size, dtype=np.float32) + np.float32(0.5)
-    x = idx * np.float32((x2 - x1) / size) + np.float32(x1)
-    y = idx * np.float32((y1 - y2) / size) + np.float32(y2)
-    return x[None, :], y[:, None]
+    """The engine's float32 pixel-centre axes for a View: x (1, W), y (H, 1), row 0 on top."""
+    return sample_axes(View(x1, y1, x2, y2), size, size)
 
 
 def best_ms(fn: Callable[[], Any], repeat: int) -> tuple[float, float]:

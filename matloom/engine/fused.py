@@ -492,11 +492,11 @@ def composite_program(
             culled = resolve(layers, shape, materialise)  # no cache: alphas freed after
         stats.noise_texels += culled.deferred_texels
         stats.noise_texels_computed += culled.computed_texels
-        band = {name: array[rows] for name, array in maps.items()}
         try:
             prog = compile_layers(layers, shape)
         except UnsupportedProgram:
             layers = [_map_layer(ev.concrete, layer) for layer in layers]
+            band = {name: array[rows] for name, array in maps.items()}
             band["height"][...] = -np.inf  # the numpy compositing's max accumulator
             with np.errstate(all="ignore"):
                 C._composite_band(layers, band, slice(0, shape[0]))
