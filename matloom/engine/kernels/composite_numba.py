@@ -165,6 +165,25 @@ def _add_scalar(acc, w, src, mode, ior):  # type: ignore[no-untyped-def]
 
 
 @_jit()
+def _linear_colour(src, strength, mode, emissive, luts, margin, lin, scaled):  # type: ignore[no-untyped-def]
+    """The linear values of a RAW or DECODED colour row (emissive: x max(strength, 0)): ``src``
+    itself, ``lin`` or ``scaled`` (``scaled`` is also the exact decode's scratch)."""
+    values = src
+    if mode == RAW and margin < 0.0:
+        decode_row_fast(src, luts[1], lin)
+        values = lin
+    elif mode == RAW:
+        decode_row(src, luts[0], lin, scaled)
+        values = lin
+    if emissive:
+        for j in range(src.size):
+            s = strength[j]
+            scaled[j] = values[j] * (0.0 if s < 0.0 else s)
+        values = scaled
+    return values
+
+
+@_jit()
 def _add_colour(acc, w, src, strength, mode, emissive, luts, margin, flags, lin):  # type: ignore[no-untyped-def]
     """acc += w * linear colour (emissive: colour x max(strength, 0)); flags uncertain texels."""
     n = acc.size
@@ -172,22 +191,10 @@ def _add_colour(acc, w, src, strength, mode, emissive, luts, margin, flags, lin)
         for j in range(n):
             acc[j] += w[j] * np.float32(src[j])
         return
-    values = src
-    if mode == RAW and margin < 0.0:
-        decode_row_fast(src, luts[1], lin[0])
-        values = lin[0]
-    elif mode == RAW:
-        decode_row(src, luts[0], lin[0], lin[1])
-        values = lin[0]
-    check = (mode == RAW or not emissive) and margin > 0.0
-    if emissive:
-        for j in range(n):
-            s = strength[j]
-            lin[1, j] = values[j] * (0.0 if s < 0.0 else s)
-        values = lin[1]
+    values = _linear_colour(src, strength, mode, emissive, luts, margin, lin[0], lin[1])
     for j in range(n):
         acc[j] += w[j] * np.float32(values[j])
-    if check:  # branch-free so that the loop vectorises (flags are rare)
+    if (mode == RAW or not emissive) and margin > 0.0:  # branch-free: the loop vectorises
         for j in range(n):
             flags[j] |= np.uint8(_uncertain(values[j], margin))
 
@@ -222,28 +229,20 @@ def _all_finite(values, nan_only):  # type: ignore[no-untyped-def]
 
 @_jit()
 def _add_colour_visible(acc, w, src, strength, mode, emissive, luts, margin, flags, idx, m, work):  # type: ignore[no-untyped-def]
-    """:func:`_add_colour` on the texels ``idx[:m]`` only. Exact when every other texel has
-    w == +0 and a finite colour (the caller checks): their term ``0 * colour`` is +0."""
-    gathered, lin, scaled = work[0, :m], work[1, :m], work[2, :m]
+    """:func:`_add_colour` (RAW or DECODED rows) on the texels ``idx[:m]`` only. Exact when
+    every other texel has w == +0 and a finite colour (the caller checks): ``0 * colour`` is
+    +0 there. ``work`` (4, W) scratch."""
+    gathered, lin, scaled, gathered_strength = work[0, :m], work[1, :m], work[2, :m], work[3, :m]
     for q in range(m):
         gathered[q] = src[idx[q]]
-    values = gathered
-    if mode == RAW and margin < 0.0:
-        decode_row_fast(gathered, luts[1], lin)
-        values = lin
-    elif mode == RAW:
-        decode_row(gathered, luts[0], lin, scaled)
-        values = lin
-    check = (mode == RAW or not emissive) and margin > 0.0
     if emissive:
         for q in range(m):
-            s = strength[idx[q]]
-            scaled[q] = values[q] * (0.0 if s < 0.0 else s)
-        values = scaled
+            gathered_strength[q] = strength[idx[q]]
+    values = _linear_colour(gathered, gathered_strength, mode, emissive, luts, margin, lin, scaled)
     for q in range(m):
         j = idx[q]
         acc[j] += w[j] * np.float32(values[q])
-    if check:
+    if (mode == RAW or not emissive) and margin > 0.0:
         for q in range(m):
             flags[idx[q]] |= np.uint8(_uncertain(values[q], margin))
 
@@ -274,13 +273,13 @@ def _accumulate(
         w = weights[layer]
         skip_zero = not weight_nan[layer]
         m = _visible_index(w, idx)
-        strength_finite = m >= 0 and _all_finite(regs[chan_reg[layer, CH_STRENGTH]], False)
+        strength = regs[chan_reg[layer, CH_STRENGTH]]
+        strength_finite = m >= 0 and _all_finite(strength, False)
         for c in range(8):
             ch = CH_SCALARS + c if c < 7 else CH_IOR
             if not (chan_mode[layer, ch] == ZERO and skip_zero):
                 touched[1 + c] = True
                 _add_scalar(acc[1 + c], w, regs[chan_reg[layer, ch]], chan_mode[layer, ch], c == 7)
-        strength = regs[chan_reg[layer, CH_STRENGTH]]
         for k in range(6):
             ch = CH_BASECOLOR + k if k < 3 else CH_EMISSIVE + k - 3
             mode = chan_mode[layer, ch]
@@ -312,7 +311,7 @@ def _accumulate(
                 _add_colour(
                     acc[10 + k],
                     w,
-                    regs[chan_reg[layer, ch]],
+                    src,
                     strength,
                     mode,
                     k >= 3,
@@ -417,7 +416,7 @@ def composite_rows(
     touched = np.zeros(16, np.bool_)
     lin = np.empty((2, width))
     idx = np.empty(width, np.int64)
-    work = np.empty((3, width))
+    work = np.empty((4, width))
     for i in range(first, last):
         load_leaves(loads, regs, leaves64, leaves32, cand, i)
         run_code(code, consts, regs)
