@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.lazy import DeferredField, Lazy
+from matloom.engine.lazy import DeferredField, Lazy, shape_of
 
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
@@ -141,11 +141,6 @@ def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     return result
 
 
-def _shape(value: Any) -> tuple[int, ...]:
-    """Shape of a channel value without computing it."""
-    return value.shape if isinstance(value, Lazy | DeferredField) else np.shape(value)
-
-
 def _deferred_in(value: Any) -> list[DeferredField]:
     return [v for v in leaves(value) if isinstance(v, DeferredField) and v.array is None]
 
@@ -201,7 +196,7 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
             fields[id(f)] = f
             height_of.setdefault(id(f), []).append(index)
     pending = [f for f in fields.values() if f.array is None]
-    if any(len(_shape(layer.alpha)) > len(shape) for layer in layers):
+    if any(len(shape_of(layer.alpha)) > len(shape) for layer in layers):
         pending = []  # coverage differs per seed (sweeps): not worth a mask per candidate
     if pending:
         visible, covers = _visibility_masks(

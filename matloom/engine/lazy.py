@@ -137,6 +137,11 @@ def gather(
     return out
 
 
+def shape_of(value: Any) -> tuple[int, ...]:
+    """Shape of a field value (array, scalar, Lazy or deferred) without computing it."""
+    return value.shape if isinstance(value, Lazy | DeferredField) else np.shape(value)
+
+
 def _dtype(value: Any) -> np.dtype:
     return value.dtype if isinstance(value, Lazy | DeferredField) else np.asarray(value).dtype
 
@@ -153,9 +158,7 @@ def make_lazy(op: str, *args: Any) -> Lazy:
     """A :class:`Lazy` with numpy's result dtype and broadcast shape for ``args``."""
     dtypes = {_dtype(a) for a in args}
     dtype = np.dtype(np.float32) if dtypes == {np.dtype(np.float32)} else np.dtype(np.float64)
-    shape = np.broadcast_shapes(
-        *(a.shape if isinstance(a, Lazy | DeferredField) else np.shape(a) for a in args)
-    )
+    shape = np.broadcast_shapes(*(shape_of(a) for a in args))
     return Lazy(op, args, dtype, shape)
 
 

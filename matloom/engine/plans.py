@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.lazy import DeferredField, Lazy, is_scalar
+from matloom.engine.lazy import Lazy, is_scalar
 
 #: Compiled programs kept (least recently used dropped first).
 MAX_PLANS = 32
@@ -50,9 +50,9 @@ def signature(layers: list[Any], shape: tuple[int, ...]) -> tuple[Hashable, list
             else:
                 children = tuple(token(a) for a in value.args)
             return ("L", value.op, value.dtype.str, value.shape, children)
-        array = np.asarray(value) if isinstance(value, DeferredField) else value
+        array = np.asarray(value)  # a deferred field is resolved by now
         leaves.append(value)
-        return ("A", np.asarray(array).dtype.str, np.shape(array))
+        return ("A", array.dtype.str, array.shape)
 
     key = (tuple(shape), tuple(tuple(token(v) for v in _layer_values(ly)) for ly in layers))
     keep.clear()
