@@ -164,7 +164,7 @@ def _add_scalar(acc, w, src, mode, ior):  # type: ignore[no-untyped-def]
             acc[j] += w[j] * _clip01_f32(src[j])
 
 
-@_jit()
+@_jit(inline=True)
 def _linear_colour(src, strength, mode, emissive, luts, margin, lin, scaled):  # type: ignore[no-untyped-def]
     """The linear values of a RAW or DECODED colour row (emissive: x max(strength, 0)): ``src``
     itself, ``lin`` or ``scaled`` (``scaled`` is also the exact decode's scratch)."""
