@@ -26,6 +26,14 @@ COMMANDS: dict[str, str] = {
 
 
 class LazyGroup(click.Group):
+    def invoke(self, ctx: click.Context) -> object:
+        from matloom.io.outdir import OutputError
+
+        try:
+            return super().invoke(ctx)
+        except OutputError as err:  # an unsafe or failed write: one line, nothing lost
+            raise click.ClickException(str(err)) from None
+
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(n for n in COMMANDS if self._load(n) is not None)
 

@@ -2,9 +2,8 @@
 
 * :func:`atomic_write_bytes` / :func:`atomic_write_with` write to a temporary sibling file and
   ``os.replace`` it onto the target, so readers see either the old file or the whole new one.
-* :func:`atomic_directory` yields a temporary sibling directory; only when the ``with`` body
-  finishes without an exception is it renamed onto the final path. On an exception the
-  temporary directory is removed and any previous final directory is left untouched.
+* Whole output folders are staged and installed by :mod:`matloom.io.outdir`, which never
+  replaces a folder as a whole (that would delete files MatLoom did not write).
 
 Temporary names start with a dot and contain ``.tmp-`` so they are easy to recognise and clean
 up; they are created with the process umask (not the 0600/0700 of ``tempfile``), so the
@@ -16,8 +15,7 @@ from __future__ import annotations
 import os
 import shutil
 import uuid
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from pathlib import Path
 
 
@@ -67,43 +65,27 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
     return atomic_write_with(path, write)
 
 
-def _install_directory(temp: Path, final: Path) -> None:
-    """Rename ``temp`` onto ``final``, replacing an existing directory there.
+def rewrite_file(path: str | os.PathLike[str], data: bytes) -> Path:
+    """Replace the contents of an existing file atomically, keeping what makes it the same file.
 
-    An existing ``final`` is first renamed to a hidden backup, then ``temp`` takes its place,
-    then the backup is deleted; if the second rename fails the backup is put back. (POSIX has
-    no portable atomic directory swap, so ``final`` is briefly absent, never half-written.)
+    A symlink stays a symlink (its target is rewritten); the target's permission bits and,
+    where allowed, owner and group are kept.
     """
-    if final.is_symlink() or (final.exists() and not final.is_dir()):
-        raise FileExistsError(f"{final} exists and is not a directory; refusing to replace it")
-    if not final.exists():
-        os.rename(temp, final)
-        return
-    backup = _sibling_name(final, "old")
-    os.rename(final, backup)
-    try:
-        os.rename(temp, final)
-    except BaseException:
-        os.rename(backup, final)
-        raise
-    shutil.rmtree(backup, ignore_errors=True)
+    import stat as stat_module
 
+    target = Path(os.path.realpath(path))
+    before = target.stat()
 
-@contextmanager
-def atomic_directory(final_dir: str | os.PathLike[str]) -> Iterator[Path]:
-    """Yield a temporary sibling directory that becomes ``final_dir`` only on success.
+    def write(temp: Path) -> None:
+        descriptor = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        with os.fdopen(descriptor, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fchmod(handle.fileno(), stat_module.S_IMODE(before.st_mode))
+            try:
+                os.fchown(handle.fileno(), before.st_uid, before.st_gid)
+            except PermissionError:
+                pass
+            os.fsync(handle.fileno())
 
-    Parent folders are created. If ``final_dir`` already exists as a directory it is replaced
-    as a whole after the body succeeds. If the body (or the install) raises, the temporary
-    directory is deleted and a previous ``final_dir`` is left exactly as it was.
-    """
-    final = Path(final_dir).absolute()
-    final.parent.mkdir(parents=True, exist_ok=True)
-    temp = _sibling_name(final, "tmp")
-    os.mkdir(temp, 0o777)
-    try:
-        yield temp
-        _install_directory(temp, final)
-    except BaseException:
-        _remove_quietly(temp)
-        raise
+    return atomic_write_with(target, write)

@@ -11,9 +11,10 @@ The 13 maps (in this order, see :data:`MAP_NAMES`) and their files:
 
 With ``float_format="png16"`` the height is also written as ``height16.png`` (16-bit grey,
 normalised to its finite min/max, which ``material.json`` records). A ``material.json``
-manifest describes every file. The folder is built in a temporary sibling and renamed into
-place only when everything was written (:func:`matloom.io.atomic.atomic_directory`), so a
-failing export never leaves a complete-looking folder and never damages a previous one.
+manifest describes every file and lists each with its SHA-256. The files are staged and
+installed through :class:`matloom.io.outdir.OutputFolder`, so a failing export never leaves a
+complete-looking folder, never damages a previous one and never touches a file MatLoom did not
+write.
 
 Non-finite values never crash the export: in 8-bit maps NaN becomes 0 and +-inf clips, EXR
 keeps them, and the counts per map are returned and recorded.
@@ -35,7 +36,7 @@ from matloom.engine.colour import linear_to_srgb
 from matloom.engine.maps import MaterialMaps
 from matloom.io import exr as exr_io
 from matloom.io import png as png_io
-from matloom.io.atomic import atomic_directory, atomic_write_bytes
+from matloom.io.atomic import atomic_write_bytes
 
 #: Values accepted by ``export_maps(float_format=...)``.
 FLOAT_FORMATS: tuple[str, ...] = ("exr", "png16")
@@ -131,6 +132,18 @@ def select_maps(names: Sequence[str] | None) -> tuple[MapSpec, ...]:
         raise ValueError(f"unknown map name(s) {unknown}; valid names: {', '.join(MAP_NAMES)}")
     wanted = set(names)
     return tuple(spec for spec in MAP_SPECS if spec.name in wanted)
+
+
+def planned_files(
+    maps_subset: Sequence[str] | None, float_format: str, preview: bool = False
+) -> list[str]:
+    """The file names a render with these options writes (to check the folder up front)."""
+    names = [spec.file_name for spec in select_maps(maps_subset)] + [MANIFEST_NAME, "material.mat"]
+    if float_format == "png16" and (maps_subset is None or "height" in maps_subset):
+        names.append(HEIGHT_PNG16_NAME)
+    if preview:
+        names.append("preview.png")
+    return names
 
 
 @dataclass
@@ -290,6 +303,68 @@ def _json_safe(value: Any) -> Any:
 # Entry point
 
 
+def write_maps(
+    maps: MaterialMaps,
+    folder: Path,
+    *,
+    final_dir: Path | None = None,
+    float_format: str = "exr",
+    maps_subset: Sequence[str] | None = None,
+    program_text: str | None = None,
+    engine_version: str | None = None,
+    extra_meta: dict[str, Any] | None = None,
+) -> ExportResult:
+    """Encode the maps into ``folder`` (a staging folder) and build the manifest.
+
+    The manifest is returned, not written: other files may join the folder before
+    :func:`write_manifest` lists them all. ``final_dir`` is where the files will be installed
+    (the paths in the result point there).
+    """
+    if float_format not in FLOAT_FORMATS:
+        raise ValueError(f"float_format must be one of {FLOAT_FORMATS}, got {float_format!r}")
+    selected = select_maps(maps_subset)
+    version = engine_version if engine_version is not None else _default_engine_version()
+    final = folder if final_dir is None else final_dir
+    entries: dict[str, dict[str, Any]] = {}
+    files: dict[str, Path] = {}
+    for spec in selected:
+        written = _write_map(maps, spec, folder)
+        files[spec.name] = final / written.name
+        entries[spec.name] = {**spec.describe(), **_map_stats(maps, spec)}
+    manifest = _manifest(maps, selected, entries, program_text, version)
+    if float_format == "png16" and "height" in entries:
+        manifest["height_png16"] = _write_height_png16(maps.height, folder)
+        files["height16"] = final / HEIGHT_PNG16_NAME
+    if extra_meta:
+        manifest["extra"] = dict(extra_meta)
+    manifest = _json_safe(manifest)
+    files["manifest"] = final / MANIFEST_NAME
+    return ExportResult(
+        out_dir=final,
+        files=files,
+        manifest=manifest,
+        nonfinite_counts=dict(manifest["nonfinite_values"]),
+    )
+
+
+def write_manifest(result: ExportResult, folder: Path) -> None:
+    """Write ``material.json`` into ``folder``, listing every file there with its SHA-256.
+
+    The list is what this render wrote; a reader can check that a folder is complete and
+    unmixed by comparing it with the files.
+    """
+    from matloom.io.outdir import STAGING_MARKER, file_sha256
+
+    listed = {
+        p.relative_to(folder).as_posix(): file_sha256(p)
+        for p in sorted(folder.rglob("*"))
+        if p.is_file() and p.name not in (STAGING_MARKER, MANIFEST_NAME)
+    }
+    result.manifest["files"] = listed
+    text = json.dumps(result.manifest, indent=2, allow_nan=False, default=str) + "\n"
+    atomic_write_bytes(folder / MANIFEST_NAME, text.encode("utf-8"))
+
+
 def export_maps(
     maps: MaterialMaps,
     out_dir: str | os.PathLike[str],
@@ -300,38 +375,31 @@ def export_maps(
     engine_version: str | None = None,
     extra_meta: dict[str, Any] | None = None,
 ) -> ExportResult:
-    """Write ``maps`` into the folder ``out_dir`` (replacing it as a whole on success).
+    """Write ``maps`` into the folder ``out_dir`` through a staged, locked install.
 
     ``float_format``: "exr" (default) or "png16" (adds height16.png; ior/emissive stay EXR).
     ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all 13, in that order);
     an unknown name raises ValueError before anything is written. ``program_text`` is hashed
     (SHA-256) into the manifest; ``extra_meta`` is stored under the manifest key "extra".
+    MatLoom's files from a previous export into ``out_dir`` are replaced; any other file there
+    is left alone, and one that would be overwritten raises
+    :class:`matloom.io.outdir.OutputError` before anything changes.
     """
-    if float_format not in FLOAT_FORMATS:
+    from matloom.io.outdir import output_folder
+
+    if float_format not in FLOAT_FORMATS:  # bad arguments fail before the folder is touched
         raise ValueError(f"float_format must be one of {FLOAT_FORMATS}, got {float_format!r}")
-    selected = select_maps(maps_subset)
-    version = engine_version if engine_version is not None else _default_engine_version()
-    final_dir = Path(out_dir).absolute()
-    entries: dict[str, dict[str, Any]] = {}
-    files: dict[str, Path] = {}
-    with atomic_directory(final_dir) as staging:
-        for spec in selected:
-            written = _write_map(maps, spec, staging)
-            files[spec.name] = final_dir / written.name
-            entries[spec.name] = {**spec.describe(), **_map_stats(maps, spec)}
-        manifest = _manifest(maps, selected, entries, program_text, version)
-        if float_format == "png16" and "height" in entries:
-            manifest["height_png16"] = _write_height_png16(maps.height, staging)
-            files["height16"] = final_dir / HEIGHT_PNG16_NAME
-        if extra_meta:
-            manifest["extra"] = dict(extra_meta)
-        manifest = _json_safe(manifest)
-        text = json.dumps(manifest, indent=2, allow_nan=False, default=str) + "\n"
-        atomic_write_bytes(staging / MANIFEST_NAME, text.encode("utf-8"))
-        files["manifest"] = final_dir / MANIFEST_NAME
-    return ExportResult(
-        out_dir=final_dir,
-        files=files,
-        manifest=manifest,
-        nonfinite_counts=dict(manifest["nonfinite_values"]),
-    )
+    select_maps(maps_subset)
+    with output_folder(out_dir) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
+        result = write_maps(
+            maps,
+            staging,
+            final_dir=out.path,
+            float_format=float_format,
+            maps_subset=maps_subset,
+            program_text=program_text,
+            engine_version=engine_version,
+            extra_meta=extra_meta,
+        )
+        write_manifest(result, staging)
+    return result

@@ -33,6 +33,9 @@ _COLOUR_TYPES = {1: 0, 3: 2, 4: 6}
 _SIGNATURE = b"\x89PNG\r\n\x1a\n"
 #: Row filter "Up" (each byte minus the byte above, mod 256): smooth maps compress well.
 _FILTER_UP = 2
+#: Every PNG MatLoom writes says so in a standard ``tEXt`` chunk; this is how a later run knows
+#: that an existing single file (``preview -o x.png``) is its own and may be replaced.
+SOFTWARE_TEXT = b"Software\x00MatLoom"
 
 
 def quantize_unit8(values: ArrayLike) -> np.ndarray:
@@ -79,6 +82,7 @@ def encode_png8(pixels: np.ndarray, compress_level: int = PNG_COMPRESS_LEVEL) ->
         (
             _SIGNATURE,
             _chunk(b"IHDR", header),
+            _chunk(b"tEXt", SOFTWARE_TEXT),
             _chunk(b"IDAT", zlib.compress(filtered.tobytes(), compress_level)),
             _chunk(b"IEND", b""),
         )
@@ -95,7 +99,30 @@ def encode_png16_grey(pixels: np.ndarray) -> bytes:
     writer = pypng.Writer(width=array.shape[1], height=array.shape[0], greyscale=True, bitdepth=16)
     buffer = io.BytesIO()
     writer.write(buffer, array)
-    return buffer.getvalue()
+    data = buffer.getvalue()
+    ihdr_end = len(_SIGNATURE) + 8 + 13 + 4  # signature + IHDR chunk (length, type, data, CRC)
+    return data[:ihdr_end] + _chunk(b"tEXt", SOFTWARE_TEXT) + data[ihdr_end:]
+
+
+def written_by_matloom(path: str | os.PathLike[str]) -> bool:
+    """True when ``path`` is a PNG carrying MatLoom's ``Software`` text chunk before its pixels."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(1 << 16)
+    except OSError:
+        return False
+    if not head.startswith(_SIGNATURE):
+        return False
+    offset = len(_SIGNATURE)
+    while offset + 8 <= len(head):
+        (length,) = struct.unpack(">I", head[offset : offset + 4])
+        kind = head[offset + 4 : offset + 8]
+        if kind in (b"IDAT", b"IEND"):
+            return False
+        if kind == b"tEXt" and head[offset + 8 : offset + 8 + length] == SOFTWARE_TEXT:
+            return True
+        offset += 12 + length
+    return False
 
 
 def write_grey8(path: str | os.PathLike[str], values: ArrayLike) -> Path:

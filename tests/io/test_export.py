@@ -13,6 +13,7 @@ import pytest
 from matloom.engine.maps import MaterialMaps, View
 from matloom.io import atomic, exr, png
 from matloom.io.export import MAP_NAMES, export_maps
+from matloom.io.outdir import OutputError
 
 PARITY = Path(__file__).resolve().parents[1] / "data" / "parity"
 MANIFEST = json.loads((PARITY / "manifest.json").read_text())["programs"]
@@ -71,13 +72,16 @@ def test_reference_png_set_is_what_we_compare() -> None:
 def test_export_writes_all_maps_and_manifest(tmp_path: Path) -> None:
     maps = _fixture_maps("all_channels")
     result = export_maps(maps, tmp_path / "out", program_text="Material(Layer())")
-    names = sorted(p.name for p in (tmp_path / "out").iterdir())
+    names = sorted(p.name for p in (tmp_path / "out").iterdir() if not p.name.startswith("."))
     expected = sorted(
         [f"{n}.png" for n in REFERENCE_PNGS] + ["ior.exr", "emissive.exr", "height.exr"]
     )
     assert names == sorted(expected + ["material.json"])
     manifest = json.loads(result.manifest_path.read_text())
     assert manifest == result.manifest
+    assert sorted(manifest["files"]) == expected  # every file but the manifest, with its SHA-256
+    for name, digest in manifest["files"].items():
+        assert hashlib.sha256((tmp_path / "out" / name).read_bytes()).hexdigest() == digest
     assert [m["name"] for m in manifest["maps"]] == list(MAP_NAMES)
     assert len(MAP_NAMES) == 13
     assert manifest["width"] == 64 and manifest["height"] == 64
@@ -155,7 +159,7 @@ def test_maps_subset(tmp_path: Path) -> None:
     result = export_maps(
         _fixture_maps("bricks"), tmp_path / "o", maps_subset=["normal", "basecolor"]
     )
-    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == [
+    assert sorted(p.name for p in (tmp_path / "o").iterdir() if p.name[0] != ".") == [
         "basecolor.png", "material.json", "normal.png",
     ]  # fmt: skip
     assert [m["name"] for m in result.manifest["maps"]] == ["basecolor", "normal"]
@@ -174,13 +178,14 @@ def _failing_writer(*args: object, **kwargs: object) -> None:
     raise OSError("disk full (injected)")
 
 
-def test_failure_mid_export_leaves_no_folder(
+def test_failure_mid_export_leaves_an_empty_folder(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr(exr, "write_exr", _failing_writer)  # PNGs before ior are already written
-    with pytest.raises(OSError, match="injected"):
+    with pytest.raises(OutputError, match="injected"):
         export_maps(_fixture_maps("bricks"), tmp_path / "out")
-    assert list(tmp_path.iterdir()) == []
+    assert list((tmp_path / "out").iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
 def test_failure_keeps_previous_export(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -188,18 +193,20 @@ def test_failure_keeps_previous_export(tmp_path: Path, monkeypatch: pytest.Monke
     export_maps(_fixture_maps("bricks"), out)
     before = {p.name: p.read_bytes() for p in out.iterdir()}
     monkeypatch.setattr(png, "write_grey8", _failing_writer)
-    with pytest.raises(OSError, match="injected"):
+    with pytest.raises(OutputError, match="injected"):
         export_maps(_fixture_maps("tile"), out)
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
-def test_successful_export_replaces_previous(tmp_path: Path) -> None:
+def test_successful_export_replaces_its_own_previous_files_only(tmp_path: Path) -> None:
     out = tmp_path / "out"
     export_maps(_fixture_maps("bricks"), out)
-    (out / "stale.txt").write_text("old")
+    (out / "notes.txt").write_text("the user's")
     export_maps(_fixture_maps("tile"), out, maps_subset=["ao"])
-    assert sorted(p.name for p in out.iterdir()) == ["ao.png", "material.json"]
+    names = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
+    assert names == ["ao.png", "material.json", "notes.txt"]
+    assert (out / "notes.txt").read_text() == "the user's"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
@@ -211,12 +218,11 @@ def test_atomic_write_bytes(tmp_path: Path) -> None:
     assert [p.name for p in tmp_path.iterdir()] == ["a.bin"]
 
 
-def test_atomic_directory_refuses_to_replace_a_file(tmp_path: Path) -> None:
+def test_export_refuses_a_file_as_folder(tmp_path: Path) -> None:
     target = tmp_path / "file"
     target.write_text("keep")
-    with pytest.raises(FileExistsError):
-        with atomic.atomic_directory(target) as staging:
-            (staging / "x").write_text("x")
+    with pytest.raises(OutputError, match="not a folder"):
+        export_maps(_fixture_maps("bricks"), target)
     assert target.read_text() == "keep"
     assert [p.name for p in tmp_path.iterdir()] == ["file"]
 
