@@ -18,6 +18,7 @@ from typing import Any
 from matloom.author.config import AuthorConfig
 from matloom.author.pipeline import AuthoringError, Progress, RunResult, author_material
 from matloom.author.records import RECORD_NAME, RecordStore
+from matloom.author.redact import Redactor
 
 
 @dataclass(frozen=True)
@@ -104,7 +105,7 @@ def author_batch(
         except AuthoringError as err:
             outcome.error = str(err)
         except Exception as err:  # noqa: BLE001 - one prompt's bug must not stop the batch
-            outcome.error = f"{type(err).__name__}: {err}"
+            outcome.error = Redactor.for_config(config).text(f"{type(err).__name__}: {err}")
         if on_done:
             on_done(outcome)
         return outcome

@@ -37,6 +37,8 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator
 CRITIC_SIGNALS: tuple[str, ...] = ("render", "stats", "code")
 #: Name fragments of backbones known to take no image input (the paper's text-only critics).
 TEXT_ONLY_MODEL_HINTS: tuple[str, ...] = ("deepseek", "glm")
+#: Default reply-size cap in characters (``AuthorConfig.max_reply_chars``, ``--max-reply-chars``).
+DEFAULT_MAX_REPLY_CHARS = 1_000_000
 
 
 class ConfigError(ValueError):
@@ -91,6 +93,9 @@ class AuthorConfig(BaseModel):
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS
     critic_retries: int = Field(3, ge=0)
+    #: Longest model reply read, in characters: a longer one is refused like any bad answer
+    #: (the generator is asked again, the critic retried) and stored clipped to its start.
+    max_reply_chars: int = Field(DEFAULT_MAX_REPLY_CHARS, ge=1_000)
     playbook: bool = True
     few_shot: bool = True
     #: Scorer name from the scorer registry; "auto" = open_clip if its weights are local, else

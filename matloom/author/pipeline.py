@@ -28,6 +28,7 @@ from matloom.author.prompts.revision import (
 from matloom.author.prompts.system import system_prompt
 from matloom.author.records import (
     RECORD_NAME,
+    FinalRecord,
     MessageRecord,
     ModelIds,
     ProgramRecord,
@@ -37,6 +38,7 @@ from matloom.author.records import (
 )
 from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer, get_scorer
 from matloom.author.stages.critique import critique_program
+from matloom.author.stages.finite import finite_final, nonfinite_texels
 from matloom.author.stages.generate import (
     NoParseableProgramError,
     discard_unfinished_turns,
@@ -44,6 +46,7 @@ from matloom.author.stages.generate import (
 )
 from matloom.author.stages.seedsearch import best_of_sweeps, candidate_indices, run_candidate_sweep
 from matloom.author.stages.select import select_program
+from matloom.io.outdir import OutputError, OutputFolder
 from matloom.lang.seeds import derive_seed
 
 
@@ -97,6 +100,7 @@ class RunResult:
             "program": final.program if final else None,
             "score": final.score if final else None,
             "files": final.files if final else {},
+            "warnings": list(self.record.warnings),
             "durations": self.record.durations.model_dump(),
         }
 
@@ -186,6 +190,7 @@ class Run:
             program_seed=derive_seed(self.config.seed, 0),
             repair_turns=self.config.repair_turns,
             notify=lambda m: self.notify("generate", m, round=0),
+            max_reply_chars=self.config.max_reply_chars,
         )
 
     def start_from_builtin(self) -> None:
@@ -251,6 +256,7 @@ class Run:
             render=image,
             stats=stats,
             retries=cfg.critic_retries,
+            max_reply_chars=cfg.max_reply_chars,
         )
         result.seconds = time.perf_counter() - start  # render + statistics + model calls
         self.record.critiques.append(result)
@@ -269,6 +275,7 @@ class Run:
             program_seed=derive_seed(self.config.seed, k + 1),
             repair_turns=self.config.repair_turns,
             notify=lambda m: self.notify("revise", m, round=k + 1),
+            max_reply_chars=self.config.max_reply_chars,
         )
 
     # ------------------------------------------------------------------ stage III
@@ -353,18 +360,33 @@ class Run:
         assert record.seed_search is not None and record.selection is not None
         final = best_of_sweeps(record.seed_search)
         if final is None:
-            from matloom.author.records import FinalRecord
-
             j = record.selection.index
             score = record.selection.scores[j] if record.selection.scores else None
             final = FinalRecord(
                 program=record.programs[j].text, program_index=j, variant=0, score=score
             )
+        final, warning = finite_final(
+            record, final, self._nonfinite_texels, self.config.export_size
+        )
+        if warning:
+            self.warn(warning)
         self.notify("export", "writing material.mat, preview and maps")
         final.files = self._export(final.program)
         record.final = final
         record.durations.export = time.perf_counter() - start
         self.store.save()
+
+    def warn(self, message: str) -> None:
+        """Record a warning once (the CLI prints the record's warnings when the run ends)."""
+        if message not in self.record.warnings:
+            self.record.warnings.append(message)
+
+    def _nonfinite_texels(self, program: str) -> int:
+        import matloom
+
+        size = self.config.export_size
+        with RENDER_LOCK:
+            return nonfinite_texels(matloom.evaluate(program, size, size))
 
     def _export(self, program: str) -> dict[str, str]:
         import matloom
@@ -440,10 +462,30 @@ def author_material(
 
     ``config`` defaults to :class:`AuthorConfig()` (or, on resume, to the recorded settings).
     Models and the scorer are built from the config unless given. Raises
-    :class:`AuthoringError` on failure, after saving the record.
+    :class:`AuthoringError` on failure, after saving the record. The run folder is locked
+    while the run lasts, and files in it that MatLoom did not write are never replaced
+    (:class:`matloom.io.outdir.OutputError`).
     """
-    folder = Path(out_dir)
+    with OutputFolder(out_dir) as out:
+        return _author_locked(
+            prompt, out, config, resume, progress, generator=generator, critic=critic, scorer=scorer
+        )
+
+
+def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed through
+    prompt: str | None,
+    out: OutputFolder,
+    config: AuthorConfig | None,
+    resume: bool,
+    progress: Progress | None,
+    *,
+    generator: ChatModel | None,
+    critic: ChatModel | None,
+    scorer: TextImageScorer | None,
+) -> RunResult:
+    folder = Path(out.path)
     store = _open_store(prompt, config, folder, resume)
+    store.attach(out)
     record = store.record
     session_start = time.perf_counter()
     record.sessions.append(record.updated)
@@ -462,9 +504,16 @@ def author_material(
         run = Run(store, generator=gen, critic=crit, scorer=scorer, progress=progress)
         _run_stages(run, skip)
         record.status = "finished"
-    except (ModelError, NoParseableProgramError, ScorerUnavailableError, OSError) as err:
-        _fail(store, str(err), session_start)
-        raise AuthoringError(str(err), folder) from err
+    except (
+        ModelError,
+        NoParseableProgramError,
+        ScorerUnavailableError,
+        OSError,
+        OutputError,
+    ) as err:
+        message = store.redactor().text(str(err))  # an error body may echo the API key
+        _fail(store, message, session_start)
+        raise AuthoringError(message, folder) from err
     except Exception as err:
         _fail(store, f"{type(err).__name__}: {err}", session_start)
         raise
@@ -528,5 +577,5 @@ def _fail(store: RecordStore, message: str, session_start: float) -> None:
     store.record.durations.total += time.perf_counter() - session_start
     try:
         store.save()
-    except OSError:
+    except (OSError, OutputError):
         pass

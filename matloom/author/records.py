@@ -18,11 +18,15 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from matloom.author.config import AuthorConfig
+from matloom.author.redact import Redactor
 from matloom.io.atomic import atomic_write_bytes
+from matloom.io.outdir import OutputFolder
 
 RECORD_NAME = "record.json"
 RECORD_FORMAT = "matloom-run"
 RECORD_VERSION = 1
+#: Artefacts written as text, so :meth:`RecordStore.write_file` can redact them.
+TEXT_SUFFIXES = frozenset({".mat", ".json", ".txt", ".md"})
 
 Status = Literal["running", "finished", "failed"]
 
@@ -49,8 +53,11 @@ class AttemptRecord(_Model):
 
     attempt: int
     reply: str
-    outcome: Literal["accepted", "no_program", "parse_error"]
+    outcome: Literal["accepted", "no_program", "parse_error", "too_large"]
     diagnostics: list[dict[str, Any]] = Field(default_factory=list)
+    #: Why a reply was refused unread (``too_large``: over the reply-size cap; the reply above
+    #: is then only its start).
+    error: str | None = None
     seconds: float
     model: str
 
@@ -139,6 +146,8 @@ class FinalRecord(_Model):
     variant: int
     score: float | None
     files: dict[str, str] = Field(default_factory=dict)
+    #: Texels with a NaN or infinite value in some map at the export size (0 = all finite).
+    nonfinite_texels: int = 0
 
 
 class Durations(_Model):
@@ -184,6 +193,8 @@ class RunRecord(_Model):
     selection: SelectionRecord | None = None
     seed_search: SeedSearchRecord | None = None
     final: FinalRecord | None = None
+    #: Things the user should know about the result (the CLI prints them on stderr).
+    warnings: list[str] = Field(default_factory=list)
     durations: Durations = Field(default_factory=Durations)
     sessions: list[str] = Field(default_factory=list)
 
@@ -198,24 +209,43 @@ class RecordStore:
     def __init__(self, folder: str | os.PathLike[str], record: RunRecord) -> None:
         self.folder = Path(folder)
         self.record = record
+        self.out: OutputFolder | None = None
 
     @property
     def path(self) -> Path:
         return self.folder / RECORD_NAME
 
+    def attach(self, out: OutputFolder) -> None:
+        """Write through ``out`` (locked, never replacing a foreign file) from now on."""
+        out.check_writable([RECORD_NAME, "material.mat", "preview.png"])
+        self.out = out
+
+    def redactor(self) -> Redactor:
+        """Removes the run's API keys and URL credentials (:mod:`matloom.author.redact`)."""
+        return Redactor.for_config(self.record.settings)
+
     def save(self) -> None:
-        """Write ``record.json`` atomically (temp file + rename)."""
+        """Write ``record.json`` atomically (temp file + rename), credentials redacted."""
         self.record.updated = utc_now()
-        self.folder.mkdir(parents=True, exist_ok=True)
-        text = self.record.model_dump_json(indent=2) + "\n"
-        atomic_write_bytes(self.path, text.encode("utf-8"))
+        text = self.redactor().json_text(self.record.model_dump_json(indent=2) + "\n")
+        self._write(RECORD_NAME, text.encode("utf-8"))
 
     def write_file(self, relative: str, data: bytes) -> str:
-        """Store an artefact in the run folder atomically; return its relative path."""
+        """Store an artefact in the run folder atomically (text ones with credentials
+        redacted); return its relative path."""
+        if Path(relative).suffix in TEXT_SUFFIXES:
+            data = self.redactor().text(data.decode("utf-8")).encode("utf-8")
+        self._write(relative, data)
+        return relative
+
+    def _write(self, relative: str, data: bytes) -> None:
+        """Through the attached output folder when there is one, else straight to disk."""
+        if self.out is not None:
+            self.out.write_bytes(relative, data)
+            return
         target = self.folder / relative
         target.parent.mkdir(parents=True, exist_ok=True)
         atomic_write_bytes(target, data)
-        return relative
 
     @classmethod
     def load(cls, folder: str | os.PathLike[str]) -> RecordStore:

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
 import click
 
+from matloom.cli import params
 from matloom.cli.lang_cmds import _read
 
 
@@ -31,11 +31,13 @@ def load_program(path: str, program_seed: int = 0):  # noqa: ANN201 - returns (P
 
 
 def size_options(f):  # noqa: ANN001, ANN201 - click decorator
-    f = click.option("--height", "height", type=int, default=None, help="Image height in pixels.")(
+    """--size / --width / --height, each 1 to the maximum resolution (params.SIZE)."""
+    size = params.SIZE
+    f = click.option("--height", "height", type=size, default=None, help="Image height in pixels.")(
         f
     )
-    f = click.option("--width", "width", type=int, default=None, help="Image width in pixels.")(f)
-    f = click.option("--size", type=int, default=None, help="Square size in pixels.")(f)
+    f = click.option("--width", "width", type=size, default=None, help="Image width in pixels.")(f)
+    f = click.option("--size", type=size, default=None, help="Square size in pixels.")(f)
     return f
 
 
@@ -49,6 +51,20 @@ def resolve_size(
     return width or height or default, height or width or default
 
 
+def check_ao_radius(units: float, view: tuple[float, float, float, float], w: int, h: int) -> None:
+    """Refuse an AO radius wider than the largest image side (in texels of this View and size)."""
+    from matloom.engine.maps import View
+
+    dx, dy = View(*view).texel_size(w, h)  # > 0: the checker refuses zero and tiny Views
+    texels = units / min(dx, dy)
+    if texels > params.MAX_SIDE:
+        raise click.BadParameter(
+            f"{units:g} units is {texels:.3g} texels at {w}x{h} with this View; the radius may "
+            f"be at most {params.MAX_SIDE} texels ({params.MAX_SIDE * min(dx, dy):.6g} units)",
+            param_hint="'--ao-radius'",
+        )
+
+
 @click.command("render")
 @click.argument("file")
 @click.option(
@@ -57,7 +73,7 @@ def resolve_size(
     "out_dir",
     required=True,
     type=click.Path(file_okay=False),
-    help="Output folder (replaced atomically).",
+    help="Output folder (staged; files MatLoom did not write are never touched).",
 )
 @size_options
 @click.option(
@@ -73,9 +89,9 @@ def resolve_size(
 )
 @click.option(
     "--ao-radius",
-    type=float,
+    type=params.NON_NEGATIVE,
     default=None,
-    help="AO radius in coordinate units (default: the reference's 8 texels).",
+    help="AO radius in coordinate units, >= 0 (default: the reference's 8 texels).",
 )
 @click.option(
     "--preview/--no-preview",
@@ -84,7 +100,7 @@ def resolve_size(
     help="Also write preview.png (the quick shaded swatch).",
 )
 @click.option(
-    "--backend", default="auto", show_default=True, help="Kernel backend: auto, numba, numpy."
+    "--backend", type=params.BACKEND, default="auto", show_default=True, help="Kernel backend."
 )
 @click.option(
     "--program-seed", type=int, default=0, show_default=True, help="Seed for omitted noise seeds."
@@ -109,7 +125,15 @@ def render_cmd(
 
     from matloom.engine.evaluate import EvalStats, evaluate
     from matloom.engine.limits import LimitError
-    from matloom.io.export import MAP_NAMES, export_maps
+    from matloom.io.atomic import atomic_write_bytes
+    from matloom.io.export import (
+        MANIFEST_NAME,
+        MAP_NAMES,
+        planned_files,
+        write_manifest,
+        write_maps,
+    )
+    from matloom.io.outdir import OutputFolder
     from matloom.lang.printer import format_program
 
     w, h = resolve_size(size, width, height, 512)
@@ -121,46 +145,53 @@ def render_cmd(
                 f"unknown map(s) {', '.join(unknown)}; choose from {', '.join(MAP_NAMES)}"
             )
     program, _ = load_program(file, program_seed)
-    t0 = time.perf_counter()
-    stats = EvalStats()
-    try:
-        maps = evaluate(program, w, h, backend=backend, ao_radius_units=ao_radius, stats=stats)
-    except LimitError as e:
-        raise click.ClickException(str(e)) from None
-    t_eval = time.perf_counter() - t0
+    if ao_radius is not None:
+        check_ao_radius(ao_radius, program.view_tuple, w, h)
     canonical = format_program(program)
-    result = export_maps(
-        maps,
-        out_dir,
-        float_format=float_format,
-        maps_subset=subset,
-        program_text=canonical,
-        extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
-    )
-    if preview:
-        from matloom.io.png import save_png
-        from matloom.render.preview import shade
+    with OutputFolder(out_dir) as out:  # locked before the work starts: a second writer fails
+        out.check_writable(planned_files(subset, float_format, preview))
+        t0 = time.perf_counter()
+        stats = EvalStats()
+        try:
+            maps = evaluate(program, w, h, backend=backend, ao_radius_units=ao_radius, stats=stats)
+        except LimitError as e:
+            raise click.ClickException(str(e)) from None
+        t_eval = time.perf_counter() - t0
+        with out.batch("render", marker=MANIFEST_NAME) as staging:
+            result = write_maps(
+                maps,
+                staging,
+                final_dir=out.path,
+                float_format=float_format,
+                maps_subset=subset,
+                program_text=canonical,
+                extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
+            )
+            if preview:
+                from matloom.io.png import save_png
+                from matloom.render.preview import shade
 
-        save_png(Path(out_dir) / "preview.png", shade(maps))
-    from matloom.io.atomic import atomic_write_bytes as _write
-
-    _write(Path(out_dir) / "material.mat", (canonical + "\n").encode("utf-8"))
+                save_png(staging / "preview.png", shade(maps))
+            atomic_write_bytes(staging / "material.mat", (canonical + "\n").encode("utf-8"))
+            write_manifest(result, staging)
     for name, n in result.nonfinite_counts.items():
         click.echo(f"warning: {n} non-finite texel value(s) in {name}", err=True)
     if stats.zero_divisions:
         click.echo(f"note: {stats.zero_divisions} division(s) by exactly 0 returned 0", err=True)
-    click.echo(f"rendered {w}x{h} in {t_eval * 1000:.0f} ms -> {Path(out_dir).resolve()}", err=True)
+    click.echo(f"rendered {w}x{h} in {t_eval * 1000:.0f} ms -> {out.path}", err=True)
     if as_json:
         click.echo(json.dumps(result.manifest, indent=2, default=str))
     else:
-        click.echo(str(Path(out_dir).resolve()))
+        click.echo(str(out.path))
 
 
 @click.command("random")
 @click.option("--seed", type=int, default=0, show_default=True, help="Generator seed.")
-@click.option("--layers", type=int, default=None, help="Exact number of layers.")
-@click.option("--defines", type=int, default=None, help="Exact number of Defines.")
-@click.option("--count", type=int, default=1, show_default=True, help="Number of programs.")
+@click.option("--layers", type=params.LAYERS, default=None, help="Exact number of layers.")
+@click.option("--defines", type=params.DEFINES, default=None, help="Exact number of Defines.")
+@click.option(
+    "--count", type=params.COUNT, default=1, show_default=True, help="Number of programs."
+)
 def random_cmd(seed: int, layers: int | None, defines: int | None, count: int) -> None:
     """Print random always-valid programs built from the registry (for fuzzing)."""
     from matloom.lang.random_program import random_program

@@ -7,6 +7,8 @@ import sys
 
 import click
 
+from matloom.cli import params
+
 
 @click.command("gallery")
 @click.argument("prompts_file", type=click.Path(exists=True, dir_okay=False))
@@ -20,23 +22,34 @@ import click
 )
 @click.option(
     "--seed",
+    type=int,
     default=0,
     show_default=True,
     help="Author seed (noise seeds derive from prompt and seed).",
 )
-@click.option("--size", default=256, show_default=True, help="Preview size in pixels.")
-@click.option("--columns", default=8, show_default=True, help="Contact-sheet columns.")
+@click.option(
+    "--size", type=params.GALLERY_SIZE, default=256, show_default=True, help="Preview size."
+)
+@click.option(
+    "--columns", type=params.COLUMNS, default=8, show_default=True, help="Contact-sheet columns."
+)
 def gallery_cmd(prompts_file: str, out_dir: str, seed: int, size: int, columns: int) -> None:
     """Author each prompt of PROMPTS_FILE with the built-in author and write a gallery.
 
     PROMPTS_FILE is JSON: {"prompts": [{"id", "source", "text"}, ...]} or a list of strings.
-    Each row of the page shows the preview, a 2x2 tiled preview and the program.
+    Each row of the page shows the preview, a 2x2 tiled preview and the program. Ids become
+    file names: unsafe characters are replaced by "_", and an id whose files would collide
+    with an earlier one's (a/b and a_b) gets a short hash suffix; an id given twice is an error.
     """
-    from matloom.author.builtin.gallery import build_gallery, load_prompts
+    from matloom.author.builtin.gallery import PromptFileError, build_gallery, load_prompts
+    from matloom.engine.limits import LimitError
 
-    prompts = load_prompts(prompts_file)
+    try:
+        prompts = load_prompts(prompts_file)
+    except PromptFileError as e:
+        raise click.BadParameter(str(e), param_hint="PROMPTS_FILE") from None
     if not prompts:
-        raise click.ClickException(f"no prompts found in {prompts_file}")
+        raise click.BadParameter(f"no prompts found in {prompts_file}", param_hint="PROMPTS_FILE")
     with click.progressbar(length=len(prompts), label="authoring", file=sys.stderr) as bar:
 
         def counted(text: str, s: int):  # noqa: ANN202 - thin wrapper
@@ -45,9 +58,12 @@ def gallery_cmd(prompts_file: str, out_dir: str, seed: int, size: int, columns: 
             bar.update(1)
             return author(text, s)
 
-        entries = build_gallery(
-            prompts, out_dir, seed=seed, size=size, columns=columns, author_fn=counted
-        )
+        try:
+            entries = build_gallery(
+                prompts, out_dir, seed=seed, size=size, columns=columns, author_fn=counted
+            )
+        except LimitError as e:  # e.g. the memory budget at a large --size: one line
+            raise click.ClickException(str(e)) from None
     times = [e.author_ms for e in entries]
     lines = [e.lines for e in entries]
     click.echo(f"{len(entries)} materials -> {out_dir}/index.html and contact_sheet.png")

@@ -34,6 +34,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "playbook": "playbook",
     "few_shot": "few_shot",
     "start": "start",
+    "max_reply_chars": "max_reply_chars",
 }
 #: Flags that override generator model settings.
 _MODEL_FLAGS: dict[str, str] = {
@@ -193,6 +194,13 @@ def _pipeline_options(f: Any) -> Any:
         click.option("--sweep-size", type=int, default=d.sweep_size, show_default=True),
         click.option("--export-size", type=int, default=d.export_size, show_default=True),
         click.option("--stats-grid", type=int, default=d.stats_grid, show_default=True),
+        click.option(
+            "--max-reply-chars",
+            type=int,
+            default=d.max_reply_chars,
+            show_default=True,
+            help="Longest model reply read; a longer one is refused as a bad answer.",
+        ),
         click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
         click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
     ]
@@ -343,9 +351,11 @@ def _run_single(
             "fix the cause and rerun with --resume)"
         ) from None
     except Exception as err:  # noqa: BLE001 - the CLI never shows a traceback
+        from matloom.author.redact import Redactor
+
         raise click.ClickException(
-            f"unexpected {type(err).__name__}: {err}\n(the record is kept in "
-            f"{Path(out_dir) / 'record.json'}; rerun with --resume)"
+            Redactor.for_config(config).text(f"unexpected {type(err).__name__}: {err}")
+            + f"\n(the record is kept in {Path(out_dir) / 'record.json'}; rerun with --resume)"
         ) from None
     if explain:
         _say_explanation(result.record)
@@ -354,6 +364,7 @@ def _run_single(
     else:
         click.echo(result.program)
     _say_scorer_note(result.record)
+    _say_warnings(result.record)
 
 
 def _say_explanation(record: Any) -> None:
@@ -367,6 +378,12 @@ def _say_explanation(record: Any) -> None:
             f"P{record.final.program_index}. P0's explanation:\n{explanation}"
         )
     click.echo(explanation, err=True)
+
+
+def _say_warnings(record: Any, prefix: str = "matloom") -> None:
+    """The run's warnings (e.g. a material with non-finite maps) on stderr."""
+    for warning in record.warnings:
+        click.echo(f"{prefix}: warning: {warning}", err=True)
 
 
 def _say_scorer_note(record: Any) -> None:
@@ -415,6 +432,9 @@ def _run_batch(
     else:
         for row in rows:
             click.echo(f"{row['id']}\t{row['status']}\t{row['folder']}")
+    for o in outcomes:
+        if o.result is not None:
+            _say_warnings(o.result.record, prefix=f"matloom: [{o.item.id}]")
     failed = sum(o.result is None for o in outcomes)
     if failed:
         click.echo(f"matloom: {failed} of {len(outcomes)} prompt(s) failed", err=True)

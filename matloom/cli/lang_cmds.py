@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from matloom.cli import params
 from matloom.lang.api import analyse
 from matloom.lang.diagnostics import format_diagnostics
 
@@ -75,7 +76,7 @@ def check_cmd(files: tuple[str, ...], strict: bool, as_json: bool) -> None:
     help="Make omitted noise seeds explicit, derived from this program seed.",
 )
 def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | None) -> None:
-    """Print FILE in canonical form."""
+    """Print FILE in canonical form, keeping its `#` comments."""
     from matloom.lang.inline import inline_defines
     from matloom.lang.printer import format_program
     from matloom.lang.seeds import canonicalize_seeds
@@ -95,27 +96,30 @@ def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | 
         except ProgramError as e:
             click.echo(format_diagnostics(e.diagnostics, file), err=True)
             sys.exit(2)
-    out = format_program(program)
+    out = format_program(program, comments=True)  # fmt keeps every `#` comment
     if check_only:
         sys.exit(0 if text.strip() == out else 1)
     if write:
         if file == "-":
             raise click.UsageError("--write needs a file, not stdin")
-        _atomic_write(Path(file), out + "\n")
+        from matloom.io.atomic import rewrite_file
+
+        try:
+            rewrite_file(file, (out + "\n").encode("utf-8"))
+        except OSError as err:
+            from matloom.io.outdir import describe_os_error
+
+            raise click.ClickException(describe_os_error(err, file)) from None
         click.echo(f"formatted {file}", err=True)
         return
     click.echo(out)
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    from matloom.io.atomic import atomic_write_bytes
-
-    atomic_write_bytes(path, text.encode("utf-8"))
-
-
 @click.command("seeds")
 @click.argument("file")
-@click.option("--variants", "-k", type=int, required=True, help="Number of seed variants K.")
+@click.option(
+    "--variants", "-k", type=params.VARIANTS, required=True, help="Number of seed variants K."
+)
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the variant RNG.")
 @click.option(
     "--program-seed",
@@ -146,11 +150,12 @@ def seeds_cmd(file: str, variants: int, seed: int, program_seed: int, out_dir: s
     if len(texts) == 1:
         click.echo("no noise seeds in this program: only the original is produced", err=True)
     if out_dir:
-        d = Path(out_dir)
-        d.mkdir(parents=True, exist_ok=True)
-        for i, t in enumerate(texts):
-            _atomic_write(d / f"variant_{i:04d}.mat", t + "\n")
-        click.echo(f"wrote {len(texts)} program(s) to {d}", err=True)
+        from matloom.io.outdir import OutputFolder
+
+        with OutputFolder(out_dir) as out, out.batch("seeds") as staging:
+            for i, t in enumerate(texts):
+                (staging / f"variant_{i:04d}.mat").write_text(t + "\n", encoding="utf-8")
+        click.echo(f"wrote {len(texts)} program(s) to {out.path}", err=True)
         return
     for i, t in enumerate(texts):
         click.echo(f"# variant {i}" + (" (original)" if i == 0 else ""))

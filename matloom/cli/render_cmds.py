@@ -2,31 +2,39 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 from pathlib import Path
 
 import click
 
+from matloom.cli import params
 from matloom.cli.engine_cmds import load_program, resolve_size, size_options
 
 
-def _parse_light(value: str | None):  # noqa: ANN202
+def _light(angles: tuple[float, float] | None):  # noqa: ANN202 - Light | None
     from matloom.render.preview import Light
 
-    if value is None:
-        return None
+    return None if angles is None else Light(*angles)
+
+
+@contextlib.contextmanager
+def _limits_as_errors(*also: type[Exception]):  # noqa: ANN202 - a context manager
+    """A documented resource limit (LimitError), or one of ``also``, ends the command with its
+    one-line message instead of a traceback."""
+    from matloom.engine.limits import LimitError
+
     try:
-        az, el = (float(v) for v in value.split(","))
-    except ValueError:
-        raise click.BadParameter("expected AZIMUTH,ELEVATION in degrees, e.g. 45,55") from None
-    return Light(az, el)
+        yield
+    except (LimitError, *also) as e:
+        raise click.ClickException(str(e)) from None
 
 
 def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
-    from matloom.io.png import save_png
+    from matloom.io.outdir import save_output_png
 
-    save_png(path, img)
+    save_output_png(path, img)
 
 
 @click.command("preview")
@@ -36,19 +44,26 @@ def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
 )
 @size_options
 @click.option(
-    "--light", default=None, help="Light AZIMUTH,ELEVATION in degrees (default: reference)."
+    "--light",
+    type=params.LIGHT,
+    default=None,
+    help="Light AZIMUTH,ELEVATION in degrees, elevation -90..90 (default: reference).",
 )
 @click.option(
-    "--tile", type=int, default=1, show_default=True, help="Tile the swatch N x N to show seams."
+    "--tile",
+    type=params.TILE,
+    default=1,
+    show_default=True,
+    help="Tile the swatch N x N to show seams.",
 )
-@click.option("--backend", default="auto", show_default=True)
+@click.option("--backend", type=params.BACKEND, default="auto", show_default=True)
 def preview_cmd(
     file: str,
     out: str,
     size: int | None,
     width: int | None,
     height: int | None,
-    light: str | None,
+    light: tuple[float, float] | None,
     tile: int,
     backend: str,
 ) -> None:
@@ -56,10 +71,14 @@ def preview_cmd(
     from matloom.render.api import preview
 
     w, h = resolve_size(size, width, height, 512)
-    if tile < 1 or tile > 8:
-        raise click.BadParameter("--tile must be between 1 and 8")
+    if max(w, h) * tile > params.MAX_SIDE:
+        raise click.BadParameter(
+            f"{tile} x {max(w, h)} pixels is more than the maximum image side {params.MAX_SIDE}",
+            param_hint="'--tile'",
+        )
     program, _ = load_program(file)
-    img = preview(program, width=w, height=h, light=_parse_light(light), tile=tile, backend=backend)
+    with _limits_as_errors():
+        img = preview(program, width=w, height=h, light=_light(light), tile=tile, backend=backend)
     _save_png(out, img)
     click.echo(str(Path(out).resolve()))
 
@@ -67,14 +86,17 @@ def preview_cmd(
 @click.command("stats")
 @click.argument("file")
 @click.option("--json", "as_json", is_flag=True, help="Machine-readable output.")
-@click.option("--grid", type=int, default=128, show_default=True, help="Evaluation grid size.")
+@click.option(
+    "--grid", type=params.STATS_GRID, default=128, show_default=True, help="Evaluation grid size."
+)
 def stats_cmd(file: str, as_json: bool, grid: int) -> None:
     """Print the 28 material statistics of FILE (the critic's objective scalars)."""
     from matloom.render.api import stats
     from matloom.render.stats import STAT_DEFINITIONS, format_stats
 
     program, _ = load_program(file)
-    values = stats(program, grid)
+    with _limits_as_errors():
+        values = stats(program, grid)
     if as_json:
         click.echo(
             json.dumps(
@@ -88,13 +110,19 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
 
 @click.command("sweep")
 @click.argument("file")
-@click.option("--variants", "-k", type=int, required=True, help="Number of seed variants K.")
-@click.option("--size", type=int, default=256, show_default=True)
+@click.option(
+    "--variants", "-k", type=params.VARIANTS, required=True, help="Number of seed variants K."
+)
+@click.option("--size", type=params.SIZE, default=256, show_default=True)
 @click.option("--scorer", default=None, help="Registered text-image scorer name.")
 @click.option("--prompt", default=None, help="Text the scorer compares against.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Variant RNG seed.")
 @click.option(
-    "--jobs", type=int, default=0, show_default=True, help="Shading threads (0 = all cores)."
+    "--jobs",
+    type=params.JOBS,
+    default=0,
+    show_default=True,
+    help="Shading threads (0 = all cores).",
 )
 @click.option(
     "-o",
@@ -110,7 +138,9 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
     default=None,
     help="Contact sheet PNG of the top candidates.",
 )
-@click.option("--top", type=int, default=8, show_default=True, help="Candidates on the sheet.")
+@click.option(
+    "--top", type=params.TOP, default=8, show_default=True, help="Candidates on the sheet."
+)
 @click.option("--json", "as_json", is_flag=True)
 def sweep_cmd(
     file: str,
@@ -126,15 +156,38 @@ def sweep_cmd(
     as_json: bool,
 ) -> None:
     """Render the original and K seed variants of FILE; with a scorer, keep the best."""
-    from matloom.cli.progress import LazyProgress
+    from matloom.io.outdir import OutputFolder
     from matloom.lang.printer import format_program
-    from matloom.render.sweep import run_sweep
 
     if scorer and not prompt:
         raise click.UsageError("--scorer needs --prompt")
     program, _ = load_program(file)
     text = format_program(program)
-    with LazyProgress("sweep") as bar:
+    with contextlib.ExitStack() as stack:
+        out = stack.enter_context(OutputFolder(out_dir)) if out_dir else None
+        _sweep_and_report(
+            text, out, variants, size, scorer, prompt, seed, jobs, sheet, top, as_json
+        )
+
+
+def _sweep_and_report(  # noqa: PLR0913 - the sweep command's options, passed through
+    text: str,
+    out,  # noqa: ANN001 - OutputFolder | None, locked before the work starts
+    variants: int,
+    size: int,
+    scorer: str | None,
+    prompt: str | None,
+    seed: int,
+    jobs: int,
+    sheet: str | None,
+    top: int,
+    as_json: bool,
+) -> None:
+    from matloom.author.scorers.base import ScorerUnavailableError
+    from matloom.cli.progress import LazyProgress
+    from matloom.render.sweep import run_sweep
+
+    with _limits_as_errors(ScorerUnavailableError), LazyProgress("sweep") as bar:
         res = run_sweep(
             text,
             variants=variants,
@@ -159,15 +212,8 @@ def sweep_cmd(
         "size": size,
         "scores": [c.score for c in res.candidates] if scorer else None,
     }
-    if out_dir:
-        from matloom.io.atomic import atomic_write_bytes
-
-        d = Path(out_dir)
-        d.mkdir(parents=True, exist_ok=True)
-        atomic_write_bytes(d / "best.mat", (res.best_program + "\n").encode())
-        atomic_write_bytes(d / "report.json", json.dumps(report, indent=2).encode())
-        for idx, img in res.top_images:
-            _save_png(d / f"candidate_{idx:04d}.png", img)
+    if out is not None:
+        _write_sweep_folder(out, res, report)
     if sheet:
         from matloom.render.sheet import contact_sheet
 
@@ -187,3 +233,15 @@ def sweep_cmd(
     else:
         click.echo(res.best_program)
     sys.stdout.flush()
+
+
+def _write_sweep_folder(out, res, report: dict) -> None:  # noqa: ANN001
+    """best.mat, report.json and the top candidates' previews, staged into the folder."""
+    from matloom.io.atomic import atomic_write_bytes
+    from matloom.io.png import save_png
+
+    with out.batch("sweep", marker="report.json") as staging:
+        atomic_write_bytes(staging / "best.mat", (res.best_program + "\n").encode())
+        for idx, img in res.top_images:
+            save_png(staging / f"candidate_{idx:04d}.png", img)
+        atomic_write_bytes(staging / "report.json", json.dumps(report, indent=2).encode())

@@ -34,8 +34,12 @@ def parse(text: str) -> Program:
     return program
 
 
-def format(program: Program | str) -> str:  # noqa: A001 - mirrors the documented API name
-    """Canonical text of a program (or of program text, which is parsed first)."""
+def format(program: Program | str, *, comments: bool = False) -> str:  # noqa: A001 - API name
+    """Canonical text of a program (or of program text, which is parsed first).
+
+    ``comments=True`` keeps the program's ``#`` comments, as ``matloom fmt`` does; the default
+    text is comment-free, as the reference serialiser writes it.
+    """
     if isinstance(program, str):
         program = parse(program)
-    return format_program(program)
+    return format_program(program, comments=comments)

@@ -15,6 +15,26 @@ def _span() -> Span:
     return field(default=NO_SPAN, compare=False, repr=False)  # type: ignore[return-value]
 
 
+def _comments() -> tuple[Comment, ...]:
+    return field(default=(), compare=False, repr=False)  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Comment:
+    """A ``#`` comment kept for ``matloom fmt``; ``text`` starts with ``#`` (trailing blanks cut).
+
+    ``slot`` places it relative to the node that owns it: ``"leading"`` (own lines before the
+    node) or ``"trailing"`` (after the node's last line, two spaces before ``#``). A
+    :class:`Program` also uses ``"open"`` (after ``Material(``), ``"footer"`` (own lines before
+    Material's closing ``)``), ``"close"`` (after that ``)``) and ``"end"`` (end of the file).
+    Comments are excluded from equality, like spans. See :mod:`matloom.lang.comments`.
+    """
+
+    text: str
+    slot: str = "leading"
+    span: Span = _span()
+
+
 @dataclass(frozen=True)
 class Num:
     """A non-negative numeric literal (negatives are :class:`Neg`). ``int`` stays ``int``."""
@@ -115,6 +135,7 @@ class ViewDecl:
     x2: float
     y2: float
     span: Span = _span()
+    comments: tuple[Comment, ...] = _comments()
 
     def as_tuple(self) -> tuple[float, float, float, float]:
         return (self.x1, self.y1, self.x2, self.y2)
@@ -128,6 +149,7 @@ class Define:
     expr: Node
     span: Span = _span()
     name_span: Span = _span()
+    comments: tuple[Comment, ...] = _comments()
 
 
 @dataclass(frozen=True)
@@ -137,6 +159,7 @@ class ChannelSet:
     name: str
     args: tuple[Node, ...]
     span: Span = _span()
+    comments: tuple[Comment, ...] = _comments()
 
 
 @dataclass(frozen=True)
@@ -146,6 +169,7 @@ class Layer:
     alpha: Node | None = None
     channels: tuple[ChannelSet, ...] = ()
     span: Span = _span()
+    comments: tuple[Comment, ...] = _comments()
 
     def channel(self, name: str) -> ChannelSet | None:
         for c in self.channels:
@@ -162,6 +186,7 @@ class Program:
     defines: tuple[Define, ...]
     layers: tuple[Layer, ...]
     span: Span = _span()
+    comments: tuple[Comment, ...] = _comments()
 
     def define(self, name: str) -> Define | None:
         for d in self.defines:
@@ -172,6 +197,10 @@ class Program:
     @property
     def view_tuple(self) -> tuple[float, float, float, float]:
         return self.view.as_tuple() if self.view else (0.0, 0.0, 1.0, 1.0)
+
+
+Commented = ViewDecl | Define | ChannelSet | Layer | Program
+"""The nodes that carry ``comments``."""
 
 
 def children(node: Node) -> tuple[Node, ...]:

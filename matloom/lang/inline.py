@@ -14,6 +14,8 @@ def inline_defines(program: A.Program) -> A.Program:
     """Program with no Defines; every reference replaced by the (recursively inlined) expression.
 
     Explicit noise seeds are kept verbatim, so the inlined program evaluates to the same maps.
+    Comments of the removed Defines move to the program's leading comments (printed just before
+    ``Material(``), in source order, so ``fmt --inline`` loses no comment text.
     Raises :class:`ProgramError` (E070) if the result would exceed the node limit: Defines that
     reuse each other can grow exponentially when written out.
     """
@@ -34,8 +36,9 @@ def inline_defines(program: A.Program) -> A.Program:
 
     for d in program.defines:
         resolved[d.name] = map_expr(d.expr, sub)
-    inlined = map_program(replace(program, defines=()), sub)
-    return inlined
+    moved = tuple(replace(c, slot="leading") for d in program.defines for c in d.comments)
+    kept = replace(program, defines=(), comments=moved + program.comments)
+    return map_program(kept, sub)
 
 
 def inlined_size(program: A.Program) -> int:

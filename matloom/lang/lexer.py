@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import bisect
+import math
 import re
+import sys
 from dataclasses import dataclass
 
 from matloom.lang.diagnostics import Span
@@ -32,7 +34,7 @@ _TOKEN = re.compile(
 
 @dataclass(frozen=True)
 class Token:
-    kind: str  # NUM, STR, IDENT, OP, EOF
+    kind: str  # NUM, STR, IDENT, OP, EOF (COMMENT only in Lexer.comments)
     text: str
     span: Span
     value: object = None
@@ -65,6 +67,7 @@ class Lexer:
     def __init__(self, source: str) -> None:
         self.src = source
         self.line_starts = [0]
+        self.comments: list[Token] = []  # COMMENT tokens (trailing blanks cut) of tokens()
         for m in re.finditer("\n", source):
             self.line_starts.append(m.end())
 
@@ -75,6 +78,7 @@ class Lexer:
     def tokens(self) -> list[Token]:
         src, n, i = self.src, len(self.src), 0
         out: list[Token] = []
+        self.comments = []
         while i < n:
             m = _TOKEN.match(src, i)
             if m is None:
@@ -96,7 +100,10 @@ class Lexer:
                 out.append(Token("IDENT", m.group(), self.span(i, end)))
             elif kind == "op":
                 out.append(Token("OP", m.group(), self.span(i, end)))
-            i = end  # whitespace and comments produce no token
+            elif kind == "comment":  # kept aside: the parser's token stream has no comments
+                text = m.group().rstrip()
+                self.comments.append(Token("COMMENT", text, self.span(i, i + len(text))))
+            i = end  # whitespace produces no token
         out.append(Token("EOF", "", self.span(n, n)))
         return out
 
@@ -144,12 +151,49 @@ class Lexer:
                 span,
                 expected="digits after 'e', as in 1e-3",
             )
-        if "." in text or "e" in text.lower():
-            value: int | float = float(text)
-        else:
-            value = int(text)
-        if isinstance(value, float) and value == float("inf"):
+        value = _literal_value(text)
+        if value is None:
             raise LexError(
-                "E003", f"number {text!r} is too large", span, expected="a finite number"
+                "E003",
+                f"number {_abbreviate(text)} is too large",
+                span,
+                expected=f"a finite number (at most about {sys.float_info.max:.3g})",
             )
         return Token("NUM", text, span, value)
+
+
+def _literal_value(text: str) -> int | float | None:
+    """The value of a numeric literal, or ``None`` if it is outside the float range.
+
+    Integer literals stay ``int``, but only when they also convert to a float: every evaluator
+    computes in floating point, so ``10**309`` written out in digits is as unusable as ``1e309``.
+    """
+    if "." in text or "e" in text.lower():
+        value: int | float = float(text)
+        return None if math.isinf(value) else value
+    value = int(text)
+    try:
+        float(value)
+    except OverflowError:
+        return None
+    return value
+
+
+def as_float(value: int | float) -> float:
+    """``float(value)``, except that an integer beyond the float range gives +-inf.
+
+    Constant arithmetic on integer literals stays exact (``int``) and can outgrow the float
+    range (``10**200 * 10**200``); every consumer computes in floating point, where such a
+    value is infinite, so callers see it as non-finite instead of an ``OverflowError``.
+    """
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
+def _abbreviate(text: str, keep: int = 12) -> str:
+    """``text`` quoted; a long literal's middle is elided: ``'999...999' (350 characters)``."""
+    if len(text) <= 2 * keep + 3:
+        return repr(text)
+    return f"'{text[:keep]}...{text[-keep:]}' ({len(text)} characters)"

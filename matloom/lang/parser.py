@@ -22,8 +22,9 @@ statement, so one pass reports as many independent problems as possible.
 from __future__ import annotations
 
 from matloom.lang import ast as A
+from matloom.lang.comments import attach_comments
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
-from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token
+from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token, as_float
 from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS, Returns
 
 MAX_NESTING = 100
@@ -201,7 +202,8 @@ class Parser:
                     expected="Material(Layer(...), ...) as the last statement",
                 )
             return None
-        return A.Program(view, tuple(defines), layers, Span(0, len(self.src), 1, 1))
+        program = A.Program(view, tuple(defines), layers, Span(0, len(self.src), 1, 1))
+        return attach_comments(program, self.lexer.comments, self.toks)
 
     def _unexpected_statement(self, tok: Token, after_material: bool) -> _Bail:
         if after_material:
@@ -288,7 +290,7 @@ class Parser:
                     expected="View(x1, y1, x2, y2) with numeric corners",
                 )
                 bad, v = True, 0.0
-            values.append(float(v))
+            values.append(as_float(v))  # beyond the float range: inf, E061
         if self.at(","):
             raise self.fail(
                 "E027",

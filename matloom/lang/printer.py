@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 from matloom.lang import ast as A
+from matloom.lang.lexer import as_float
 from matloom.lang.static import static_number
 from matloom.vocab import CONSTANTS, FUNCTIONS, Kind, ParamSpec, PrintStyle
 from matloom.vocab.spec import format_default
@@ -61,7 +62,7 @@ def _static_text(node: A.Node | None, p: ParamSpec) -> str:
         return f'"{node.value}"'
     if isinstance(node, A.Lit):
         return format_expr(node)
-    v = static_number(node)
+    v = _static_number(node)
     if v is None:  # not constant: invalid program, print as written
         return format_expr(node)
     if p.kind is Kind.BOOL:
@@ -69,6 +70,15 @@ def _static_text(node: A.Node | None, p: ParamSpec) -> str:
     if p.kind is Kind.INT and math.isfinite(v):
         return str(int(round(v)))
     return fmt_num(v)
+
+
+def _static_number(node: A.Node) -> float | int | None:
+    """:func:`static_number`, with exact integers beyond the float range as +-inf (never an
+    integer too long to print, even for a program that was not checked)."""
+    v = static_number(node)
+    if isinstance(v, int) and not math.isfinite(as_float(v)):
+        return as_float(v)
+    return v
 
 
 def _arg_text(call: A.Call, p: ParamSpec) -> str:
@@ -92,7 +102,7 @@ def _value(call: A.Call, name: str) -> object:
         return node.value
     if isinstance(node, A.Lit):
         return node.value
-    v = static_number(node)
+    v = _static_number(node)
     if p.kind is Kind.BOOL and v is not None:
         return bool(v)
     return v
@@ -193,29 +203,93 @@ def _format_threshold(call: A.Call) -> str:
     return f"Threshold({', '.join(parts)})"
 
 
-def format_layer(layer: A.Layer) -> list[str]:
+class _Lines:
+    """Program text under construction. Comments are written only when ``comments`` is set."""
+
+    def __init__(self, comments: bool) -> None:
+        self.comments = comments
+        self.lines: list[str] = []
+        self.tails: list[str] = []  # trailing comment of each line ("" for none)
+        self.last_code = -1
+
+    def own(self, indent: str, node: A.Commented, slot: str = "leading") -> None:
+        """``node``'s comments in ``slot``, each on its own line at ``indent``."""
+        for text in _texts(node, slot) if self.comments else ():
+            self.lines.append(indent + text)
+            self.tails.append("")
+
+    def code(self, indent: str, text: str, node: A.Commented | None = None) -> None:
+        """A line of code, preceded by ``node``'s leading comments and ending in its trailing."""
+        if node is not None:
+            self.own(indent, node)
+        self.lines.append(indent + text)
+        tails = _texts(node, "trailing") if node is not None and self.comments else []
+        self.tails.append("  ".join(tails))
+        self.last_code = len(self.lines) - 1
+
+    def trail(self, node: A.Commented, slot: str) -> None:
+        """Append ``node``'s ``slot`` comments to the last line of code."""
+        texts = _texts(node, slot) if self.comments else []
+        k = self.last_code
+        self.tails[k] = "  ".join(t for t in (self.tails[k], *texts) if t)
+
+    def comma(self) -> None:
+        self.lines[self.last_code] += ","
+
+    def text(self) -> str:
+        return "\n".join(
+            f"{line}  {tail}" if tail else line for line, tail in zip(self.lines, self.tails)
+        )
+
+
+def _texts(node: A.Commented, slot: str) -> list[str]:
+    return [c.text for c in node.comments if c.slot == slot]
+
+
+def _layer(out: _Lines, layer: A.Layer) -> None:
     alpha = format_expr(layer.alpha) if layer.alpha is not None else ""
-    lines = [f"  Layer({alpha})"]
+    out.code("  ", f"Layer({alpha})", layer)
     for ch in layer.channels:
-        lines.append(f"    .{ch.name}({', '.join(format_expr(a) for a in ch.args)})")
-    return lines
+        out.code("    ", f".{ch.name}({', '.join(format_expr(a) for a in ch.args)})", ch)
 
 
-def format_program(program: A.Program) -> str:
-    """Canonical program text (no trailing newline), as the reference serialiser writes it."""
-    lines: list[str] = []
+def format_layer(layer: A.Layer, *, comments: bool = False) -> list[str]:
+    """Lines of one layer as it prints inside ``Material(...)``."""
+    out = _Lines(comments)
+    _layer(out, layer)
+    return out.text().split("\n")
+
+
+def format_program(program: A.Program, *, comments: bool = False) -> str:
+    """Canonical program text (no trailing newline), as the reference serialiser writes it.
+
+    With ``comments=True`` the program's ``#`` comments are printed too (``matloom fmt``):
+    leading ones on their own lines at the construct's indentation, trailing ones after it with
+    two spaces before ``#``. A program without comments prints the same either way. The default
+    stays comment-free, because the reference parser rejects ``#``.
+    """
+    out = _Lines(comments)
     if program.view is not None:
-        lines.append(f"View({', '.join(fmt_num(v) for v in program.view.as_tuple())})")
+        out.code(
+            "", f"View({', '.join(fmt_num(v) for v in program.view.as_tuple())})", program.view
+        )
     for d in program.defines:
-        lines.append(f"Define({d.name}, {format_expr(d.expr)})")
+        out.code("", f"Define({d.name}, {format_expr(d.expr)})", d)
     if not program.layers:
-        lines.append("Material()")
-        return "\n".join(lines)
-    lines.append("Material(")
-    for i, layer in enumerate(program.layers):
-        block = format_layer(layer)
-        if i < len(program.layers) - 1:
-            block[-1] += ","
-        lines.extend(block)
-    lines.append(")")
-    return "\n".join(lines)
+        out.own("", program)
+        out.own("", program, "footer")
+        out.code("", "Material()")
+        out.trail(program, "open")
+        out.trail(program, "close")
+    else:
+        out.code("", "Material(", program)
+        out.trail(program, "open")
+        for i, layer in enumerate(program.layers):
+            _layer(out, layer)
+            if i < len(program.layers) - 1:
+                out.comma()
+        out.own("  ", program, "footer")
+        out.code("", ")")
+        out.trail(program, "close")
+    out.own("", program, "end")
+    return out.text()

@@ -37,7 +37,12 @@ def render_language_reference() -> str:
         "`python -m matloom.vocab.docs > docs/language.md`; a test keeps it in sync._",
         "",
         "A program is an optional `View(x1, y1, x2, y2)`, then `Define(name, expr)` lines, then "
-        "one `Material(Layer(...), ...)` with layers listed bottom first. `#` starts a comment.",
+        "one `Material(Layer(...), ...)` with layers listed bottom first. `#` starts a comment "
+        "that runs to the end of the line. `matloom fmt` keeps comments: on their own lines before "
+        "a `View`, `Define`, `Material`, `Layer` or channel call, or after the code of the line "
+        "where one of these ends; any other comment (inside an expression) moves before the "
+        "enclosing statement, layer or channel call. Canonical text for the reference engine "
+        "(`matloom.format`, exports, seed variants) leaves comments out.",
         "",
         "## Layer channels",
         "",

@@ -2,8 +2,9 @@
 
 ``POST /v1/chat/completions`` takes the JSON request and answers with a JSON completion whose
 content comes from a responder function. Faults can be queued to hit the next requests: an HTTP
-status (429, 500, ...), a delay (to trigger client timeouts), a dropped connection, or a hang
-that blocks until :meth:`ChatServer.release` (to kill a client mid-run).
+status (429, 500, ..., optionally with the request headers echoed in the error body), a delay
+(to trigger client timeouts), a dropped connection, or a hang that blocks until
+:meth:`ChatServer.release` (to kill a client mid-run).
 """
 
 from __future__ import annotations
@@ -25,6 +26,9 @@ class Fault:
     """What to do instead of (or before) answering one request."""
 
     status: int | None = None
+    #: With ``status``: quote the request's headers (Authorization included) in the error body,
+    #: as careless servers do.
+    echo_headers: bool = False
     delay: float = 0.0
     drop: bool = False
     hang: bool = False
@@ -106,11 +110,14 @@ class _Handler(BaseHTTPRequestHandler):
             self.connection.close()
             return True
         if fault.status is not None:
+            message = f"injected {fault.status}"
+            if fault.echo_headers:
+                message += f"; request headers: {dict(self.headers.items())}"
             self._send_json(
                 fault.status,
                 {
                     "error": {
-                        "message": f"injected {fault.status}",
+                        "message": message,
                         "type": "test",
                         "code": fault.status,
                     }

@@ -152,7 +152,7 @@ def test_seeds_writes_four_files(files: dict[str, Path], tmp_path: Path) -> None
     out_dir = tmp_path / "variants"
     result = run_cli("seeds", str(files["seedless"]), "--variants", "3", "-o", str(out_dir))
     assert result.returncode == 0, result.stderr
-    written = sorted(p.name for p in out_dir.iterdir())
+    written = sorted(p.name for p in out_dir.iterdir() if not p.name.startswith("."))
     assert written == [f"variant_{i:04d}.mat" for i in range(4)]
     texts = [(out_dir / name).read_text(encoding="utf-8") for name in written]
     assert len(set(texts)) == 4

@@ -19,6 +19,10 @@ import matloom
 PARITY = Path(__file__).resolve().parents[1] / "data" / "parity"
 
 
+_BIG = "9" * 300
+"""An integer literal inside the float range whose square is not."""
+
+
 def _r(expr: str) -> str:
     """A one-line program whose roughness expression starts at column 29."""
     return f"Material(Layer(1).roughness({expr}))"
@@ -107,6 +111,14 @@ CASES = [
     Case("view_field_argument", "View(0, 0, X(), 1)\nMaterial(Layer(1))", "E061", 1, 12,
          "numbers"),
     Case("view_inf_name", "View(0, 0, inf, 1)\nMaterial(Layer(1))", "E061", 1, 12, errors=2),
+    Case("view_span_overflows", "View(-1e308, -1e308, 1e308, 1e308)\nMaterial(Layer(1))",
+         "E061", 1, 1, "too large"),
+    Case("view_past_float32_grid", "View(0, 0, 1e39, 1)\nMaterial(Layer(1))", "E061", 1, 1,
+         "float32"),
+    Case("view_integer_product_overflows",
+         f"View(0, 0, {_BIG} * {_BIG}, 1)\nMaterial(Layer(1))", "E061", 1, 1, "finite"),
+    Case("view_subnormal_span", "View(0, 0, 1e-320, 1)\nMaterial(Layer(1))", "E061", 1, 1,
+         "too small"),
     # -- channels
     Case("keyword_in_channel", "Material(Layer(1).roughness(value=0.5))", "E031", 1, 29),
     Case("bool_channel", _r("True"), "E042", 1, 29, "bool"),
@@ -120,6 +132,12 @@ CASES = [
     Case("double_minus", _r("--X()"), "E011", 1, 30, "-(-x)"),
     Case("exponent_without_digits", _r("1e"), "E003", 1, 29, "exponent"),
     Case("number_too_large", _r("1e999"), "E003", 1, 29, "too large"),
+    Case("integer_too_large", _r("9" * 350), "E003", 1, 29, "too large"),
+    Case("integer_just_too_large", _r("2" + "0" * 308), "E003", 1, 29, "finite"),
+    Case("integer_product_too_large", _r(f"Constant({_BIG} * {_BIG})"), "E050", 1, 38,
+         "finite"),
+    Case("integer_product_too_large_int", _r(f"fBm(octaves={_BIG} * {_BIG}, seed=1)"), "E050",
+         1, 41, "finite"),
     Case("digit_underscore", _r("1_000"), "E010", 1, 30),
     Case("semicolon", "Material(Layer(1));", "E001", 1, 19, "';'"),
     Case("square_bracket", _r("[1]"), "E001", 1, 29, "parentheses"),

@@ -3,7 +3,9 @@
 Retries are done here rather than by the SDK so every attempt is counted and the back-off is
 configurable: 429, 5xx, timeouts and connection errors are retried ``max_retries`` times with
 ``backoff_s * 1.5**r + U(0, backoff_s)`` waits; empty replies are retried too (as the reference
-does). Other 4xx errors fail at once with a message saying what to fix.
+does). Other 4xx errors fail at once with a message saying what to fix. Error messages never
+carry the API key or the base URL's credentials (:mod:`matloom.author.redact`), even when the
+server echoes the request's ``Authorization`` header in its error body.
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from matloom.author.llm.base import (
     ModelUnavailableError,
     register_provider,
 )
+from matloom.author.redact import URL_REDACTED, Redactor, redact_url
+from matloom.author.replies import clean_text
 
 #: Placeholder key for local servers that need none (the SDK refuses an empty key).
 NO_KEY = "no-key-configured"
@@ -55,8 +59,14 @@ class OpenAICompatModel:
             raise ModelError(
                 "the `openai` package is not installed; install the extra: pip install 'matloom[llm]'"
             ) from None
+        if settings.base_url and URL_REDACTED in settings.base_url:
+            raise ModelError(
+                f"the base URL {settings.base_url} had credentials, which record.json does not "
+                "store; pass --base-url (and --critic-base-url) again to resume this run"
+            )
         self._openai = openai
         self.settings = settings
+        self._redactor = Redactor.for_settings([settings])
         self._client = openai.OpenAI(
             base_url=settings.base_url,
             api_key=api_key_for(settings) or NO_KEY,
@@ -121,9 +131,17 @@ class OpenAICompatModel:
             self._backoff(empty - 1)
 
     def _handle_failure(self, err: Exception, attempt: int) -> None:
-        """Raise a :class:`ModelError` unless ``err`` is transient and retries remain."""
+        """Raise a :class:`ModelError` (its message redacted) unless ``err`` is transient and
+        retries remain."""
+        try:
+            self._classify_failure(err, attempt)
+        except ModelError as failure:
+            raise type(failure)(self._redactor.text(str(failure))) from None
+
+    def _classify_failure(self, err: Exception, attempt: int) -> None:
         o = self._openai
-        where = self.settings.base_url or "the default OpenAI endpoint"
+        url = self.settings.base_url
+        where = redact_url(url) if url else "the default OpenAI endpoint"
         retries_left = attempt <= self.settings.max_retries
         if isinstance(err, o.APITimeoutError):
             if retries_left:
@@ -166,7 +184,8 @@ def _reply_text(response: Any) -> tuple[str, str | None]:
     if not choices:
         return "", None
     message = choices[0].message
-    return (getattr(message, "content", None) or ""), getattr(choices[0], "finish_reason", None)
+    text = clean_text(getattr(message, "content", None) or "")
+    return text, getattr(choices[0], "finish_reason", None)
 
 
 def _usage(response: Any) -> dict[str, int]:

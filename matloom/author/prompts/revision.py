@@ -26,6 +26,15 @@ def missing_program_message() -> str:
     )
 
 
+def reply_too_large_message(length: int, limit: int) -> str:
+    """Repair turn when the reply was over the reply-size cap (only its start is shown)."""
+    return (
+        f"Your reply was {length:,} characters long, over the limit of {limit:,}; only its start "
+        "is shown above and it was not read. Reply with only the complete program inside a "
+        "single <material>...</material> pair."
+    )
+
+
 def diagnostics_message(program: str, diagnostics: Sequence[Diagnostic]) -> str:
     """Repair turn quoting structured diagnostics: code, line:column, caret excerpt, expectation
     and hint for each error, followed by the program as it was read."""

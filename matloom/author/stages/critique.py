@@ -3,18 +3,25 @@
 The critic sees a fresh conversation per program (so its scores stay comparable across rounds)
 with any subset of: the preview render (only if the model takes images), the 28 statistics,
 the source. Its answer is parsed tolerantly: ``//`` comments outside strings are removed, the
-first brace-balanced object is taken, ``json.loads`` then ``json_repair`` are tried, and the
-result is validated; a failure is retried with a follow-up message up to ``retries`` times.
+first brace-balanced object is taken, ``json.loads`` then the bounded repair of
+:mod:`~matloom.author.stages.jsonfix` are tried, and the result is validated; a failure is
+retried with a follow-up message up to ``retries`` times. Every way an answer can be wrong
+(too long, not JSON, nested too deep, wrong fields) is a :class:`CritiqueParseError`, so a bad
+critic answer ends as a failed critique in the record, never as a failed run. All parsing is
+linear in the answer's length.
 """
 
 from __future__ import annotations
 
 import json
+import math
+import re
 import time
 from collections.abc import Collection
 
 from pydantic import BaseModel, Field, ValidationError, field_validator
 
+from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
 from matloom.author.llm.base import ChatMessage, ChatModel, ImageInput
 from matloom.author.prompts.critic import (
     critic_retry_message,
@@ -22,6 +29,15 @@ from matloom.author.prompts.critic import (
     critic_user_message,
 )
 from matloom.author.records import CritiqueRecord, MessageRecord
+from matloom.author.replies import clean_text, clip_reply, oversize_error
+from matloom.author.stages.jsonfix import JsonRepairError, repair_json
+
+#: A JSON string (possibly never closed: the rest of the text is then inside it).
+_STRING = r'"[^"\\]*(?:\\.[^"\\]*)*(?:"|\\?\Z)'
+_STRING_OR_COMMENT = re.compile(_STRING + r"|//[^\n]*", re.DOTALL)
+_STRING_OR_BRACE = re.compile(_STRING + r"|[{}]", re.DOTALL)
+#: An unusable answer is quoted back to the critic (in the retry) up to this many characters.
+ECHO_MAX_CHARS = 8_000
 
 
 class Critique(BaseModel):
@@ -41,7 +57,7 @@ class Critique(BaseModel):
                 value = float(value)
             except ValueError:
                 return value
-        if isinstance(value, float):
+        if isinstance(value, float) and math.isfinite(value):
             value = round(value)
         if isinstance(value, int) and not isinstance(value, bool):
             return min(100, max(0, value))
@@ -51,9 +67,9 @@ class Critique(BaseModel):
     @classmethod
     def _listify(cls, value: object) -> object:
         if isinstance(value, str):
-            return [value] if value.strip() else []
+            return [clean_text(value)] if value.strip() else []
         if isinstance(value, list):
-            return [str(v) for v in value]
+            return [clean_text(str(v)) for v in value]
         return value
 
 
@@ -63,27 +79,7 @@ class CritiqueParseError(ValueError):
 
 def strip_line_comments(text: str) -> str:
     """Remove ``// ...`` comments that are outside JSON strings."""
-    out: list[str] = []
-    in_string = escaped = False
-    i = 0
-    while i < len(text):
-        ch = text[i]
-        if in_string:
-            out.append(ch)
-            escaped = ch == "\\" and not escaped
-            if ch == '"' and not escaped:
-                in_string = False
-        elif ch == '"':
-            in_string, escaped = True, False
-            out.append(ch)
-        elif text.startswith("//", i):
-            while i < len(text) and text[i] != "\n":
-                i += 1
-            continue
-        else:
-            out.append(ch)
-        i += 1
-    return "".join(out)
+    return _STRING_OR_COMMENT.sub(lambda m: m.group() if m.group().startswith('"') else "", text)
 
 
 def first_json_object(text: str) -> str | None:
@@ -91,23 +87,28 @@ def first_json_object(text: str) -> str | None:
     start = text.find("{")
     if start < 0:
         return None
-    depth, in_string, escaped = 0, False, False
-    for i in range(start, len(text)):
-        ch = text[i]
-        if in_string:
-            escaped = ch == "\\" and not escaped
-            if ch == '"' and not escaped:
-                in_string = False
-            continue
-        if ch == '"':
-            in_string, escaped = True, False
-        elif ch == "{":
+    depth = 0
+    for m in _STRING_OR_BRACE.finditer(text, start):
+        token = m.group()
+        if token == "{":
             depth += 1
-        elif ch == "}":
+        elif token == "}":
             depth -= 1
             if depth == 0:
-                return text[start : i + 1]
+                return text[start : m.end()]
     return text[start:]
+
+
+def _load(candidate: str) -> object:
+    """``json.loads``, else the bounded lenient repair; every failure a CritiqueParseError."""
+    try:
+        return json.loads(candidate, strict=False)
+    except (ValueError, RecursionError):  # JSONDecodeError, too many digits, nested too deep
+        pass
+    try:
+        return repair_json(candidate)
+    except JsonRepairError as err:
+        raise CritiqueParseError(str(err)) from None
 
 
 def parse_critique(text: str) -> Critique:
@@ -115,12 +116,7 @@ def parse_critique(text: str) -> Critique:
     candidate = first_json_object(strip_line_comments(text))
     if candidate is None:
         raise CritiqueParseError("no JSON object found")
-    try:
-        data = json.loads(candidate)
-    except json.JSONDecodeError:
-        import json_repair
-
-        data = json_repair.loads(candidate)
+    data = _load(candidate)
     if not isinstance(data, dict):
         raise CritiqueParseError("the answer is not a JSON object")
     try:
@@ -128,6 +124,15 @@ def parse_critique(text: str) -> Critique:
     except ValidationError as err:
         problems = "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in err.errors())
         raise CritiqueParseError(problems) from None
+    except RecursionError:  # a list entry nested deeply enough to exhaust str()
+        raise CritiqueParseError("the answer is nested too deeply") from None
+
+
+def _read_answer(text: str, max_reply_chars: int) -> Critique:
+    """The critique in one answer; an answer over the size cap is refused unread."""
+    if len(text) > max_reply_chars:
+        raise CritiqueParseError(oversize_error(len(text), max_reply_chars))
+    return parse_critique(text)
 
 
 def critique_program(
@@ -140,6 +145,7 @@ def critique_program(
     render: ImageInput | None,
     stats: str | None,
     retries: int,
+    max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
 ) -> CritiqueRecord:
     """Run the stateless critic on one program; never raises on a bad answer (``ok=False``)."""
     if "render" in signals and (render is None or not model.accepts_images):
@@ -157,14 +163,14 @@ def critique_program(
     error = "no answer"
     for _ in range(retries + 1):
         reply = model.complete(messages)
-        replies.append(reply.text)
+        replies.append(clip_reply(reply.text, max_reply_chars))
         try:
-            critique = parse_critique(reply.text)
+            critique = _read_answer(reply.text, max_reply_chars)
         except CritiqueParseError as err:
             error = str(err)
             messages = [
                 *messages,
-                ChatMessage(role="assistant", text=reply.text),
+                ChatMessage(role="assistant", text=clip_reply(reply.text, ECHO_MAX_CHARS)),
                 ChatMessage(role="user", text=critic_retry_message(error)),
             ]
             continue

@@ -4,19 +4,25 @@ A turn sends the committed conversation plus a new user message, then up to ``re
 corrective turns carrying the parser's structured diagnostics (code, line:column, caret excerpt,
 expectation, hint). An accepted program gets explicit seeds, and the last assistant turn is
 rewritten to show the model its canonical text. The conversation in the record only grows when
-a program is accepted, so a resumed run restarts an interrupted turn from a clean state.
+a program is accepted, so a resumed run restarts an interrupted turn from a clean state. A reply
+over the reply-size cap (:mod:`matloom.author.replies`) is not parsed: the attempt is recorded
+as ``too_large`` with the reply clipped, and the model is asked again like after any bad reply.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Literal
 
-from matloom.author.llm.base import ChatMessage, ChatModel, ChatReply
+from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
+from matloom.author.llm.base import ChatMessage, ChatModel
 from matloom.author.prompts.revision import (
     canonical_assistant_turn,
     diagnostics_message,
     missing_program_message,
+    reply_too_large_message,
 )
 from matloom.author.records import (
     AttemptRecord,
@@ -25,6 +31,7 @@ from matloom.author.records import (
     RecordStore,
     TurnRecord,
 )
+from matloom.author.replies import clip_reply, oversize_error
 from matloom.lang.api import analyse
 from matloom.lang.extract import extract_program
 from matloom.lang.printer import format_program
@@ -54,16 +61,33 @@ def _check(program_text: str) -> tuple[str | None, list[dict[str, object]], str 
     return format_program(program), [], None
 
 
-def _attempt(
-    model: ChatModel, working: list[ChatMessage], attempt: int
-) -> tuple[ChatReply, str | None, str, list[dict[str, object]], str | None]:
-    """Ask once; return (reply, accepted program text, preamble, error dicts, repair message)."""
-    reply = model.complete(working)
-    program_text, preamble = extract_program(reply.text)
+@dataclass
+class _Outcome:
+    """What one reply of a turn came to."""
+
+    outcome: Literal["accepted", "no_program", "parse_error", "too_large"]
+    canonical: str | None = None
+    preamble: str = ""
+    errors: list[dict[str, object]] = field(default_factory=list)
+    repair: str = ""
+    error: str | None = None
+
+
+def _read_reply(text: str, max_reply_chars: int) -> _Outcome:
+    """Extract and check the program of one reply (refused unread when over the cap)."""
+    if len(text) > max_reply_chars:
+        return _Outcome(
+            "too_large",
+            repair=reply_too_large_message(len(text), max_reply_chars),
+            error=oversize_error(len(text), max_reply_chars),
+        )
+    program_text, preamble = extract_program(text)
     if program_text is None:
-        return reply, None, preamble, [], missing_program_message()
+        return _Outcome("no_program", preamble=preamble, repair=missing_program_message())
     canonical, errors, repair = _check(program_text)
-    return reply, canonical, preamble, errors, repair
+    if canonical is None:
+        return _Outcome("parse_error", preamble=preamble, errors=errors, repair=repair or "")
+    return _Outcome("accepted", canonical=canonical, preamble=preamble)
 
 
 def run_turn(
@@ -75,6 +99,7 @@ def run_turn(
     program_seed: int,
     repair_turns: int,
     notify: Notify | None = None,
+    max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
 ) -> ProgramRecord:
     """Run one generation/revision turn to an accepted program; record every attempt."""
     record = store.record
@@ -89,27 +114,27 @@ def run_turn(
         if notify:
             notify(f"{kind} P{index}, attempt {attempt}")
         t0 = time.perf_counter()
-        reply, canonical, preamble, errors, repair = _attempt(model, working, attempt)
-        outcome = (
-            "accepted" if canonical is not None else ("parse_error" if errors else "no_program")
-        )
+        reply = model.complete(working)
+        read = _read_reply(reply.text, max_reply_chars)
+        shown = clip_reply(reply.text, max_reply_chars)
         turn.attempts.append(
             AttemptRecord(
                 attempt=attempt,
-                reply=reply.text,
-                outcome=outcome,
-                diagnostics=errors,
+                reply=shown,
+                outcome=read.outcome,
+                diagnostics=read.errors,
+                error=read.error,
                 seconds=time.perf_counter() - t0,
                 model=reply.model,
             )
         )
-        if canonical is not None:
+        if read.canonical is not None:
             return _accept(
-                store, turn, working, preamble, canonical, reply.text, program_seed, start
+                store, turn, working, read.preamble, read.canonical, reply.text, program_seed, start
             )
         working += [
-            ChatMessage(role="assistant", text=reply.text),
-            ChatMessage(role="user", text=repair or missing_program_message()),
+            ChatMessage(role="assistant", text=shown),
+            ChatMessage(role="user", text=read.repair or missing_program_message()),
         ]
         store.save()
     turn.seconds = time.perf_counter() - start
