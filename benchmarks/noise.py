@@ -18,7 +18,6 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -26,8 +25,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from matloom.engine.backends import Backend, get_backend  # noqa: E402
 from matloom.engine.grid import sample_axes  # noqa: E402
-from matloom.engine.kernels import noise_numpy  # noqa: E402
 from matloom.engine.maps import View  # noqa: E402
 
 FBM_KW: dict[str, Any] = dict(
@@ -57,7 +56,7 @@ def best_ms(fn: Callable[[], Any], repeat: int) -> tuple[float, float]:
     return min(walls) * 1e3, min(cpus) * 1e3
 
 
-def bench_calls(backends: dict[str, ModuleType], sizes: list[int], repeat: int) -> None:
+def bench_calls(backends: dict[str, Backend], sizes: list[int], repeat: int) -> None:
     """fBm and Worley, separable float32 axes and a rotated full grid."""
     for size in sizes:
         x, y = view_axes(size, 0.0, 0.0, 1.0, 1.0)
@@ -77,7 +76,7 @@ def bench_calls(backends: dict[str, ModuleType], sizes: list[int], repeat: int) 
                 print(f"{name:6s} {label:18s} {size:5d}^2  {wall:9.1f} ms  (cpu {cpu:9.1f} ms)")
 
 
-def bench_seed_batch(mod: ModuleType, n_seeds: int) -> None:
+def bench_seed_batch(mod: Backend, n_seeds: int) -> None:
     """The paper tile program's three fBm fields for ``n_seeds`` seeds, plus a Worley field."""
     x, y = view_axes(256, 0.0, 0.0, 2.0, 2.0)
     seeds = list(range(n_seeds))
@@ -142,7 +141,8 @@ _COLD_SCRIPT = """
 import time
 t0 = time.perf_counter()
 import numpy as np
-from matloom.engine.kernels import noise_numba as nb
+from matloom.engine.backends import get_backend
+nb = get_backend("numba")
 t1 = time.perf_counter()
 x = np.linspace(0, 1, 64, dtype=np.float32)[None, :]
 y = np.linspace(0, 1, 64, dtype=np.float32)[:, None]
@@ -179,18 +179,16 @@ def main() -> None:
     parser.add_argument("--skip-numpy", action="store_true")
     parser.add_argument("--skip-cold", action="store_true")
     args = parser.parse_args()
-    backends: dict[str, ModuleType] = {}
+    backends: dict[str, Backend] = {}
     try:
         import numba
 
-        from matloom.engine.kernels import noise_numba
-
-        backends["numba"] = noise_numba
+        backends["numba"] = get_backend("numba")
         print(f"numba {numba.__version__}, threads {numba.get_num_threads()}", end=", ")
     except ImportError:
         print("numba not installed", end=", ")
     if not args.skip_numpy:
-        backends["numpy"] = noise_numpy
+        backends["numpy"] = get_backend("numpy")
     print(f"numpy {np.__version__}, load average {os.getloadavg()[0]:.2f}")
     bench_calls(backends, args.sizes, args.repeat)
     if "numba" in backends:

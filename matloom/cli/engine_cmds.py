@@ -124,7 +124,7 @@ def render_cmd(
     import json
 
     from matloom.engine.evaluate import EvalStats, evaluate
-    from matloom.engine.limits import LimitError
+    from matloom.engine.limits import EVALUATE, LimitError, Usage
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import (
         MANIFEST_NAME,
@@ -153,7 +153,15 @@ def render_cmd(
         t0 = time.perf_counter()
         stats = EvalStats()
         try:
-            maps = evaluate(program, w, h, backend=backend, ao_radius_units=ao_radius, stats=stats)
+            maps = evaluate(
+                program,
+                w,
+                h,
+                backend=backend,
+                ao_radius_units=ao_radius,
+                stats=stats,
+                usage=Usage(preview_tile=1) if preview else EVALUATE,  # shading counted too
+            )
         except LimitError as e:
             raise click.ClickException(str(e)) from None
         t_eval = time.perf_counter() - t0

@@ -56,6 +56,9 @@ class LazyGroup(click.Group):
 @click.version_option(package_name="matloom")
 def cli() -> None:
     """MatLoom: layered material programs -> PBR texture maps."""
+    from matloom.cli.progress import kernel_start_up
+
+    kernel_start_up()  # first-run kernel compilation: progress on stderr, numpy meanwhile
 
 
 def main() -> None:

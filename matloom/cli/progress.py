@@ -1,12 +1,22 @@
-"""A stderr progress display that appears only for work longer than a second."""
+"""stderr progress displays: :class:`LazyProgress` for long loops (appears only for work longer
+than a second) and :class:`KernelProgress` for the numba kernels' first-run compilation.
+
+:func:`kernel_start_up` is called by the ``matloom`` command group for every command: while the
+command runs, kernel compilation is reported and ``auto`` evaluations stay on the numpy path
+while the kernels compile in the background (see :mod:`matloom.engine.kernels.warmup`). Nothing
+here imports numba or rich at import time (every command pays for this module).
+"""
 
 from __future__ import annotations
 
+import sys
+import threading
 import time
 from types import TracebackType
+from typing import Any, TextIO
 
-from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+#: The words every compile message starts with (tests look for them).
+COMPILING = "compiling kernels (first run only)"
 
 
 class LazyProgress:
@@ -15,7 +25,7 @@ class LazyProgress:
     def __init__(self, label: str, delay: float = 1.0, enabled: bool = True) -> None:
         self.label, self.delay, self.enabled = label, delay, enabled
         self.start = time.perf_counter()
-        self.progress: Progress | None = None
+        self.progress: Any = None
         self.task = None
 
     def __call__(self, done: int, total: int) -> None:
@@ -25,6 +35,15 @@ class LazyProgress:
         if self.progress is None:
             if elapsed < self.delay:
                 return
+            from rich.console import Console
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                Progress,
+                TextColumn,
+                TimeRemainingColumn,
+            )
+
             self.progress = Progress(
                 TextColumn(f"[bold]{self.label}"),
                 BarColumn(),
@@ -47,3 +66,101 @@ class LazyProgress:
     ) -> None:
         if self.progress is not None:
             self.progress.stop()
+
+
+class KernelProgress:
+    """A :class:`~matloom.engine.kernels.compile_report.CompileReporter` writing to stderr.
+
+    Kernels compiling in this process: "compiling kernels (first run only) 3 done, now
+    composite_numba.composite_rows, 9 s" while each one compiles (a status line erased when it
+    is done on a terminal, one line per kernel otherwise). Kernels compiling in the background:
+    one line with the steps done ("... 2/6 in the background ..."). :meth:`close` ends with a
+    summary. Nothing at all is written when no kernel compiles.
+    """
+
+    def __init__(self, stream: TextIO | None = None) -> None:
+        self.stream = stream or sys.stderr
+        self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.lock = threading.Lock()
+        self.start: float | None = None
+        self.end = 0.0
+        self.compiled = 0
+        self.background: tuple[int, int] | None = None
+
+    def kernel_compiling(self, name: str) -> None:
+        with self.lock:
+            if self.start is None:
+                self.start = time.perf_counter()
+            elapsed = time.perf_counter() - self.start
+            text = f"{COMPILING} {self.compiled} done, now {name}, {elapsed:.0f} s"
+            self.stream.write(f"\r\x1b[2K{text}" if self.tty else text + "\n")
+            self.stream.flush()
+
+    def kernel_compiled(self, name: str, seconds: float) -> None:
+        with self.lock:
+            self.compiled += 1
+            self.end = time.perf_counter()
+            if self.tty:  # erase the status line: other output starts on a clean line
+                self.stream.write("\r\x1b[2K")
+                self.stream.flush()
+
+    def background_compiling(self, done: int, total: int) -> None:
+        with self.lock:
+            if self.background is None:
+                self.stream.write(
+                    f"{COMPILING} {done}/{total} in the background; "
+                    "meanwhile this run uses the numpy path (same maps)\n"
+                )
+                self.stream.flush()
+            self.background = (done, total)
+
+    def close(self) -> None:
+        """Write the summary line(s), if anything compiled."""
+        with self.lock:
+            if self.start is not None:
+                elapsed = max(self.end, self.start) - self.start
+                self.stream.write(
+                    f"{COMPILING}: {self.compiled} kernel(s) compiled in {elapsed:.1f} s "
+                    "and cached for later runs\n"
+                )
+            if self.background is not None:
+                self.stream.write(self._background_summary() + "\n")
+            self.stream.flush()
+
+    @staticmethod
+    def _background_summary() -> str:
+        from matloom.engine.kernels import warmup
+
+        current = warmup.state()
+        if current.ready:
+            return f"{COMPILING}: done in the background; later runs use them"
+        if current.running:
+            return (
+                f"{COMPILING}: {current.done}/{current.total} done, continuing in the "
+                "background; later runs use them once it has finished"
+            )
+        return f"{COMPILING}: the background compiler stopped ({current.error or 'unknown'})"
+
+
+def kernel_start_up() -> None:
+    """For the current click command: report kernel compilation on stderr, and let ``auto``
+    evaluations use the numpy path while the kernels compile in the background. Both end with
+    the command (the previous reporter and policy come back)."""
+    import click
+
+    from matloom.engine import backends
+    from matloom.engine.kernels import compile_report
+
+    ctx = click.get_current_context(silent=True)
+    if ctx is None:
+        return
+    reporter = KernelProgress()
+    previous_reporter = compile_report.set_reporter(reporter)
+    previous_policy = backends.set_cold_start("background")
+
+    def close() -> None:
+        reporter.close()
+        compile_report.set_reporter(previous_reporter)
+        backends.set_cold_start(previous_policy)
+
+    ctx.call_on_close(close)

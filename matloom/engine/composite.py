@@ -28,13 +28,15 @@ small: constant channels (plain floats) are never expanded to full arrays.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, make_dataclass
+from typing import Any
 
 import numpy as np
 
 from matloom.engine import relief
 from matloom.engine.colour import srgb_to_linear
-from matloom.engine.maps import SCALAR_CHANNELS, MaterialMaps, View
+from matloom.engine.maps import MaterialMaps, View
+from matloom.vocab.layout import LAYOUT, Group
 
 #: A channel value: a number or an array broadcastable to (H, W).
 ArrayOrFloat = np.ndarray | float
@@ -44,37 +46,57 @@ BandReader = Callable[[ArrayOrFloat], np.ndarray]
 BAND_ROWS = relief.BAND_ROWS
 
 
-@dataclass
-class RawLayer:
+#: Name of the coverage channel (a layer's alpha).
+COVERAGE = LAYOUT.coverage.name
+
+
+class _Layer:
     """One layer's channels as evaluated from its expressions, before any clamping.
 
-    Each value is a float or an array broadcastable to (H, W). Colours are on the authored
-    0..255 sRGB scale; ``emissive`` is (r, g, b, strength). Defaults are the reference's
-    defaults for a channel the layer does not write.
+    One keyword field per registry channel (``alpha``, ``basecolor``, ``metallic``, ...); each
+    value is a float or an array broadcastable to (H, W); colour channels hold a tuple of their
+    arguments on the authored 0..255 sRGB scale (``emissive`` is (r, g, b, strength)). A channel
+    the layer does not write keeps the registry's default.
     """
 
-    alpha: ArrayOrFloat = 1.0
-    basecolor: tuple[ArrayOrFloat, ArrayOrFloat, ArrayOrFloat] = (0.0, 0.0, 0.0)
-    metallic: ArrayOrFloat = 0.0
-    roughness: ArrayOrFloat = 0.0
-    sheen: ArrayOrFloat = 0.0
-    coat: ArrayOrFloat = 0.0
-    transmission: ArrayOrFloat = 0.0
-    subsurface: ArrayOrFloat = 0.0
-    anisotropy: ArrayOrFloat = 0.0
-    ior: ArrayOrFloat = 1.5
-    emissive: tuple[ArrayOrFloat, ArrayOrFloat, ArrayOrFloat, ArrayOrFloat] = (0.0, 0.0, 0.0, 0.0)
-    height: ArrayOrFloat = 0.0
+    def set(self, name: str, values: Sequence[ArrayOrFloat]) -> None:
+        """Store the evaluated arguments of channel ``name`` (a tuple for colours)."""
+        setattr(self, name, values[0] if LAYOUT[name].arity == 1 else tuple(values))
 
     def blended_values(self) -> list[ArrayOrFloat]:
-        """The values compositing weights by the layer's visible coverage: basecolor, the seven
-        scalars, ior, emissive (r, g, b, strength). The others are ``alpha`` and ``height``."""
-        return [
-            *self.basecolor,
-            *(getattr(self, name) for name in SCALAR_CHANNELS),
-            self.ior,
-            *self.emissive,
-        ]
+        """The values compositing weights by the layer's visible coverage, in kernel slot
+        order: basecolor, the scalars, ior, emissive (r, g, b, strength). The others are the
+        coverage (``alpha``) and the max-blended ``height``."""
+        out: list[ArrayOrFloat] = []
+        for channel in LAYOUT.blended_in_slot_order:
+            value = getattr(self, channel.name)
+            if channel.arity > 1:
+                out.extend(value)
+            else:
+                out.append(value)
+        return out
+
+
+#: A layer's channel values: a keyword-only dataclass with one field per registry channel.
+RawLayer = make_dataclass(
+    "RawLayer",
+    [(c.name, Any, field(default=c.default)) for c in LAYOUT.channels],
+    bases=(_Layer,),
+    namespace={"__doc__": _Layer.__doc__, "__module__": __name__},
+    kw_only=True,
+)
+
+
+def map_channels(fn: Callable[..., Any], *layers: Any) -> Any:
+    """A :data:`RawLayer` whose every channel value (every component of a colour) is
+    ``fn(the values of that channel in layers)``; channels are visited in slot order."""
+    values: dict[str, Any] = {}
+    for channel in LAYOUT.in_slot_order:
+        vs = [getattr(layer, channel.name) for layer in layers]
+        values[channel.name] = (
+            fn(*vs) if channel.arity == 1 else tuple(fn(*comp) for comp in zip(*vs, strict=True))
+        )
+    return RawLayer(**values)
 
 
 # --------------------------------------------------------------------------------------------
@@ -108,6 +130,17 @@ def clamp_below(value: np.ndarray, floor: float) -> np.ndarray:
     return np.maximum(_as_float32(value), np.float32(floor))
 
 
+def convert_scalar(value: np.ndarray, clamp: tuple[float | None, float | None]) -> np.ndarray:
+    """A scalar channel's value in float32 clamped to ``clamp`` = (lo, hi), None = unbounded
+    (the layout's clamp: [0, 1], below at 1 for ior, none for height); NaN passes through."""
+    lo, hi = clamp
+    if lo == 0.0 and hi == 1.0:
+        return clamp_unit(value)
+    if hi is None:
+        return _as_float32(value) if lo is None else clamp_below(value, lo)
+    return np.clip(_as_float32(value), -np.inf if lo is None else np.float32(lo), np.float32(hi))
+
+
 def _colour_to_linear64(value: np.ndarray) -> np.ndarray:
     """Authored 0..255 sRGB component -> linear float64: clamp(v/255, 0, 1), decoded."""
     scaled = np.asarray(value, dtype=np.float64) / 255.0
@@ -135,17 +168,16 @@ def emitted_radiance(colour: np.ndarray, strength: np.ndarray) -> np.ndarray:
 
 @dataclass
 class _BandAccumulators:
-    """Views into the output arrays for one band of rows, accumulated in place."""
+    """Views into the output arrays for one band of rows, accumulated in place (by channel
+    name: over-blended scalars, colours (rows, W, 3), max-blended channels)."""
 
     scalars: dict[str, np.ndarray]
-    basecolor: np.ndarray
-    emissive: np.ndarray
-    ior: np.ndarray
-    height: np.ndarray
+    colours: dict[str, np.ndarray]
+    maxed: dict[str, np.ndarray]
     running: np.ndarray
 
     def blended(self) -> list[np.ndarray]:
-        return [*self.scalars.values(), self.basecolor, self.emissive, self.ior]
+        return [*self.scalars.values(), *self.colours.values()]
 
 
 def _coverage_weights(
@@ -158,7 +190,7 @@ def _coverage_weights(
     """
     result: list[tuple[np.ndarray, np.ndarray]] = [(running, running)] * len(layers)
     for index in reversed(range(len(layers))):
-        alpha = clamp_unit(band(layers[index].alpha))
+        alpha = clamp_unit(band(getattr(layers[index], COVERAGE)))
         result[index] = (alpha, alpha * running)
         running *= 1 - alpha
     return result
@@ -187,14 +219,18 @@ def _accumulate_layer(
     acc: _BandAccumulators, layer: RawLayer, adder: _WeightedAdder, band: BandReader
 ) -> None:
     """Add one layer's weighted channels (weight = V_i) to the band accumulators."""
-    for name, target in acc.scalars.items():
-        adder.add(target, clamp_unit(band(getattr(layer, name))))
-    adder.add(acc.ior, clamp_below(band(layer.ior), 1.0))
-    for k in range(3):
-        adder.add(acc.basecolor[..., k], colour_to_linear(band(layer.basecolor[k])))
-    strength = band(layer.emissive[3])
-    for k in range(3):
-        adder.add(acc.emissive[..., k], emitted_radiance(band(layer.emissive[k]), strength))
+    for channel in LAYOUT.scalars:
+        value = band(getattr(layer, channel.name))
+        adder.add(acc.scalars[channel.name], convert_scalar(value, channel.clamp))
+    for channel in LAYOUT.colours:
+        values, target = getattr(layer, channel.name), acc.colours[channel.name]
+        if channel.group is Group.COLOUR_STRENGTH:
+            strength = band(values[3])
+            for k in range(3):
+                adder.add(target[..., k], emitted_radiance(band(values[k]), strength))
+        else:
+            for k in range(3):
+                adder.add(target[..., k], colour_to_linear(band(values[k])))
 
 
 def _max_height(height_acc: np.ndarray, alpha: np.ndarray, height: np.ndarray) -> None:
@@ -217,32 +253,34 @@ def _finish_band(acc: _BandAccumulators, coverage: np.ndarray) -> None:
         else:
             target /= divisor[..., None]
             np.copyto(target, 0, where=uncovered[..., None])
-    np.copyto(acc.height, 0, where=np.isneginf(acc.height))
-    acc.height += np.float32(0.0)  # -0.0 + 0.0 == +0.0
+    for top in acc.maxed.values():
+        np.copyto(top, 0, where=np.isneginf(top))
+        top += np.float32(0.0)  # -0.0 + 0.0 == +0.0
 
 
 def _allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
-    """Zeroed float32 outputs for the blended channels and the height (-inf accumulator)."""
-    plane = (height, width)
-    maps = {name: np.zeros(plane, np.float32) for name in SCALAR_CHANNELS}
-    maps["basecolor_linear"] = np.zeros(plane + (3,), np.float32)
-    maps["emissive_linear"] = np.zeros(plane + (3,), np.float32)
-    maps["ior"] = np.zeros(plane, np.float32)
-    maps["alpha"] = np.zeros(plane, np.float32)
-    maps["height"] = np.full(plane, -np.inf, np.float32)
+    """Zeroed float32 outputs of every channel (max-blended ones: the -inf accumulator)."""
+    maps = {}
+    for channel in LAYOUT.channels:
+        shape = (height, width) + ((3,) if channel.components == 3 else ())
+        start = -np.inf if channel.group is Group.MAX else 0.0
+        maps[channel.field] = np.full(shape, start, np.float32)
     return maps
 
 
 def _composite_band(layers: Sequence[RawLayer], maps: dict[str, np.ndarray], rows: slice) -> None:
     """Composite every layer for one band of rows into ``maps`` (in place)."""
-    shape = maps["alpha"].shape
+    coverage = maps[LAYOUT.coverage.field]
+    shape = coverage.shape
     n_rows = rows.stop - rows.start
+
+    def views(channels: Sequence[Any]) -> dict[str, np.ndarray]:
+        return {c.name: maps[c.field][rows] for c in channels}
+
     acc = _BandAccumulators(
-        scalars={name: maps[name][rows] for name in SCALAR_CHANNELS},
-        basecolor=maps["basecolor_linear"][rows],
-        emissive=maps["emissive_linear"][rows],
-        ior=maps["ior"][rows],
-        height=maps["height"][rows],
+        scalars=views(LAYOUT.scalars),
+        colours=views(LAYOUT.colours),
+        maxed=views(LAYOUT.maxed),
         running=np.ones((n_rows, shape[1]), np.float32),
     )
 
@@ -255,8 +293,9 @@ def _composite_band(layers: Sequence[RawLayer], maps: dict[str, np.ndarray], row
         for layer, (alpha, weight) in zip(layers, weights, strict=True):
             adder = _WeightedAdder(weight, scratch, bool(np.isnan(weight).any()))
             _accumulate_layer(acc, layer, adder, band)
-            _max_height(acc.height, alpha, _as_float32(band(layer.height)))
-        _finish_band(acc, maps["alpha"][rows])
+            for name, top in acc.maxed.items():
+                _max_height(top, alpha, _as_float32(band(getattr(layer, name))))
+        _finish_band(acc, coverage[rows])
 
 
 # --------------------------------------------------------------------------------------------

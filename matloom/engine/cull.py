@@ -31,15 +31,14 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.lazy import DeferredField, Lazy, shape_of
+from matloom.engine.lazy import OP_OF, DeferredField, Lazy, shape_of
+from matloom.engine.ops import Bounds
 
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
 #: Compute a field everywhere when it is needed on more than this share of the band (the dense
 #: kernels beat the masked ones above it); a field can set its own (``DeferredField.full_share``).
 FULL_SHARE = 0.85
-
-Bounds = tuple[float, float] | None  # None: unbounded, or NaN possible
 
 
 @dataclass
@@ -57,8 +56,7 @@ def leaves(value: Any, seen: set[int] | None = None) -> Iterator[Any]:
         return
     seen.add(id(value))
     if isinstance(value, Lazy):
-        operands = (value.args[0],) if value.op == "threshold" else value.args
-        for arg in operands:
+        for arg in value.args:
             yield from leaves(arg, seen)
     else:
         yield value
@@ -73,43 +71,6 @@ def _array_bounds(array: np.ndarray) -> Bounds:
     return (lo, hi)
 
 
-def _combine(op: str, a: tuple[float, float], b: tuple[float, float]) -> Bounds:
-    """Bounds of a binary operation; None where NaN/inf can arise."""
-    if op in ("+", "-", "*"):
-        if op == "+":
-            candidates = [a[0] + b[0], a[1] + b[1]]
-        elif op == "-":
-            candidates = [a[0] - b[1], a[1] - b[0]]
-        else:
-            candidates = [a[i] * b[k] for i in (0, 1) for k in (0, 1)]
-        return (min(candidates), max(candidates))
-    if op == "/":
-        if b == (0.0, 0.0):
-            return (0.0, 0.0)  # safe division gives 0 wherever the divisor is 0
-        if b[0] <= 0.0 <= b[1]:
-            return None  # near-zero divisors are unbounded
-        quotients = [a[i] / b[k] for i in (0, 1) for k in (0, 1)]
-        return (min(quotients), max(quotients))
-    if op == "min":
-        return (min(a[0], b[0]), min(a[1], b[1]))
-    if op == "max":
-        return (max(a[0], b[0]), max(a[1], b[1]))
-    return None
-
-
-def _unary(op: str, a: tuple[float, float]) -> Bounds:
-    if op == "abs":
-        lo = 0.0 if a[0] <= 0.0 <= a[1] else min(abs(a[0]), abs(a[1]))
-        return (lo, max(abs(a[0]), abs(a[1])))
-    if op == "floor":
-        return (math.floor(a[0]), math.floor(a[1]))
-    if op == "ceil":
-        return (math.ceil(a[0]), math.ceil(a[1]))
-    if op == "sqrt" and a[0] >= 0.0:
-        return (math.sqrt(a[0]), math.sqrt(a[1]))
-    return None  # sqrt of negatives; Threshold is not analysed
-
-
 def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     """Interval of a channel value over all texels, treating deferred fields as their range.
 
@@ -122,17 +83,12 @@ def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     result: Bounds
     if isinstance(value, DeferredField):
         result = (value.lo, value.hi) if value.finite_coords else None
-    elif isinstance(value, Lazy):
-        if value.op == "threshold":
+    elif isinstance(value, Lazy):  # the op's bounds rule (engine.ops)
+        args = [channel_bounds(a, memo) for a in value.args]
+        if any(a is None for a in args):
             result = None
         else:
-            args = [channel_bounds(a, memo) for a in value.args]
-            if any(a is None for a in args):
-                result = None
-            elif len(args) == 1:
-                result = _unary(value.op, args[0])  # type: ignore[arg-type]
-            else:
-                result = _combine(value.op, args[0], args[1])  # type: ignore[arg-type]
+            result = OP_OF[value.op].bounds(*args, **dict(value.params))
     else:
         result = _array_bounds(np.asarray(value, dtype=np.float64))
     if result is not None and not (abs(result[0]) <= BOUND_LIMIT and abs(result[1]) <= BOUND_LIMIT):

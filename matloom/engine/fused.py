@@ -24,31 +24,37 @@ from typing import Any
 import numpy as np
 
 from matloom.engine import composite as C
+from matloom.engine import limits
 from matloom.engine.backends import Backend
 from matloom.engine.cull import resolve
-from matloom.engine.evaluate import EvalStats, layer_fields
+from matloom.engine.interpret import EvalStats, layer_fields
 from matloom.engine.kernels import composite_numba as K
 from matloom.engine.kernels import register_numba as R
 from matloom.engine.kernels import relief_numba
+from matloom.engine.kernels.register_ops import ARITY, CONSTS, REGISTER_OPS, is_load, operands
 from matloom.engine.kernels.threads import parallel_rows
 from matloom.engine.lazy import (
     FUSABLE_DTYPES,
+    OP_OF,
     Lazy,
     LazyEvaluator,
     gather,
     is_scalar,
     materialise,
 )
-from matloom.engine.maps import SCALAR_CHANNELS, MaterialMaps, View
+from matloom.engine.maps import MaterialMaps, View
 from matloom.engine.plans import Plan, PlanCache, leaf_array, signature
 from matloom.lang import ast as A
+from matloom.vocab.layout import LAYOUT, Group
 
 #: Texels per band (the fields of one band are alive at a time): 384 rows at 1024 wide keeps
-#: the traced peak at 1024x1024 near 90 MiB with few bands (Python work is per band).
-BAND_TEXELS = 3 << 17
+#: the traced peak at 1024x1024 near 90 MiB with few bands (Python work is per band). The
+#: memory estimate (engine.limits) assumes this band size.
+BAND_TEXELS = limits.BAND_TEXELS
 #: Register cap of the kernel (each register is one float64 row per thread).
 MAX_REGISTERS = 256
-_PLANES = ("alpha", *SCALAR_CHANNELS, "ior", "height")
+#: Fields of the kernel's 2-D output planes (alpha, the scalars, ior, height), in plane order.
+_PLANES = LAYOUT.plane_fields
 _LUTS: list[tuple[np.ndarray, np.ndarray]] = []
 
 
@@ -97,26 +103,19 @@ class _Compiler:
             self.const_values.append(v)
         return self.consts[key]
 
-    def threshold(self, value: Lazy) -> tuple[int, ...]:
-        """The op row of a Threshold: its 6 parameters become consecutive constants."""
-        source, kw = value.args[0], dict(value.args[1])
-        below, above = kw["below_at"], kw["above_at"]
-        block = [
-            0.0 if below is None else float(below),
-            0.0 if below is None else float(below if kw["below_to"] is None else kw["below_to"]),
-            0.0 if above is None else float(above),
-            0.0 if above is None else float(above if kw["above_to"] is None else kw["above_to"]),
-            float(kw["transition_width"]),
-            float((above is not None) + 2 * (below is not None)),
-        ]
+    def with_block(self, value: Lazy) -> tuple[int, ...]:
+        """The op row of an opcode with a parameter block (e.g. Threshold): the op's ``block``
+        rule gives the constants, stored consecutively; the rounding flag is the operand's."""
+        op = OP_OF[value.op]
+        source = value.args[0]
         base = len(self.const_values)
-        self.const_values.extend(block)
+        self.const_values.extend(op.block(**dict(value.params)))  # type: ignore[misc]
         f32 = int(
             np.asarray(source).dtype == np.float32
             if not isinstance(source, Lazy)
             else source.dtype == np.float32
         )
-        return (R.OP_THRESHOLD, 0, self.value(source), base, f32)
+        return (REGISTER_OPS[op.fast].code, 0, self.value(source), base, f32)  # type: ignore[index]
 
     def axpb(self, value: Any) -> tuple[int, ...] | None:
         """One ``x * c1 + c2`` row for ``x * c1 + c2``, ``c2 + x * c1`` or ``x * c1 - c2``
@@ -164,12 +163,12 @@ class _Compiler:
             if fused_row is not None:
                 self.ops.append(fused_row)
                 self.nodes[key] = len(self.ops) - 1
-            elif isinstance(value, Lazy) and value.op == "threshold":
-                self.ops.append(self.threshold(value))
+            elif isinstance(value, Lazy) and REGISTER_OPS[OP_OF[value.op].fast].consts:  # type: ignore[index]
+                self.ops.append(self.with_block(value))
                 self.nodes[key] = len(self.ops) - 1
             elif isinstance(value, Lazy):
                 refs = [self.value(a) for a in value.args] + [0]
-                code = R.BINARY_OPS.get(value.op, R.UNARY_OPS.get(value.op))
+                code = REGISTER_OPS[OP_OF[value.op].fast].code  # type: ignore[index]
                 f32 = int(value.dtype == np.float32)
                 self.ops.append((code, 0, refs[0], refs[1], f32))
                 self.nodes[key] = len(self.ops) - 1
@@ -204,7 +203,10 @@ class UnsupportedProgram(Exception):
 
 
 def _channel_refs(comp: _Compiler, layer: C.RawLayer) -> tuple[list[int], list[int]]:
-    """(register refs, modes) of the 17 channel slots of one layer."""
+    """(register refs, modes) of the kernel's channel slots (``K.N_CHANNELS``) of one layer.
+
+    A constant channel is converted here (READY, or ZERO when it converts to 0); a constant
+    colour x a varying strength is decoded here (DECODED); the rest is RAW."""
     refs, modes = [0] * K.N_CHANNELS, [K.RAW] * K.N_CHANNELS
 
     def ready(slot: int, converted: Any, mode: int = K.READY) -> None:
@@ -214,27 +216,27 @@ def _channel_refs(comp: _Compiler, layer: C.RawLayer) -> tuple[list[int], list[i
     def raw(slot: int, value: Any) -> None:
         refs[slot] = comp.value(value)
 
-    raw(K.CH_ALPHA, layer.alpha)
-    raw(K.CH_HEIGHT, layer.height)
-    raw(K.CH_STRENGTH, layer.emissive[3])
-    for c, name in enumerate(SCALAR_CHANNELS):
-        v = getattr(layer, name)
-        ready(K.CH_SCALARS + c, C.clamp_unit(v)) if is_scalar(v) else raw(K.CH_SCALARS + c, v)
-    ior = layer.ior
-    ready(K.CH_IOR, C.clamp_below(ior, 1.0)) if is_scalar(ior) else raw(K.CH_IOR, ior)
-    strength = layer.emissive[3]
+    raw(K.CH_ALPHA, getattr(layer, C.COVERAGE))
+    for channel in LAYOUT.maxed:
+        raw(channel.slots[0], getattr(layer, channel.name))
+    lit = LAYOUT.in_group(Group.COLOUR_STRENGTH)
+    for channel in lit:
+        raw(channel.slots[3], getattr(layer, channel.name)[3])
+    for channel in LAYOUT.scalars:
+        v, slot = getattr(layer, channel.name), channel.slots[0]
+        ready(slot, C.convert_scalar(v, channel.clamp)) if is_scalar(v) else raw(slot, v)
     for k in range(3):
-        v = layer.basecolor[k]
-        ready(K.CH_BASECOLOR + k, C.colour_to_linear(v)) if is_scalar(v) else raw(
-            K.CH_BASECOLOR + k, v
-        )
-        e = layer.emissive[k]
-        if not is_scalar(e):
-            raw(K.CH_EMISSIVE + k, e)
-        elif is_scalar(strength):
-            ready(K.CH_EMISSIVE + k, C.emitted_radiance(np.asarray(e), np.asarray(strength)))
-        else:
-            ready(K.CH_EMISSIVE + k, C._colour_to_linear64(np.asarray(e)), K.DECODED)
+        for channel in LAYOUT.colours:
+            values, slot = getattr(layer, channel.name), channel.slots[k]
+            v = values[k]
+            if not is_scalar(v):
+                raw(slot, v)
+            elif channel.group is Group.COLOUR:
+                ready(slot, C.colour_to_linear(v))
+            elif is_scalar(values[3]):
+                ready(slot, C.emitted_radiance(np.asarray(v), np.asarray(values[3])))
+            else:
+                ready(slot, C._colour_to_linear64(np.asarray(v)), K.DECODED)
     return refs, modes
 
 
@@ -280,8 +282,9 @@ def _compile(layers: Sequence[C.RawLayer], shape: tuple[int, int]) -> tuple[Fuse
 
     chan_reg = np.array([[reg(r) for r in refs] for refs, _ in tables], dtype=np.int64)
     chan_mode = np.array([modes for _, modes in tables], dtype=np.int64)
-    loads = code[code[:, 0] <= R.OP_LOAD32]
-    code = code[code[:, 0] > R.OP_LOAD32]
+    loading = ARITY[code[:, 0]] == 0
+    loads = code[loading]
+    code = code[~loading]
     prog = FusedProgram(
         loads,
         code,
@@ -300,19 +303,14 @@ def _allocate(
 ) -> tuple[list[int], np.ndarray, int]:
     """Linear-scan register allocation in execution order (all leaf loads first, then the
     arithmetic): (register of each op, code rows in execution order, register count)."""
-    order = [k for k, o in enumerate(ops) if o[0] <= R.OP_LOAD32] + [
-        k for k, o in enumerate(ops) if o[0] > R.OP_LOAD32
+    order = [k for k, o in enumerate(ops) if is_load(o[0])] + [
+        k for k, o in enumerate(ops) if not is_load(o[0])
     ]
     position = {k: p for p, k in enumerate(order)}
 
-    def operands(op: tuple[int, ...]) -> tuple[int, ...]:
-        if op[0] <= R.OP_LOAD32:
-            return ()
-        return (op[2],) if op[0] >= R.OP_ABS else (op[2], op[3])
-
     last_use = {k: len(ops) if k in pinned else position[k] for k in range(len(ops))}
     for k in order:
-        for ref in operands(ops[k]):
+        for ref in operands(ops[k][0], ops[k][2], ops[k][3]):
             if ref >= 0:
                 last_use[ref] = max(last_use[ref], position[k])
     free: list[int] = []
@@ -321,7 +319,7 @@ def _allocate(
     n_regs = n_const
     for k in order:
         op, _, a, b, f32 = ops[k]
-        refs = operands(ops[k])
+        refs = operands(op, a, b)
         for ref in refs:
             if ref >= 0 and last_use[ref] == position[k] and regs[ref] not in free:
                 free.append(regs[ref])
@@ -331,7 +329,7 @@ def _allocate(
         if not refs:
             rows.append((op, dst, a, 0, 0, 0))
             continue
-        if op in (R.OP_THRESHOLD, R.OP_AXPB):  # b is the index of its constant block
+        if CONSTS[op]:  # b is the index of its constant block
             rows.append((op, dst, regs[a] if a >= 0 else -1 - a, b, f32, int(a < 0)))
             continue
         mask = sum(bit for bit, ref in zip((1, 2), refs) if ref < 0)
@@ -353,62 +351,79 @@ def leaf_tuples(prog: FusedProgram) -> tuple[tuple[np.ndarray, ...], tuple[np.nd
 
 
 def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
-    """Zeroed output maps like :func:`composite._allocate_maps`, except that the ten planes
-    (alpha, the 7 scalars, ior, height) are views of one (10, H, W) buffer, the kernel's
-    ``planes`` argument (see :func:`planes_of`), and that the height is not pre-set to the -inf
-    accumulator start: the kernel writes every height row (the numpy fallback sets its band)."""
+    """Zeroed output maps like :func:`composite._allocate_maps`, except that the 2-D maps
+    (alpha, the 7 scalars, ior, height) are views of one (K.N_MAP_PLANES, H, W) buffer, the
+    kernel's ``planes`` argument (see :func:`planes_of`), and that the height is not pre-set to
+    the -inf accumulator start: the kernel writes every height row (the numpy fallback sets its
+    band)."""
     buffer = np.zeros((len(_PLANES), height, width), np.float32)
     maps = {name: buffer[p] for p, name in enumerate(_PLANES)}
-    maps["basecolor_linear"] = np.zeros((height, width, 3), np.float32)
-    maps["emissive_linear"] = np.zeros((height, width, 3), np.float32)
+    for channel in LAYOUT.colours:
+        maps[channel.field] = np.zeros((height, width, 3), np.float32)
     return maps
 
 
 def planes_of(maps: dict[str, np.ndarray]) -> np.ndarray:
-    """The (10, H, W) buffer behind the plane maps of :func:`allocate_maps`."""
-    base = maps["alpha"].base
+    """The (K.N_MAP_PLANES, H, W) buffer behind the plane maps of :func:`allocate_maps`."""
+    base = maps[_PLANES[0]].base
     assert base is not None and base.shape[0] == len(_PLANES)
     return base
+
+
+def colours_of(maps: dict[str, np.ndarray]) -> tuple[np.ndarray, ...]:
+    """The kernel's interleaved colour outputs (basecolor, emissive) in ``maps``."""
+    return tuple(maps[channel.field] for channel in LAYOUT.colours)
+
+
+def kernel_args(
+    prog: FusedProgram,
+    planes: np.ndarray,
+    colours: tuple[np.ndarray, ...],
+    flags: np.ndarray,
+    *,
+    cand: int = 0,
+    row0: int = 0,
+    margin: float | None = None,
+    zeroed: bool = True,
+) -> K.CompositeArgs:
+    """The one :class:`~composite_numba.CompositeArgs` builder: ``prog``'s tables and leaves
+    padded to the kernel's slot counts, the decode tables, and the outputs. ``margin`` defaults
+    to ``K.DECODE_MARGIN`` (exact mode); < 0 is the preview mode. ``zeroed``: the outputs were
+    zero-filled (channels no layer writes are then not written)."""
+    l64, l32 = leaf_tuples(prog)
+    return K.CompositeArgs(
+        loads=prog.loads,
+        code=prog.code,
+        consts=prog.consts,
+        n_regs=prog.n_regs,
+        leaves64=l64,
+        leaves32=l32,
+        cand=cand,
+        chan_reg=prog.chan_reg,
+        chan_mode=prog.chan_mode,
+        luts=decode_luts(),
+        margin=K.DECODE_MARGIN if margin is None else margin,
+        planes=planes,
+        colours=colours,
+        row0=row0,
+        flags=flags,
+        zeroed=zeroed,
+    )
 
 
 def run_kernel(
     prog: FusedProgram, maps: dict[str, np.ndarray], row0: int, flags: np.ndarray, cand: int = 0
 ) -> None:
     """Composite the band of rows ``row0``.. (``flags.shape[0]`` rows; candidate ``cand`` of
-    batched leaves) into ``maps`` (from :func:`allocate_maps`), rows split over threads."""
-    l64, l32 = leaf_tuples(prog)
-    args = (
-        prog.loads,
-        prog.code,
-        prog.consts,
-        prog.n_regs,
-        l64,
-        l32,
-        cand,
-        prog.chan_reg,
-        prog.chan_mode,
-        decode_luts(),
-        K.DECODE_MARGIN,
-        planes_of(maps),
-        maps["basecolor_linear"],
-        maps["emissive_linear"],
-        row0,
-        flags,
-        True,  # allocate_maps zero-fills
-    )
-    parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(*args, a, b))
+    batched leaves) into ``maps`` (from :func:`allocate_maps`, which zero-fills), rows split
+    over threads."""
+    args = kernel_args(prog, planes_of(maps), colours_of(maps), flags, cand=cand, row0=row0)
+    parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(args, a, b))
 
 
 def _map_layer(fn: Any, *layers: C.RawLayer) -> C.RawLayer:
     """A RawLayer whose every channel value is ``fn(values of that channel in layers)``."""
-    return C.RawLayer(
-        fn(*(ly.alpha for ly in layers)),
-        tuple(fn(*vs) for vs in zip(*(ly.basecolor for ly in layers))),  # type: ignore[arg-type]
-        *(fn(*(getattr(ly, n) for ly in layers)) for n in SCALAR_CHANNELS),
-        fn(*(ly.ior for ly in layers)),
-        tuple(fn(*vs) for vs in zip(*(ly.emissive for ly in layers))),  # type: ignore[arg-type]
-        fn(*(ly.height for ly in layers)),
-    )  # type: ignore[arg-type]
+    return C.map_channels(fn, *layers)
 
 
 @dataclass
@@ -497,7 +512,8 @@ def composite_program(
         except UnsupportedProgram:
             layers = [_map_layer(ev.concrete, layer) for layer in layers]
             band = {name: array[rows] for name, array in maps.items()}
-            band["height"][...] = -np.inf  # the numpy compositing's max accumulator
+            for channel in LAYOUT.maxed:  # the numpy compositing's max accumulator
+                band[channel.field][...] = -np.inf
             with np.errstate(all="ignore"):
                 C._composite_band(layers, band, slice(0, shape[0]))
         else:

@@ -1,11 +1,12 @@
-"""Deferred channel arithmetic: an :class:`Evaluator` whose element-wise math stays symbolic.
+"""Deferred channel arithmetic: the interpreter over lazy expressions.
 
-:class:`LazyEvaluator` evaluates every primitive field (noise, patterns, shapes, Threshold, the
-transcendental functions) exactly like :class:`~matloom.engine.evaluate.Evaluator`, but returns
-a :class:`Lazy` node instead of a full array for ``+ - * /``, unary minus, ``Min``/``Max`` and
-``Abs``/``Floor``/``Ceil``/``Sqrt`` over arrays. The fused numba path compiles these nodes into
-a register program that runs per row inside the compositing kernel, so the full-size float64
-temporaries of the arithmetic are never created.
+:class:`LazyEvaluator` is the :class:`~matloom.engine.interpret.Evaluator` with another kind of
+value: an element-wise op whose fast path is an opcode of the register machine (``OPS[name].fast``,
+e.g. ``+ - * /``, unary minus, Min/Max, Abs, Threshold) returns a :class:`Lazy` node instead of
+a full array when an operand is an array; every other op (noise, patterns, shapes, the ops
+computed with numpy) is evaluated exactly like the dense interpreter. The fused numba path
+compiles these nodes into a register program that runs per row inside the compositing kernel,
+so the full-size float64 temporaries of the arithmetic are never created.
 
 A :class:`Lazy` records the numpy result dtype (float32 only when every operand is float32, as
 numpy's promotion gives for the evaluator's operands) and the broadcast shape. :func:`materialise`
@@ -21,25 +22,36 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.evaluate import _UNARY, Coords, Evaluator, Field
-from matloom.engine.kernels import mathops, threshold
+from matloom.engine.interpret import Coords, Evaluator, Field
+from matloom.engine.kernels.mathops import count_zero
 from matloom.engine.kernels.opensimplex import octave_schedule
+from matloom.engine.kernels.register_ops import REGISTER_OPS
+from matloom.engine.ops import OPS, Op
 from matloom.lang import ast as A
 
 #: dtypes the fused kernel can hold exactly in its float64 registers.
 FUSABLE_DTYPES = (np.dtype(np.float32), np.dtype(np.float64))
-_LAZY_UNARY = {"Abs": "abs", "Floor": "floor", "Ceil": "ceil", "Sqrt": "sqrt"}
+#: The lazy-expression symbol of each op with an opcode (its opcode's symbol: "+", "abs", ...).
+SYMBOL_OF: dict[str, str] = {
+    op.name: REGISTER_OPS[op.fast].symbol  # type: ignore[misc]
+    for op in OPS.values()
+    if op.fast is not None
+}
+#: The op of each lazy-expression symbol.
+OP_OF: dict[str, Op] = {symbol: OPS[name] for name, symbol in SYMBOL_OF.items()}
 
 
 @dataclass(eq=False)
 class Lazy:
     """A deferred element-wise operation on arrays, scalars or other :class:`Lazy` nodes."""
 
-    op: str  # '+', '-', '*', '/', 'min', 'max', 'abs', 'floor', 'ceil', 'sqrt', 'threshold'
-    #: operands; for 'threshold': (value, ((parameter, value), ...))
+    op: str  # the symbol of an op's opcode: '+', '-', '*', '/', 'min', 'abs', 'threshold', ...
+    #: operands (arrays, scalars, Lazy nodes)
     args: tuple[Any, ...]
     dtype: np.dtype
     shape: tuple[int, ...]
+    #: the op's static parameters ((name, value), ...), e.g. Threshold's
+    params: tuple[tuple[str, Any], ...] = ()
 
 
 #: Value of a deferred fBm field where no layer needs it (inside both fBm ranges, [0, 1] and
@@ -80,24 +92,11 @@ def is_scalar(value: Any) -> bool:
     return not isinstance(value, Lazy | DeferredField) and np.ndim(value) == 0
 
 
-def _numpy_op(op: str, args: list[Any]) -> Any:
-    """The evaluator's numpy operation for ``op`` (identical rounding and special cases)."""
+def numpy_value(value: Lazy, operands: list[Any]) -> Any:
+    """The numpy value of ``value``'s op on (numpy) ``operands``: the op's numpy implementation,
+    the very operation the dense evaluator runs (identical rounding and special cases)."""
     with np.errstate(all="ignore"):
-        if op == "+":
-            return args[0] + args[1]
-        if op == "-":
-            return args[0] - args[1]
-        if op == "*":
-            return args[0] * args[1]
-        if op == "/":
-            return mathops.safe_div(args[0], args[1])
-        if op == "min":
-            return np.minimum(args[0], args[1])
-        if op == "max":
-            return np.maximum(args[0], args[1])
-        if op == "threshold":
-            return threshold.threshold(np.asarray(args[0]), **dict(args[1]))
-        return {"abs": np.abs, "floor": np.floor, "ceil": np.ceil, "sqrt": np.sqrt}[op](args[0])
+        return OP_OF[value.op].numpy(*operands, **dict(value.params))
 
 
 def materialise(value: Any, cache: dict[int, tuple[Any, Any]] | None = None) -> Any:
@@ -110,7 +109,7 @@ def materialise(value: Any, cache: dict[int, tuple[Any, Any]] | None = None) -> 
     cache = {} if cache is None else cache
     key = id(value)
     if key not in cache:  # the entry keeps ``value`` alive so that its id stays unique
-        cache[key] = (value, _numpy_op(value.op, [materialise(a, cache) for a in value.args]))
+        cache[key] = (value, numpy_value(value, [materialise(a, cache) for a in value.args]))
     return cache[key][1]
 
 
@@ -125,10 +124,8 @@ def gather(
     key = id(value)
     if key in cache:
         return cache[key]
-    if isinstance(value, Lazy) and value.op == "threshold":
-        out = _numpy_op(value.op, [gather(value.args[0], rows, cols, shape, cache), value.args[1]])
-    elif isinstance(value, Lazy):
-        out = _numpy_op(value.op, [gather(a, rows, cols, shape, cache) for a in value.args])
+    if isinstance(value, Lazy):
+        out = numpy_value(value, [gather(a, rows, cols, shape, cache) for a in value.args])
     elif is_scalar(value):
         out = value
     else:
@@ -154,12 +151,18 @@ def fusable(*values: Any) -> bool:
     return all(_dtype(v) in FUSABLE_DTYPES for v in values)
 
 
-def make_lazy(op: str, *args: Any) -> Lazy:
-    """A :class:`Lazy` with numpy's result dtype and broadcast shape for ``args``."""
-    dtypes = {_dtype(a) for a in args}
-    dtype = np.dtype(np.float32) if dtypes == {np.dtype(np.float32)} else np.dtype(np.float64)
+def make_lazy(
+    op: str, *args: Any, params: tuple[tuple[str, Any], ...] = (), dtype: str | None = None
+) -> Lazy:
+    """A :class:`Lazy` with numpy's result dtype (or ``dtype``) and broadcast shape for ``args``."""
+    if dtype is None:
+        dtypes = {_dtype(a) for a in args}
+        f32 = dtypes == {np.dtype(np.float32)}
+        result = np.dtype(np.float32) if f32 else np.dtype(np.float64)
+    else:
+        result = np.dtype(dtype)
     shape = np.broadcast_shapes(*(shape_of(a) for a in args))
-    return Lazy(op, args, dtype, shape)
+    return Lazy(op, args, result, shape, params)
 
 
 def finite_noise_coords(x: Any, y: Any, kw: dict[str, Any]) -> bool:
@@ -206,10 +209,10 @@ class LazyEvaluator(Evaluator):
         """The numpy value of ``value`` (materialises a Lazy once)."""
         return materialise(value, self.materialised)
 
-    def noise(self, call: A.Call, c: Coords) -> Field:
+    def fbm(self, call: A.Call, c: Coords) -> Field:
         masked = self.backend.fbm_masked
-        if not (self.defer_noise and call.func == "fBm" and masked is not None):
-            return super().noise(call, c)
+        if not (self.defer_noise and masked is not None):
+            return super().fbm(call, c)
         kw = self.noise_args(call)
         x, y = c
         dense = self.backend.fbm  # no reference to self: the field must not form a cycle
@@ -221,60 +224,22 @@ class LazyEvaluator(Evaluator):
 
         return defer_fbm(compute, x, y, kw)
 
-    def eval(self, node: A.Node, c: Coords) -> Field:
-        if isinstance(node, A.Neg):
-            return self.lazy_binop("*", np.float64(-1.0), self.eval(node.operand, c))
-        if isinstance(node, A.BinOp):
-            return self.lazy_binop(node.op, self.eval(node.left, c), self.eval(node.right, c))
-        return super().eval(node, c)
-
-    def lazy_binop(self, op: str, a: Any, b: Any) -> Any:
-        if op == "**":
-            with np.errstate(all="ignore"):
-                return mathops.pow_(self.concrete(a), self.concrete(b))
-        if op == "/":
-            b = self.concrete(b)
+    def operate(self, op: Op, args: list[Field], params: dict[str, Any]) -> Field:
+        if op.divisor is not None:  # a divisor is a materialised leaf (its zeros are counted)
+            args = list(args)
+            b = args[op.divisor] = self.concrete(args[op.divisor])
             row_varying = np.ndim(b) == 2 and np.shape(b)[0] > 1
             if row_varying or self.count_row_invariant_zero_divisions:
-                self.stats.zero_divisions += int(np.count_nonzero(np.asarray(b) == 0))
-        if fusable(a, b):
-            return make_lazy(op, a, b)
-        return _numpy_op(op, [self.concrete(a), self.concrete(b)])
+                self.stats.zero_divisions += count_zero(b)
+        return self.apply(op, args, params)
 
-    def call(self, call: A.Call, c: Coords) -> Field:
-        f = call.func
-        if f in _LAZY_UNARY:
-            value = self.eval(call.arg("expr"), c)  # type: ignore[arg-type]
-            if fusable(value):
-                return make_lazy(_LAZY_UNARY[f], value)
-            return _numpy_op(_LAZY_UNARY[f], [value])
-        if f in ("Min", "Max"):
-            a = self.eval(call.arg("expr1"), c)  # type: ignore[arg-type]
-            b = self.eval(call.arg("expr2"), c)  # type: ignore[arg-type]
-            op = f.lower()
-            return (
-                make_lazy(op, a, b)
-                if fusable(a, b)
-                else _numpy_op(op, [self.concrete(a), self.concrete(b)])
-            )
-        if f in _UNARY:  # Sin, Cos: numpy's own SIMD results are the reference
-            with np.errstate(all="ignore"):
-                return _UNARY[f](self.concrete(self.eval(call.arg("expr"), c)))  # type: ignore[arg-type]
-        if f == "Log":
-            value = self.concrete(self.eval(call.arg("expr"), c))  # type: ignore[arg-type]
-            return mathops.log(value, self.num(call, "base"))
-        if f == "Threshold":
-            value = self.eval(call.arg("expr"), c)  # type: ignore[arg-type]
-            kw = {
-                p: self.num(call, p)
-                for p in ("below_at", "below_to", "above_at", "above_to", "transition_width")
-            }
-            if fusable(value) and self.backend.threshold is threshold.threshold:
-                if float(kw["transition_width"]) < 0:  # the numpy kernel raises the error
-                    threshold.threshold(np.zeros(1), **kw)
-                lazy = make_lazy("threshold", value)
-                return Lazy(
-                    "threshold", (value, tuple(kw.items())), np.dtype(np.float64), lazy.shape
-                )
-            return self.backend.threshold(np.asarray(self.concrete(value)), **kw)
-        return super().call(call, c)
+    def apply(self, op: Op, args: list[Field], params: dict[str, Any]) -> Field:
+        """An op with an opcode on fusable values stays a :class:`Lazy` expression; any other
+        is computed with numpy on the concrete values."""
+        symbol = SYMBOL_OF.get(op.name)
+        if symbol is not None and fusable(*args):
+            if op.check is not None:  # the numpy kernel's errors, before deferring
+                op.check(**params)
+            return make_lazy(symbol, *args, params=tuple(params.items()), dtype=op.dtype)
+        with np.errstate(all="ignore"):
+            return op.numpy(*[self.concrete(a) for a in args], **params)

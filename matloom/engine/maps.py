@@ -2,38 +2,17 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, make_dataclass
 
 import numpy as np
 
-#: Field names of :class:`MaterialMaps` that hold arrays, in export order.
-ARRAY_FIELDS: tuple[str, ...] = (
-    "basecolor_linear",
-    "alpha",
-    "metallic",
-    "roughness",
-    "sheen",
-    "coat",
-    "transmission",
-    "subsurface",
-    "anisotropy",
-    "ior",
-    "emissive_linear",
-    "height",
-    "normal",
-    "ao",
-)
+from matloom.vocab.layout import LAYOUT
 
-#: The seven blended scalar channels in [0, 1].
-SCALAR_CHANNELS: tuple[str, ...] = (
-    "metallic",
-    "roughness",
-    "sheen",
-    "coat",
-    "transmission",
-    "subsurface",
-    "anisotropy",
-)
+#: Field names of :class:`MaterialMaps` that hold arrays, in export order (from the layout).
+ARRAY_FIELDS: tuple[str, ...] = LAYOUT.map_fields
+
+#: The blended scalar channels clamped to [0, 1] (metallic .. anisotropy).
+SCALAR_CHANNELS: tuple[str, ...] = tuple(c.field for c in LAYOUT.unit_scalars)
 
 
 @dataclass(frozen=True)
@@ -53,33 +32,22 @@ class View:
         return abs(self.x2 - self.x1) / width, abs(self.y2 - self.y1) / height
 
 
-@dataclass
-class MaterialMaps:
+class _Maps:
     """Composited float32 maps of one material at one resolution.
 
-    Shapes: (H, W) for scalars, (H, W, 3) for colours and the normal. ``basecolor_linear`` and
-    ``emissive_linear`` are linear light; ``alpha`` is total coverage; ``height`` is in
-    coordinate units (unclamped); ``normal`` is a unit tangent-space normal in the OpenGL
-    convention (+x right, +y up toward row 0, +z out); ``ao`` is 1 where unoccluded.
+    Array fields: :data:`ARRAY_FIELDS`, one per channel of the registry (via
+    :mod:`matloom.vocab.layout`) plus the derived ``normal`` and ``ao``. Shapes: (H, W) for
+    scalars, (H, W, 3) for colours and the normal. ``basecolor_linear`` and ``emissive_linear``
+    are linear light; ``alpha`` is total coverage; ``height`` is in coordinate units
+    (unclamped); ``normal`` is a unit tangent-space normal in the OpenGL convention (+x right,
+    +y up toward row 0, +z out); ``ao`` is 1 where unoccluded. ``view`` is the sampling window
+    and ``n_layers`` the number of layers composited (0 for an empty material).
     """
 
-    basecolor_linear: np.ndarray
+    # Fields the methods below read (the dataclass :data:`MaterialMaps` defines them all).
     alpha: np.ndarray
-    metallic: np.ndarray
-    roughness: np.ndarray
-    sheen: np.ndarray
-    coat: np.ndarray
-    transmission: np.ndarray
-    subsurface: np.ndarray
-    anisotropy: np.ndarray
-    ior: np.ndarray
-    emissive_linear: np.ndarray
-    height: np.ndarray
-    normal: np.ndarray
-    ao: np.ndarray
-    view: View = field(default_factory=View)
-    #: Number of layers composited (0 for an empty material).
-    n_layers: int = 1
+    view: View
+    n_layers: int
 
     @property
     def width(self) -> int:
@@ -110,3 +78,16 @@ class MaterialMaps:
                 if n:
                     out[f.name] = n
         return out
+
+
+#: The maps of a material: a dataclass whose array fields come from the channel layout.
+MaterialMaps = make_dataclass(
+    "MaterialMaps",
+    [
+        *((name, np.ndarray) for name in ARRAY_FIELDS),
+        ("view", View, field(default_factory=View)),
+        ("n_layers", int, field(default=1)),
+    ],
+    bases=(_Maps,),
+    namespace={"__doc__": _Maps.__doc__, "__module__": __name__},
+)

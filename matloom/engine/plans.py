@@ -45,11 +45,8 @@ def signature(layers: list[Any], shape: tuple[int, ...]) -> tuple[Hashable, list
         seen[key] = len(seen)
         keep.append(value)
         if isinstance(value, Lazy):
-            if value.op == "threshold":
-                children: tuple[Hashable, ...] = (token(value.args[0]), value.args[1])
-            else:
-                children = tuple(token(a) for a in value.args)
-            return ("L", value.op, value.dtype.str, value.shape, children)
+            children = tuple(token(a) for a in value.args)
+            return ("L", value.op, value.dtype.str, value.shape, children, value.params)
         array = np.asarray(value)  # a deferred field is resolved by now
         leaves.append(value)
         return ("A", array.dtype.str, array.shape)

@@ -37,6 +37,7 @@ from matloom.engine.maps import MaterialMaps
 from matloom.io import exr as exr_io
 from matloom.io import png as png_io
 from matloom.io.atomic import atomic_write_bytes
+from matloom.vocab.layout import LAYOUT, MapSpec
 
 #: Values accepted by ``export_maps(float_format=...)``.
 FLOAT_FORMATS: tuple[str, ...] = ("exr", "png16")
@@ -48,75 +49,9 @@ HEIGHT_PNG16_NAME = "height16.png"
 MANIFEST_FORMAT = ("matloom-material", 1)
 
 
-@dataclass(frozen=True)
-class MapSpec:
-    """How one exported map is encoded and which MaterialMaps arrays it is made from."""
-
-    name: str
-    file_name: str
-    encoding: str
-    colour_space: str
-    sources: tuple[str, ...]
-    meaning: str
-
-    def describe(self) -> dict[str, Any]:
-        """The manifest fields that do not depend on the data."""
-        return {
-            "file": self.file_name,
-            "encoding": self.encoding,
-            "colour_space": self.colour_space,
-            "meaning": self.meaning,
-        }
-
-
-def _grey(name: str, meaning: str) -> MapSpec:
-    return MapSpec(name, f"{name}.png", "png8-grey", "linear (non-color)", (name,), meaning)
-
-
-#: Every exported map, in the reference's order.
-MAP_SPECS: tuple[MapSpec, ...] = (
-    MapSpec(
-        "basecolor",
-        "basecolor.png",
-        "png8-rgba",
-        "sRGB (RGB); alpha is linear coverage",
-        ("basecolor_linear", "alpha"),
-        "base colour (value_range: the linear colour before encoding); A = total coverage",
-    ),
-    _grey("metallic", "metalness 0..1"),
-    _grey("roughness", "roughness 0..1"),
-    _grey("sheen", "sheen weight 0..1"),
-    _grey("coat", "clear-coat weight 0..1"),
-    _grey("transmission", "transmission weight 0..1"),
-    _grey("subsurface", "subsurface weight 0..1"),
-    _grey("anisotropy", "anisotropy magnitude 0..1 (direction: tangent/X)"),
-    MapSpec("ior", "ior.exr", "exr-float32", "linear (non-color)", ("ior",), "index of refraction"),
-    MapSpec(
-        "emissive",
-        "emissive.exr",
-        "exr-float32",
-        "linear RGB (scene-referred, unclipped)",
-        ("emissive_linear",),
-        "emitted radiance = linear colour x strength",
-    ),
-    MapSpec(
-        "height",
-        "height.exr",
-        "exr-float32",
-        "linear (non-color)",
-        ("height",),
-        "height in coordinate units (may be negative)",
-    ),
-    MapSpec(
-        "normal",
-        "normal.png",
-        "png8-rgb",
-        "linear (non-color)",
-        ("normal",),
-        "tangent-space normal, OpenGL convention (+Y up), encoded n * 0.5 + 0.5",
-    ),
-    _grey("ao", "ambient occlusion, 1 = unoccluded"),
-)
+#: Every exported map, in the reference's order: one row per channel of the registry (its
+#: encoding, colour space and meaning come from :mod:`matloom.vocab.layout`), then normal and AO.
+MAP_SPECS: tuple[MapSpec, ...] = LAYOUT.maps
 #: Names accepted by ``maps_subset`` (and the CLI's ``--maps``), in export order.
 MAP_NAMES: tuple[str, ...] = tuple(spec.name for spec in MAP_SPECS)
 
@@ -208,20 +143,28 @@ def _map_stats(maps: MaterialMaps, spec: MapSpec) -> dict[str, Any]:
 # Writers
 
 
+def _srgb(linear: np.ndarray) -> np.ndarray:
+    with np.errstate(invalid="ignore"):
+        return linear_to_srgb(np.asarray(linear, dtype=np.float32))
+
+
 def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> Path:
-    """Encode one map into ``folder`` following its spec; returns the file path."""
+    """Encode one map into ``folder`` with its spec's writer; returns the file path."""
     path = folder / spec.file_name
-    if spec.name == "basecolor":
-        with np.errstate(invalid="ignore"):
-            srgb = linear_to_srgb(np.asarray(maps.basecolor_linear, dtype=np.float32))
-        png_io.write_rgba8(path, srgb, maps.alpha)
-    elif spec.name == "normal":
-        encoded = np.asarray(maps.normal, dtype=np.float32) * np.float32(0.5) + np.float32(0.5)
+    sources = [getattr(maps, name) for name in spec.sources]
+    if spec.writer == "srgb8-alpha":  # colour as sRGB, the second source (coverage) as alpha
+        png_io.write_rgba8(path, _srgb(sources[0]), sources[1])
+    elif spec.writer == "srgb8":
+        png_io.write_rgb8(path, _srgb(sources[0]))
+    elif spec.writer == "normal8":
+        encoded = np.asarray(sources[0], dtype=np.float32) * np.float32(0.5) + np.float32(0.5)
         png_io.write_rgb8(path, encoded)
-    elif spec.encoding == "exr-float32":
-        exr_io.write_exr(path, getattr(maps, spec.sources[0]))
+    elif spec.writer == "exr":
+        exr_io.write_exr(path, sources[0])
+    elif spec.writer == "grey8":
+        png_io.write_grey8(path, sources[0])
     else:
-        png_io.write_grey8(path, getattr(maps, spec.sources[0]))
+        raise ValueError(f"map {spec.name!r}: unknown writer {spec.writer!r}")
     return path
 
 

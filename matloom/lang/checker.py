@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import math
+import sys
 
 from matloom.lang import ast as A
+from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
+from matloom.lang.lexer import as_float
 from matloom.lang.parser import MAX_NESTING
 from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import FUNCTIONS, Kind, ParamSpec, Returns
@@ -17,6 +20,13 @@ MAX_OCTAVES = 16
 """Maximum fBm octaves (documented limit; cost grows linearly with octaves)."""
 
 _NOISE = ("fBm", "Worley")
+
+_MAX_COORD = 3.4028234663852886e38
+"""Largest float32: the sample grid is float32 (as in the reference), so a View corner, width
+or height beyond it gives infinite coordinates or texel sizes."""
+
+_MIN_SPAN = sys.float_info.min * 8192
+"""Smallest View width/height: texel sizes stay normal floats (never 0) up to 8192 pixels."""
 
 
 class Checker:
@@ -60,6 +70,7 @@ class Checker:
                 expected=f"at most {MAX_NODES} nodes",
             )
         self._check_inlined_depth(program)
+        self._check_expanded_cost(program)
         self._warn_unused(program)
         self._warn_hidden(program)
         return self.diags
@@ -88,6 +99,26 @@ class Checker:
                 )
                 return
 
+    def _check_expanded_cost(self, program: A.Program) -> None:
+        """E071: the expression nodes an evaluation visits, each Define once per distinct
+        coordinate frame it is used in (:mod:`matloom.lang.cost`), whatever the image size.
+        Checked only when nothing else is wrong (the count then stops at the limit)."""
+        if any(d.is_error for d in self.diags):
+            return
+        cost = expanded_cost(program, MAX_EXPANDED_NODES)
+        if cost.over:
+            self.diag(
+                "E071",
+                f"program needs more than {MAX_EXPANDED_NODES:,} expression-node evaluations, "
+                "the limit: each Define is evaluated once in every distinct coordinate frame "
+                f"(Translate/Scale/Rotate) it is used in ({cost.define_evaluations:,} Define "
+                f"evaluations in {cost.frames:,} frames counted before stopping)",
+                program.span,
+                expected=f"at most {MAX_EXPANDED_NODES:,} node evaluations",
+                hint="transforms of Defines that combine transformed Defines multiply the work; "
+                "transform a Define once and reuse it",
+            )
+
     def _check_view(self, program: A.Program) -> None:
         v = program.view
         if v is None:
@@ -103,6 +134,21 @@ class Checker:
         elif v.x1 == v.x2 or v.y1 == v.y2:
             self.diag(
                 "E061", "View has zero width or height", v.span, expected="x1 != x2 and y1 != y2"
+            )
+        elif max(*map(abs, vals), abs(v.x2 - v.x1), abs(v.y2 - v.y1)) > _MAX_COORD:
+            self.diag(
+                "E061",
+                "View is too large: its sample coordinates or texel size would be infinite",
+                v.span,
+                expected=f"corners, width and height within +-{_MAX_COORD:.3g}",
+                hint="the sample grid is float32; use a smaller window",
+            )
+        elif min(abs(v.x2 - v.x1), abs(v.y2 - v.y1)) < _MIN_SPAN:
+            self.diag(
+                "E061",
+                "View is too small: its texel size would be zero or denormal",
+                v.span,
+                expected=f"a width and height of at least {_MIN_SPAN:.3g}",
             )
         elif v.x1 > v.x2 or v.y1 > v.y2:
             self.warn(
@@ -317,8 +363,8 @@ class Checker:
                 expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}",
             )
             return
-        value = static_number(v)
-        if value is None:
+        raw = static_number(v)
+        if raw is None:
             self.diag(
                 "E045",
                 f"{func}: {p.name} must be a number, not a field expression",
@@ -328,6 +374,7 @@ class Checker:
             )
             self.expr(v)
             return
+        value = raw if isinstance(raw, float) else _as_number(raw)
         if uses_coordinates(v):
             self.warn(
                 "W004",
@@ -371,7 +418,15 @@ def _static_alpha(layer: A.Layer) -> float | None:
         return 1.0
     if uses_coordinates(layer.alpha):
         return None
-    return static_number(layer.alpha)
+    value = static_number(layer.alpha)
+    return None if value is None or isinstance(value, float) else _as_number(value)
+
+
+def _as_number(value: int) -> int | float:
+    """An exact integer as it is, or +-inf if it lies beyond the float range (evaluators compute
+    in floating point, so constant integer arithmetic such as ``10**200 * 10**200`` is inf)."""
+    as_real = as_float(value)
+    return value if math.isfinite(as_real) else as_real
 
 
 def inlined_depth(node: A.Node, depth_of: dict[str, int]) -> int:

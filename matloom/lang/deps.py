@@ -10,20 +10,18 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from matloom.lang import ast as A
+from matloom.vocab.layout import LAYOUT
 
-BLENDED = (
-    "basecolor",
-    "metallic",
-    "roughness",
-    "sheen",
-    "coat",
-    "transmission",
-    "ior",
-    "subsurface",
-    "anisotropy",
-    "emissive",
-)
-OUTPUTS = ("alpha", *BLENDED, "height", "normal", "ao")
+#: The coverage channel: its expressions enter every blended and max-blended output.
+COVERAGE = LAYOUT.coverage.name
+#: Coverage-weighted ("over") channels, in registry order.
+BLENDED = LAYOUT.blended
+#: Max-blended channels (height): coverage decides which layers count.
+MAXED = tuple(c.name for c in LAYOUT.maxed)
+#: Maps computed from a composited channel (normal and AO from height) -> that channel.
+DERIVED = {d.name: d.source for d in LAYOUT.derived}
+#: Every output map name: alpha, the blended channels, height, normal, ao.
+OUTPUTS = LAYOUT.outputs
 
 
 @dataclass(frozen=True)
@@ -74,16 +72,15 @@ def channel_dependencies(program: A.Program) -> dict[str, frozenset[ParamRef]]:
     per: dict[str, set[ParamRef]] = {name: set() for name in OUTPUTS}
     for i, layer in enumerate(program.layers):
         if layer.alpha is not None:
-            per["alpha"] |= _expr_params(layer.alpha, f"layer {i} alpha", defs, set())
+            per[COVERAGE] |= _expr_params(layer.alpha, f"layer {i} alpha", defs, set())
         for ch in layer.channels:
             for a in ch.args:
                 per[ch.name] |= _expr_params(a, f"layer {i} .{ch.name}", defs, set())
-    coverage = per["alpha"]
-    for name in BLENDED:
+    coverage = per[COVERAGE]
+    for name in (*BLENDED, *MAXED):
         per[name] |= coverage
-    per["height"] |= coverage
-    per["normal"] = set(per["height"])
-    per["ao"] = set(per["height"])
+    for name, source in DERIVED.items():
+        per[name] = set(per[source])
     return {k: frozenset(v) for k, v in per.items()}
 
 

@@ -8,18 +8,14 @@ fields such as noise or Define references in a numeric slot are rejected by the 
 from __future__ import annotations
 
 import math
+from typing import Any
 
+from matloom.engine.ops import OPS, operator_ops
 from matloom.lang import ast as A
-from matloom.vocab import CONSTANTS
+from matloom.vocab import CONSTANTS, FUNCTIONS
 
-_UNARY = {
-    "Abs": abs,
-    "Sqrt": lambda v: math.sqrt(v) if v >= 0 else math.nan,
-    "Floor": math.floor,
-    "Ceil": math.ceil,
-    "Sin": math.sin,
-    "Cos": math.cos,
-}
+#: The binary operators' ops ("+" -> Add, ...); each op's static rule is its folding rule.
+_OPERATORS = operator_ops()
 
 
 def is_static(node: A.Node) -> bool:
@@ -34,6 +30,23 @@ def uses_coordinates(node: A.Node) -> bool:
 def static_number(node: A.Node) -> float | int | None:
     """The value of a constant expression (X()/Y() count as 0), or ``None`` if not constant."""
     return _eval(node, strict=False)
+
+
+def param_value(call: A.Call, name: str) -> Any:
+    """Value of a numeric/enum/bool parameter of ``call`` as the evaluator uses it: its default
+    when not written, a rounded int for integer parameters, else a float (or the literal).
+    Raises ValueError when the parameter is not a constant."""
+    node = call.arg(name)
+    p = FUNCTIONS[call.func].param(name)
+    assert p is not None
+    if node is None:
+        return p.default
+    if isinstance(node, A.Str | A.Lit):
+        return node.value
+    v = static_number(node)
+    if v is None:
+        raise ValueError(f"{call.func}: {name} is not a constant")
+    return int(round(v)) if p.kind.value == "int" else float(v)
 
 
 def _eval(node: A.Node, strict: bool) -> float | int | None:  # noqa: C901 - a flat dispatch
@@ -58,44 +71,15 @@ def _eval(node: A.Node, strict: bool) -> float | int | None:  # noqa: C901 - a f
 
 
 def _binop(op: str, a: float | int, b: float | int) -> float | int:
-    if op == "+":
-        return a + b
-    if op == "-":
-        return a - b
-    if op == "*":
-        return a * b
-    if op == "/":
-        return 0.0 if b == 0 else a / b
-    if a < 0 and not float(b).is_integer():
-        return math.nan
-    if a == 0 and b < 0:
-        return math.inf
-    return float(a) ** float(b)
+    return _OPERATORS[op].static([a, b], False)  # type: ignore[no-any-return]
 
 
 def _call(node: A.Call, strict: bool) -> float | int | None:
-    f = node.func
-    if f in ("X", "Y"):
-        return None if strict else 0.0
+    """The call's static rule (:mod:`matloom.engine.ops`) over its arguments' values."""
+    op = OPS.get(node.func)
+    if op is None:
+        return None
     vals = [_eval(a.value, strict) for a in node.args]
     if any(v is None for v in vals):
         return None
-    if f == "Constant":
-        return vals[0] if vals else 0.0
-    if f in _UNARY and len(vals) == 1:
-        return float(_UNARY[f](vals[0]))
-    if f == "Log":
-        x = float(vals[0])
-        base = float(vals[1]) if len(vals) > 1 else math.e
-        if x == 0:
-            return -math.inf
-        if x < 0:
-            return math.nan
-        if base == 10:
-            return math.log10(x)
-        if base == 2:
-            return math.log2(x)
-        return math.log(x) if base == math.e else math.log(x) / math.log(base)
-    if f in ("Min", "Max") and len(vals) == 2:
-        return min(vals) if f == "Min" else max(vals)  # type: ignore[type-var]
-    return None
+    return op.static(vals, strict)  # type: ignore[no-any-return]

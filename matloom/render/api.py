@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 
 from matloom.engine.evaluate import evaluate, prepare
+from matloom.engine.limits import Usage
 from matloom.lang import ast as A
 from matloom.render.preview import Light, shade, tile_image
 
@@ -22,10 +23,14 @@ def preview(
     backend: str = "auto",
     **eval_kwargs: Any,
 ) -> np.ndarray:
-    """Shaded head-on swatch (uint8 RGB, H x W x 3) of a program, optionally tiled n x n."""
-    w = width or size
-    h = height or size
-    maps = evaluate(program_or_text, w, h, backend=backend, **eval_kwargs)
+    """Shaded head-on swatch (uint8 RGB, H x W x 3) of a program, optionally tiled n x n.
+
+    The size, the tiled size and the memory of evaluation, shading and tiling are checked
+    before any work (:class:`~matloom.engine.limits.LimitError`)."""
+    w = size if width is None else width
+    h = size if height is None else height
+    usage = Usage(preview_tile=max(tile, 1))
+    maps = evaluate(program_or_text, w, h, backend=backend, usage=usage, **eval_kwargs)
     img = shade(maps, light=light)
     return tile_image(img, tile) if tile > 1 else img
 

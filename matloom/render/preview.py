@@ -30,14 +30,17 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from matloom.engine.colour import linear_to_srgb
-from matloom.engine.maps import MaterialMaps
+from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
+from matloom.vocab.layout import LAYOUT
+
+#: Composited maps only other maps are derived from (height -> normal, AO).
+_RELIEF_SOURCES = frozenset(LAYOUT[d.source].field for d in LAYOUT.derived)
 
 #: The reference's fixed light direction, normalize(0.5, 0.5, 1), as exact float64 components.
 _REFERENCE_LIGHT: tuple[float, float, float] = tuple(
@@ -113,19 +116,11 @@ def _soft_knee_power(emissive: np.ndarray) -> np.ndarray:
         return _srgb_power(ratio, out=ratio)
 
 
-_SCALAR_INPUTS: tuple[str, ...] = (
-    "alpha",
-    "metallic",
-    "roughness",
-    "sheen",
-    "coat",
-    "transmission",
-    "subsurface",
-    "anisotropy",
-    "ior",
-    "ao",
-)
-_COLOUR_INPUTS: tuple[str, ...] = ("basecolor_linear", "emissive_linear", "normal")
+#: The maps the shading reads: every map of the layout but the height (the shading reads the
+#: normal and AO derived from it), with their component counts (1: (H, W), 3: (H, W, 3)).
+_INPUTS: dict[str, int] = {
+    name: LAYOUT.components(name) for name in ARRAY_FIELDS if name not in _RELIEF_SOURCES
+}
 
 
 def _kernel_inputs(maps: MaterialMaps) -> dict[str, np.ndarray]:
@@ -137,9 +132,9 @@ def _kernel_inputs(maps: MaterialMaps) -> dict[str, np.ndarray]:
     """
     rows, cols = maps.alpha.shape
     inputs: dict[str, np.ndarray] = {}
-    for name in _SCALAR_INPUTS + _COLOUR_INPUTS:
+    for name, components in _INPUTS.items():
         array = np.ascontiguousarray(getattr(maps, name), dtype=np.float32)
-        expected = (rows, cols) if name in _SCALAR_INPUTS else (rows, cols, 3)
+        expected = (rows, cols) if components == 1 else (rows, cols, components)
         if array.shape != expected:
             raise ValueError(f"map {name!r} has shape {array.shape}, expected {expected}")
         inputs[name] = array
@@ -222,17 +217,8 @@ def _shade_numpy(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarr
     return levels.astype(np.uint8)
 
 
-#: Channels the reference clamps to [0, 1] before shading.
-_UNIT_CHANNELS: tuple[str, ...] = (
-    "alpha",
-    "metallic",
-    "roughness",
-    "sheen",
-    "coat",
-    "transmission",
-    "subsurface",
-    "anisotropy",
-)
+#: Channels the reference clamps to [0, 1] before shading: coverage and the [0, 1] scalars.
+_UNIT_CHANNELS: tuple[str, ...] = tuple(c.field for c in (LAYOUT.coverage, *LAYOUT.unit_scalars))
 
 #: Shading implementations by backend name (see the module docstring).
 _SHADERS: dict[str, Callable[[dict[str, np.ndarray], np.ndarray, np.ndarray], np.ndarray]] = {
@@ -256,15 +242,19 @@ def available_shaders() -> list[str]:
 
 
 def _resolve_backend(backend: str) -> str:
-    """``auto`` -> $MATLOOM_BACKEND if it names a shader here, else numba when numba is already
-    loaded in this process (no import cost), else numpy; an explicit name must be available."""
+    """``auto`` -> $MATLOOM_BACKEND if it names a shader here, else numba when it is installed,
+    else numpy; an explicit name must be available.
+
+    ``auto`` never depends on what this process happens to have loaded or compiled: a preview
+    made while the engine's kernels still compile (the numpy evaluation path of a cold start)
+    has the same bytes as one made later.
+    """
     if backend == "auto":
         wanted = os.environ.get("MATLOOM_BACKEND", "auto")
         if wanted in _SHADERS:
             backend = wanted
         else:
-            loaded = sys.modules.get("numba") is not None
-            return "numba" if loaded and _numba_importable() else "numpy"
+            return "numba" if _numba_importable() else "numpy"
     if backend not in available_shaders():
         raise ValueError(f"unknown or unavailable shader {backend!r}; have {available_shaders()}")
     return backend

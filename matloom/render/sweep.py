@@ -6,7 +6,7 @@ Made fast the way a graphics engineer would:
   variant is ever re-parsed (the variant text is produced only for the winners);
 * every sub-expression that depends on no noise seed (Bricks, shapes, constants, transforms of
   coordinates) is evaluated once per sweep and reused by every candidate
-  (:class:`SweepEvaluator`);
+  (:class:`~matloom.engine.schedules.seed_batch.SweepEvaluator`);
 * the candidates are evaluated in chunks with a leading seed axis: each seeded fBm / Worley is
   one seed-batched kernel call per chunk, and every other operation runs once per chunk on the
   batched arrays (numpy broadcasting), so the Python work is per chunk, not per candidate;
@@ -32,6 +32,8 @@ from typing import Any
 
 import numpy as np
 
+from matloom.engine.ops import OPS
+from matloom.engine.schedules.seed_batch import seeded_nodes
 from matloom.lang import ast as A
 from matloom.lang.printer import format_program
 from matloom.lang.seeds import apply_seed_map, seed_assignments, seed_literal_spans
@@ -63,85 +65,6 @@ class SweepResult:
     message: str = ""
 
 
-def seeded_nodes(program: A.Program) -> set[int]:
-    """ids of the nodes whose value depends on a noise seed (through Defines too)."""
-    dep_defs: set[str] = set()
-    out: set[int] = set()
-
-    def visit(node: A.Node) -> bool:
-        kids = [visit(ch) for ch in A.children(node)]
-        dep = any(kids)
-        if isinstance(node, A.Call) and node.arg("seed") is not None:
-            dep = True
-        if isinstance(node, A.Ref) and node.name in dep_defs:
-            dep = True
-        if dep:
-            out.add(id(node))
-        return dep
-
-    for d in program.defines:
-        if visit(d.expr):
-            dep_defs.add(d.name)
-    for _, e in A.program_expressions(program):
-        visit(e)
-    return out
-
-
-def _sweep_evaluator_class() -> type:
-    """:class:`SweepEvaluator` (built on first use so that importing this module stays light)."""
-    from matloom.engine.lazy import LazyEvaluator
-
-    class SweepEvaluator(LazyEvaluator):  # type: ignore[misc, valid-type]
-        """Evaluates one chunk of candidates at once (leading seed axis on seeded values);
-        seed-free values persist across chunks."""
-
-        def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend: Any) -> None:
-            super().__init__(program, x, y, backend)
-            self.seeded = seeded_nodes(program)
-            self.persistent: dict[tuple[int, int], Any] = {}
-            self.seed_maps: list[dict[int, int]] = [{}]
-
-        def begin_chunk(self, seed_maps: list[dict[int, int]]) -> None:
-            self.seed_maps = seed_maps
-            self.memo.clear()
-            self.materialised.clear()
-
-        def eval(self, node: A.Node, c: Any) -> Any:
-            if id(node) in self.seeded or isinstance(node, A.Num | A.Const):
-                return super().eval(node, c)
-            key = (id(node), self._frame_id(c))
-            if key not in self.persistent:
-                self.persistent[key] = super().eval(node, c)
-            return self.persistent[key]
-
-        def transform(self, call: A.Call, c: Any) -> Any:
-            key = (id(call), -1 - self._frame_id(c))
-            if key not in self.persistent:
-                self.persistent[key] = super().transform(call, c)
-            return self.persistent[key]
-
-        def noise(self, call: A.Call, c: Any) -> Any:
-            from matloom.engine.lazy import defer_fbm
-
-            kw = self.noise_args(call)
-            seed = kw.pop("seed")
-            kw["seeds"] = [m.get(seed, seed) for m in self.seed_maps]
-            if call.func != "fBm":
-                return self.backend.worley_seed_batch(c[0], c[1], **kw)
-            if self.backend.fbm_masked is None:  # its seed batch takes no mask
-                return self.backend.fbm_seed_batch(c[0], c[1], **kw)
-
-            batch = self.backend.fbm_seed_batch  # no reference to self (no cycle)
-
-            def compute(mask: np.ndarray | None) -> np.ndarray:
-                return batch(c[0], c[1], mask=mask, **kw)
-
-            # the batch kernel skips a masked pixel at no cost: mask unless every pixel is needed
-            return defer_fbm(compute, c[0], c[1], kw, seeds=len(kw["seeds"]), full_share=1.0)
-
-    return SweepEvaluator
-
-
 @dataclass
 class _Renderer:
     """Everything fixed for a sweep: program, grid, kernels' constant inputs, thread buffers."""
@@ -159,11 +82,12 @@ class _Renderer:
         from matloom.engine.grid import sample_axes
         from matloom.engine.kernels import preview_numba, relief_numba
         from matloom.engine.maps import View
+        from matloom.engine.schedules.seed_batch import SweepEvaluator
         from matloom.render.preview import _light_and_half_vectors
 
         view = View(*self.program.view_tuple)
         x, y = sample_axes(view, self.size, self.size)
-        self.evaluator = _sweep_evaluator_class()(self.program, x, y, get_backend("numba"))
+        self.evaluator = SweepEvaluator(self.program, x, y, get_backend("numba"))
         dx, dy = view.texel_size(self.size, self.size)
         wx, div_x = relief_numba._tap_weights(8.0) or (np.ones(17, np.float32), np.float32(17))
         light, half = _light_and_half_vectors(None)
@@ -179,20 +103,13 @@ class _Renderer:
             half.astype(np.float32),
             preview_numba.encode_coefficients(),
         )
-        self.luts = fused.decode_luts()
+        fused.decode_luts()  # built once here, before the shading threads use them
 
     def chunk_program(self, seed_maps: list[dict[int, int]]) -> Any:
         """Evaluate one chunk and compile its layers for the compositing kernel."""
-        from matloom.engine import fused
-        from matloom.engine.cull import resolve
-        from matloom.engine.evaluate import layer_fields
+        from matloom.engine.schedules.seed_batch import chunk_program
 
-        ev = self.evaluator
-        ev.begin_chunk(seed_maps)
-        with np.errstate(all="ignore"):
-            layers = [layer_fields(ev, layer) for layer in self.program.layers]
-            resolve(layers, (self.size, self.size), ev.concrete)
-            return fused.compile_layers(layers, (self.size, self.size))
+        return chunk_program(self.evaluator, seed_maps, self.size)
 
     def prepare_chunk(self, seed_maps: list[dict[int, int]]) -> Any:
         """The compiled chunk program, or None when the fused kernel cannot take the program
@@ -230,38 +147,19 @@ class _Renderer:
         if buffers is None:
             n = self.size
             buffers = (
-                np.zeros((16, n, n), np.float32),
+                np.zeros((composite_numba.N_PLANES, n, n), np.float32),  # every plane, colours too
                 np.zeros((n, n), np.uint8),
                 np.empty((n, n), np.float32),
                 np.zeros((1, 1, 3), np.float32),
             )
             self.local.buffers = buffers
         planes, flags, mean, dummy = buffers
-        l64, l32 = fused.leaf_tuples(prog)
-        composite_numba.composite_rows(
-            prog.loads,
-            prog.code,
-            prog.consts,
-            prog.n_regs,
-            l64,
-            l32,
-            cand,
-            prog.chan_reg,
-            prog.chan_mode,
-            self.luts,
-            -1.0,
-            planes,
-            dummy,
-            dummy,
-            0,
-            flags,
-            # Reused buffers: a channel no layer writes is never anything but 0 (where a NaN
-            # coverage makes the kernel write it, the coverage is NaN too and 0 is written), so
-            # the zeros of the first allocation need not be written again.
-            True,
-            0,
-            self.size,
-        )
+        colours = (dummy,) * len(composite_numba.COLOUR_OUTPUT_PLANES)  # planar: not written
+        # Reused buffers (zeroed=True): a channel no layer writes is never anything but 0 (where
+        # a NaN coverage makes the kernel write it, the coverage is NaN too and 0 is written),
+        # so the zeros of the first allocation need not be written again.
+        args = fused.kernel_args(prog, planes, colours, flags, cand=cand, margin=-1.0)
+        composite_numba.composite_rows(args, 0, self.size)
         image = np.empty((self.size, self.size, 3), np.uint8)
         preview_numba.relief_shade(planes, *self.shade_args, mean, image)
         return image
@@ -297,13 +195,25 @@ def _chunk_size(program: A.Program, size: int) -> int:
         for node in A.walk(expr):
             if isinstance(node, A.Call) and id(node) in seeded:
                 noise += node.arg("seed") is not None
-                fields += node.func in _MATERIALISED
+                fields += OPS[node.func].materialised
     per_candidate = max(1, 4 * noise + 32 * fields) * size * size
     return int(max(8, min(MAX_CHUNK, CHUNK_BUDGET_BYTES // per_candidate)))
 
 
-#: Primitives whose seeded inputs are materialised as float64 batches (not fused).
-_MATERIALISED = {"Sin", "Cos", "Log"}
+def check_sweep(program: A.Program, size: int, jobs: int, candidates: int) -> int:
+    """Check the sweep against the engine's limits before any work (size, evaluation work,
+    memory: a chunk of seed-batched candidates evaluated at once on the whole image, plus the
+    shading threads' buffers); returns the chunk size, made smaller than :func:`_chunk_size`
+    when the memory estimate of that chunk exceeds the budget. Raises ``LimitError``."""
+    from matloom.engine.limits import Usage, check_size, fit_seed_batch
+
+    check_size(size, size)
+    chunk = min(_chunk_size(program, size), max(candidates, 1))
+    batched = frozenset(seeded_nodes(program))
+    # a thread pool starts threads (each with its buffers) only for tasks that wait: at most
+    # one per candidate of a chunk
+    usage = Usage(seed_batch=chunk, threads=min(jobs, chunk), batched=batched)
+    return fit_seed_batch(program, size, size, usage)
 
 
 def _render_all(
@@ -320,11 +230,11 @@ def _render_all(
     from matloom.engine.evaluate import prepare
 
     program = prepare(text)
+    chunk = check_sweep(program, size, jobs, len(maps))
     try:
         renderer: Any = _Renderer(program, size, jobs)
     except ImportError:  # no numba: exact numpy previews, one variant at a time
         renderer = _ExactRenderer(program, size)
-    chunk = _chunk_size(program, size)
     results: list[tuple[int, float | None]] = []
     heap: list[tuple[float, int, np.ndarray]] = []
     chunks = [list(range(s, min(s + chunk, len(maps)))) for s in range(0, len(maps), chunk)]

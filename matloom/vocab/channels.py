@@ -1,8 +1,12 @@
-"""Layer channels (methods) in the reference's fixed order (reference-engine.md §1.2, §3.1)."""
+"""Layer channels (methods) in the reference's fixed order (reference-engine.md §1.2, §3.1).
+
+Each entry is the whole description of a channel: :mod:`matloom.vocab.layout` derives from these
+specs the kernel slots, the ``MaterialMaps`` fields, the export rows and the dependency classes.
+"""
 
 from __future__ import annotations
 
-from matloom.vocab.spec import ChannelSpec
+from matloom.vocab.spec import Blend, ChannelSpec
 
 C = ChannelSpec
 
@@ -16,6 +20,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "coverage 0..1",
             "coverage of the layer; overrides the Layer(...) argument",
             ".alpha(0.5)",
+            blend=Blend.COVERAGE,
             search=(0, 1),
         ),
         C(
@@ -25,6 +30,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "sRGB 0..255",
             "base colour; each component may be an expression",
             ".basecolor(200, 120, 80)",
+            map_doc="base colour (value_range: the linear colour before encoding); A = total coverage",
             clamp_lo=0,
             clamp_hi=255,
             search=(0, 255),
@@ -37,6 +43,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "metalness (1 = metal)",
             ".metallic(1)",
+            map_doc="metalness 0..1",
             search=(0, 1),
         ),
         C(
@@ -46,6 +53,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "micro-surface roughness (0 = mirror, the default; 1 = fully matte)",
             ".roughness(0.6)",
+            map_doc="roughness 0..1",
             search=(0, 1),
         ),
         C(
@@ -55,6 +63,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "cloth-like grazing sheen",
             ".sheen(0.4)",
+            map_doc="sheen weight 0..1",
             search=(0, 1),
         ),
         C(
@@ -64,6 +73,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "clear-coat layer weight",
             ".coat(0.9)",
+            map_doc="clear-coat weight 0..1",
             search=(0, 1),
         ),
         C(
@@ -73,6 +83,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "see-through transmission (glass, ice)",
             ".transmission(0.9)",
+            map_doc="transmission weight 0..1",
             search=(0, 1),
         ),
         C(
@@ -82,6 +93,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             ">= 1",
             "index of refraction (no upper clamp)",
             ".ior(1.45)",
+            map_doc="index of refraction",
             clamp_lo=1.0,
             clamp_hi=None,
             search=(1, 3),
@@ -93,6 +105,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "subsurface scattering weight (scatter colour = base colour)",
             ".subsurface(0.3)",
+            map_doc="subsurface weight 0..1",
             search=(0, 1),
         ),
         C(
@@ -102,6 +115,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "0..1",
             "anisotropic highlight stretch along x (brushed metal)",
             ".anisotropy(0.6)",
+            map_doc="anisotropy magnitude 0..1 (direction: tangent/X)",
             search=(0, 1),
         ),
         C(
@@ -111,6 +125,7 @@ CHANNELS: dict[str, ChannelSpec] = {
             "sRGB 0..255 and strength >= 0",
             "emitted light colour and strength",
             ".emissive(255, 180, 60, 2)",
+            map_doc="emitted radiance = linear colour x strength",
             clamp_lo=0,
             clamp_hi=255,
             search=(0, 255),
@@ -123,6 +138,8 @@ CHANNELS: dict[str, ChannelSpec] = {
             "coordinate units (unclamped, may be negative)",
             "surface relief; the composite is the max over covered layers",
             ".height(0.01)",
+            blend=Blend.MAX,
+            map_doc="height in coordinate units (may be negative)",
             clamp_lo=None,
             clamp_hi=None,
             search=(-0.5, 0.5),

@@ -24,6 +24,22 @@ class Kind(enum.Enum):
     SEGMENT = "segment"  # LineTo/CubicTo, only inside Path
 
 
+class Blend(enum.Enum):
+    """How the layers' values of a channel combine into the material's map."""
+
+    COVERAGE = "coverage"  # the layer's coverage: the weight of every OVER channel
+    OVER = "over"  # coverage-weighted "over" rule: sum(V_i * c_i) / A
+    MAX = "max"  # max over the covering layers (height)
+
+
+class ValueKind(enum.Enum):
+    """What a channel's arguments hold (derived from its argument list)."""
+
+    SCALAR = "scalar"  # one value
+    COLOUR = "colour"  # sRGB r, g, b on 0..255
+    COLOUR_STRENGTH = "colour+strength"  # sRGB r, g, b on 0..255 and a strength >= 0
+
+
 class Returns(enum.Enum):
     """What a call produces."""
 
@@ -160,10 +176,26 @@ class ChannelSpec:
     search: tuple[float, float] | None = None
     #: Arguments on the 0..255 sRGB scale (colour channels).
     colour_args: tuple[int, ...] = field(default_factory=tuple)
+    #: How the layers' values combine (see :mod:`matloom.vocab.layout`).
+    blend: Blend = Blend.OVER
+    #: Meaning of the exported map, written into ``material.json`` (default: ``doc``).
+    map_doc: str = ""
 
     @property
     def arity(self) -> int:
         return len(self.arg_names)
+
+    @property
+    def kind(self) -> ValueKind:
+        """Scalar (one argument), colour (r, g, b) or colour+strength (r, g, b, strength)."""
+        colour = self.colour_args == (0, 1, 2)
+        if self.arity == 1 and not self.colour_args:
+            return ValueKind.SCALAR
+        if colour and self.arity == 3:
+            return ValueKind.COLOUR
+        if colour and self.arity == 4:
+            return ValueKind.COLOUR_STRENGTH
+        raise ValueError(f"channel {self.name!r}: no value kind for arguments {self.arg_names}")
 
 
 def _num(v: float) -> str:

@@ -1,7 +1,7 @@
-"""The compiled fBm kernel (``_cnoise`` via ``noise_c``) against the pure-numpy fBm, bit for bit.
+"""The compiled fBm loops (``_cnoise`` via ``noise_c``) against the pure-numpy loops, bit for bit.
 
-``noise_numpy.fbm_numpy`` is the numpy code the C kernel must reproduce exactly (it is what
-``noise_numpy.fbm`` runs with ``MATLOOM_PURE_NUMPY=1``); the real ``opensimplex`` package is the
+``noise_numpy.FBM_LOOPS`` is the numpy code the C kernel must reproduce exactly (it is what the
+numpy backend runs with ``MATLOOM_PURE_NUMPY=1``); the real ``opensimplex`` package is the
 independent reference for the noise itself.  These tests FAIL (they do not skip) when the
 extension was not built: CI always has a C compiler.
 """
@@ -12,6 +12,7 @@ import math
 import subprocess
 import sys
 import threading
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +21,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from matloom.engine.kernels import noise_c, noise_numpy, opensimplex
+from matloom.engine import backends
+from matloom.engine.kernels import noise, noise_c, noise_numpy, opensimplex
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE: dict[str, Any] = dict(
@@ -71,12 +73,22 @@ def assert_bit_identical(got: np.ndarray, expected: np.ndarray) -> None:
     assert mismatch.size == 0, f"{mismatch.size} values differ, first at {mismatch[:5]}"
 
 
+def c_fbm(x: np.ndarray, y: np.ndarray, **kw: Any) -> np.ndarray:
+    """The fBm on the C extension's loops."""
+    return noise.fbm(x, y, loops=noise_c.FBM_LOOPS, **kw)
+
+
+def numpy_fbm(x: np.ndarray, y: np.ndarray, **kw: Any) -> np.ndarray:
+    """The fBm on the pure-numpy loops."""
+    return noise.fbm(x, y, loops=noise_numpy.FBM_LOOPS, **kw)
+
+
 def check(x: np.ndarray, y: np.ndarray, **params: Any) -> np.ndarray:
     """C fBm == numpy fBm bit for bit on (x, y); returns the result."""
     kw = {**BASE, **params}
     with np.errstate(all="ignore"):  # overflow/0-division warnings of the numpy code
-        expected = noise_numpy.fbm_numpy(x, y, **kw)
-        got = noise_c.fbm(x, y, **kw)
+        expected = numpy_fbm(x, y, **kw)
+        got = c_fbm(x, y, **kw)
     assert_bit_identical(got, expected)
     return got
 
@@ -239,7 +251,7 @@ def test_single_octave_matches_opensimplex_package() -> None:
         noise = package.OpenSimplex(seed)
         raw = np.array([noise.noise2(float(a), float(b)) for a, b in pts])
         expected = np.clip((0.0 + raw * opensimplex.FBM_SCALE * 1.0) / 1.0, -1.0, 1.0)
-        assert_bit_identical(noise_c.fbm(pts[:, 0], pts[:, 1], seed=seed, **kw), expected)
+        assert_bit_identical(c_fbm(pts[:, 0], pts[:, 1], seed=seed, **kw), expected)
 
 
 def test_constants_match_python_module() -> None:
@@ -254,36 +266,42 @@ def test_constants_match_python_module() -> None:
 # --- dispatch, import cost, threads ---------------------------------------------------------------
 
 
-def test_fbm_dispatches_on_environment(monkeypatch: pytest.MonkeyPatch) -> None:
-    """noise_numpy.fbm runs the C kernel unless MATLOOM_PURE_NUMPY=1; same numbers either way."""
+def test_numpy_backend_chooses_c_unless_pure_numpy(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The numpy backend runs the C loops unless MATLOOM_PURE_NUMPY=1 (read at every call), for
+    single fields and seed batches alike; same numbers either way."""
     calls: list[int] = []
-    real = noise_c.fbm
+    real = noise_c.FBM_LOOPS
 
-    def spy(*args: Any, **kwargs: Any) -> np.ndarray:
+    def spy(*args: Any) -> None:
         calls.append(1)
-        return real(*args, **kwargs)
+        real.separable(*args)
 
-    monkeypatch.setattr(noise_c, "fbm", spy)
+    monkeypatch.setattr(noise_c, "FBM_LOOPS", replace(real, separable=spy))
+    numpy_backend = backends.get_backend("numpy")
     x, y = axes(23, 17, np.float32)
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    with_c = noise_numpy.fbm(x, y, **BASE)
+    assert numpy_backend.fbm_loops is not None and numpy_backend.fbm_loops().name == "c"
+    with_c = numpy_backend.fbm(x, y, **BASE)
     assert calls == [1]
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    pure = noise_numpy.fbm(x, y, **BASE)
+    assert numpy_backend.fbm_loops().name == "numpy"
+    pure = numpy_backend.fbm(x, y, **BASE)
     assert calls == [1]
     assert_bit_identical(with_c, pure)
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "0")
-    noise_numpy.fbm_seed_batch(x, y, seeds=[1, 2], **{k: v for k, v in BASE.items() if k != "seed"})
+    kw = {k: v for k, v in BASE.items() if k != "seed"}
+    numpy_backend.fbm_seed_batch(x, y, seeds=[1, 2], **kw)
     assert calls == [1, 1, 1]
 
 
 def test_seed_batch_through_c_matches_numpy(monkeypatch: pytest.MonkeyPatch) -> None:
     x, y = axes(19, 11, np.float32)
     kw = {k: v for k, v in BASE.items() if k != "seed"}
+    numpy_backend = backends.get_backend("numpy")
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    fast = noise_numpy.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
+    fast = numpy_backend.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    pure = noise_numpy.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
+    pure = numpy_backend.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
     assert fast.dtype == pure.dtype == np.float32
     assert np.array_equal(fast, pure)
 
@@ -292,11 +310,12 @@ def test_import_path_does_not_import_numba() -> None:
     """The numpy backend's fBm (C path) must stay cheap to import: no numba anywhere."""
     code = (
         "import sys, numpy as np\n"
-        "from matloom.engine.kernels import noise_numpy, noise_c\n"
+        "from matloom.engine.backends import get_backend\n"
+        "from matloom.engine.kernels import noise_c\n"
         "assert noise_c.available()\n"
         "x = np.linspace(0, 1, 8)[None, :]\n"
-        "noise_numpy.fbm(x, x.T, octaves=3, lacunarity=2.0, gain=0.5, freq_x=7.0, freq_y=7.0,"
-        " to_01=True, seed=1)\n"
+        "get_backend('numpy').fbm(x, x.T, octaves=3, lacunarity=2.0, gain=0.5, freq_x=7.0,"
+        " freq_y=7.0, to_01=True, seed=1)\n"
         "assert 'numba' not in sys.modules, 'numba was imported'\n"
     )
     env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
@@ -308,12 +327,12 @@ def test_concurrent_calls_in_threads() -> None:
     """The GIL is released in the loops: concurrent calls still give the sequential results."""
     x, y = axes(150, 90, np.float32)
     grids = [(x, y), rotated(x, y, 30.0)]
-    expected = [noise_c.fbm(gx, gy, **{**BASE, "seed": s}) for s in range(4) for gx, gy in grids]
+    expected = [c_fbm(gx, gy, **{**BASE, "seed": s}) for s in range(4) for gx, gy in grids]
     results: list[np.ndarray | None] = [None] * len(expected)
 
     def work(i: int) -> None:
         gx, gy = grids[i % 2]
-        results[i] = noise_c.fbm(gx, gy, **{**BASE, "seed": i // 2})
+        results[i] = c_fbm(gx, gy, **{**BASE, "seed": i // 2})
 
     threads = [threading.Thread(target=work, args=(i,)) for i in range(len(expected))]
     for t in threads:

@@ -16,7 +16,6 @@ from matloom.engine.backends import get_backend  # noqa: E402
 from matloom.engine.cull import channel_bounds  # noqa: E402
 from matloom.engine.evaluate import EvalStats, evaluate, prepare  # noqa: E402
 from matloom.engine.grid import sample_axes  # noqa: E402
-from matloom.engine.kernels import noise_numba  # noqa: E402
 from matloom.engine.lazy import DeferredField, make_lazy  # noqa: E402
 from matloom.engine.maps import View  # noqa: E402
 from matloom.examples import example_text  # noqa: E402
@@ -131,11 +130,11 @@ def test_masked_fbm_kernel_matches_dense_values() -> None:
         y = np.linspace(4, -2, 61, dtype=dtype)[:, None]
         grid = (dtype(0.6) * x + dtype(0.8) * y, dtype(0.6) * y - dtype(0.8) * x)
         for cx, cy in ((x, y), grid):
-            dense = noise_numba.fbm(cx, cy, seed=11, **kw)
+            dense = get_backend("numba").fbm(cx, cy, seed=11, **kw)
             mask = rng.random(dense.shape) < 0.4
             mask[5] = True  # a full row
             mask[6] = False  # an empty row
-            masked = noise_numba.fbm_masked(cx, cy, mask, fill=0.25, seed=11, **kw)
+            masked = get_backend("numba").fbm_masked(cx, cy, mask, fill=0.25, seed=11, **kw)
             assert np.array_equal(masked[mask], dense[mask])
             assert np.all(masked[~mask] == 0.25)
 

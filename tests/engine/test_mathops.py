@@ -55,7 +55,7 @@ MATH_EXPRESSIONS: dict[str, Kernel] = {
     "X() / Y()": lambda x, y: m.safe_div(X(x, y), Y(x, y)),
     "1 / (X() - 0.5)": lambda x, y: m.safe_div(C(1), m.sub(X(x, y), C(0.5))),
     "2 ** 3 ** 2 - X()": lambda x, y: m.sub(m.pow_(C(2), m.pow_(C(3), C(2))), X(x, y)),
-    "-2 ** 2 + X()": lambda x, y: m.add(m.neg(m.pow_(C(2), C(2))), X(x, y)),
+    "-2 ** 2 + X()": lambda x, y: m.add(m.mul(C(-1.0), m.pow_(C(2), C(2))), X(x, y)),
     "(X() - 0.5) ** 0.5": lambda x, y: m.pow_(m.sub(X(x, y), C(0.5)), C(0.5)),
     "pi * X() + e * Y()": lambda x, y: m.add(m.mul(C(math.pi), X(x, y)), m.mul(C(math.e), Y(x, y))),
     "Abs(X() - 0.6)": lambda x, y: m.abs_(m.sub(X(x, y), C(0.6))),
@@ -194,9 +194,9 @@ def _log_scales(x: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def _power_unary(x: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-    u = m.add(m.pow_(X(x, y), C(2)), m.neg(m.pow_(Y(x, y), C(3))))
+    u = m.add(m.pow_(X(x, y), C(2)), m.mul(C(-1.0), m.pow_(Y(x, y), C(3))))
     roughness = m.pow_(m.sub(X(x, y), C(0.5)), C(0.5))
-    return {"height": m.neg(m.mul(u, C(0.01))), "roughness": roughness}
+    return {"height": m.mul(C(-1.0), m.mul(u, C(0.01))), "roughness": roughness}
 
 
 SINGLE_LAYER_PROGRAMS = {
@@ -234,7 +234,7 @@ def test_nan_inf_fields_height(size: tuple[int, int]) -> None:
     layers = [
         (C(1), C(-0.05)),
         (C(0.8), m.mul(dome, C(0.2))),
-        (C(0.5), m.mul(m.neg(m.log(band)), C(0.01))),
+        (C(0.5), m.mul(m.mul(C(-1.0), m.log(band)), C(0.01))),
     ]
     want = fixture_maps("nan_inf_fields", *size)["height"]
     np.testing.assert_array_equal(composite_height(layers, shape), want)

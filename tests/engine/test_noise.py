@@ -14,13 +14,14 @@ import os
 import re
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
 import pytest
 
+from matloom.engine.backends import Backend, get_backend, noise_kernels
 from matloom.engine.kernels import noise_numpy
 from matloom.engine.kernels.opensimplex import gradient_table, perm_from_seed, perms_for_seeds
 
@@ -43,22 +44,25 @@ def _opensimplex_package():  # type: ignore[no-untyped-def]
     return opensimplex
 
 
-@pytest.fixture(params=["numpy", "numba"])
-def backend(request: pytest.FixtureRequest) -> ModuleType:
+#: The numpy backend as shipped: its fBm runs the C extension's loops where they are built.
+NUMPY = get_backend("numpy")
+#: The numpy backend on the pure-numpy fBm loops (what ``MATLOOM_PURE_NUMPY=1`` selects).
+PURE_NUMPY = replace(
+    NUMPY, **noise_kernels(lambda: noise_numpy.FBM_LOOPS, noise_numpy.WORLEY_LOOPS)
+)
+
+
+@pytest.fixture(params=["numpy", "pure-numpy", "numba"])
+def backend(request: pytest.FixtureRequest) -> Backend:
     """Each noise backend; the numba one is skipped when numba is not installed."""
     if request.param == "numba":
-        pytest.importorskip("numba")
-        from matloom.engine.kernels import noise_numba
-
-        return noise_numba
-    return noise_numpy
+        return _numba()
+    return PURE_NUMPY if request.param == "pure-numpy" else NUMPY
 
 
-def _numba() -> ModuleType:
+def _numba() -> Backend:
     pytest.importorskip("numba")
-    from matloom.engine.kernels import noise_numba
-
-    return noise_numba
+    return get_backend("numba")
 
 
 # --- fixture expressions -----------------------------------------------------------------------
@@ -126,7 +130,7 @@ def test_fixture_set_covers_noise() -> None:
 
 @pytest.mark.parametrize(("expr", "dtype", "px", "py", "value"), FIXTURE_CASES)
 def test_matches_reference_fixture(
-    backend: ModuleType, expr: str, dtype: type, px: float, py: float, value: float
+    backend: Backend, expr: str, dtype: type, px: float, py: float, value: float
 ) -> None:
     """Point samples of the reference (float64 axes, and float32 axes where they differ)."""
     name, kwargs = _kernel_call(expr)
@@ -136,7 +140,7 @@ def test_matches_reference_fixture(
     assert abs(got[0, 0] - value) <= max(1e-12, 1e-9 * abs(value)), (got[0, 0], value)
 
 
-def test_numpy_scalar_parameters_behave_like_python_floats(backend: ModuleType) -> None:
+def test_numpy_scalar_parameters_behave_like_python_floats(backend: Backend) -> None:
     """np.float64 frequencies must not turn the float32 per-octave scaling into float64."""
     x32, y32 = np.array([[-0.3]], np.float32), np.array([[2.7]], np.float32)
     kw = dict(octaves=5, lacunarity=2.5, gain=0.6, to_01=True, seed=123)
@@ -151,7 +155,7 @@ def test_numpy_scalar_parameters_behave_like_python_floats(backend: ModuleType) 
     assert numpy_scalars[0, 0] == plain[0, 0]
 
 
-def test_fbm_origin_is_zero_and_known_value(backend: ModuleType) -> None:
+def test_fbm_origin_is_zero_and_known_value(backend: Backend) -> None:
     """fBm(seed=5): exactly 0 at the origin; the spec's example value at (0.1, 0.2)."""
     kw = dict(octaves=6, lacunarity=2.0, gain=0.5, freq_x=1.0, freq_y=1.0, to_01=False, seed=5)
     x = np.array([[0.0, 0.1]])
@@ -161,7 +165,7 @@ def test_fbm_origin_is_zero_and_known_value(backend: ModuleType) -> None:
     assert abs(out[1, 1] - 0.36799036667171914) <= 1e-12
 
 
-def test_float32_axes_scale_per_octave_in_float32(backend: ModuleType) -> None:
+def test_float32_axes_scale_per_octave_in_float32(backend: Backend) -> None:
     """On float32 axes each octave's ``x * f_k`` is rounded to float32 (fixture value); merely
     rounding the input point to float32 and scaling in float64 gives a different number."""
     kw = dict(octaves=5, lacunarity=2.5, gain=0.6, freq_x=2.0, freq_y=2.0, to_01=True, seed=123)
@@ -211,7 +215,7 @@ def test_vectorised_perms_match_scalar_rule() -> None:
         assert np.array_equal(row, perm_from_seed(seed))
 
 
-def test_fixed_point_batch_falls_back_for_extreme_gain(backend: ModuleType) -> None:
+def test_fixed_point_batch_falls_back_for_extreme_gain(backend: Backend) -> None:
     """gain=-0.9 leaves no safe fixed-point scale: the batch still equals per-seed fBm."""
     x, y = _axes(9, 7, 0.0, 1.0)
     kw = dict(octaves=4, lacunarity=2.0, gain=-0.9, freq_x=5.0, freq_y=5.0, to_01=False)
@@ -254,7 +258,7 @@ def test_fbm_numba_matches_numpy(params: dict[str, Any], rotate: bool, dtype: ty
     x, y = x.astype(dtype), y.astype(dtype)
     if rotate:
         x, y = _rotated(x, y, 37.0)
-    expected = noise_numpy.fbm(x, y, **params)
+    expected = NUMPY.fbm(x, y, **params)
     got = nb.fbm(x, y, **params)
     assert got.shape == expected.shape == (61, 83)
     assert np.max(np.abs(got - expected)) <= 1e-12
@@ -277,7 +281,7 @@ def test_worley_numba_matches_numpy(distance: str, combination: str, rotate: boo
             to_01=to_01,
             seed=12345,
         )
-        expected = noise_numpy.worley(x, y, **kw)
+        expected = NUMPY.worley(x, y, **kw)
         got = nb.worley(x, y, **kw)
         assert got.shape == expected.shape == (45, 57)
         assert np.max(np.abs(got - expected)) <= 1e-12
@@ -290,10 +294,10 @@ def test_worley_hash_path_for_huge_cell_box() -> None:
     kw = dict(
         distance="euclidean", combination="F2-F1", freq_x=1.0e4, freq_y=1.0e4, to_01=False, seed=8
     )
-    assert np.max(np.abs(nb.worley(x, y, **kw) - noise_numpy.worley(x, y, **kw))) <= 1e-12
+    assert np.max(np.abs(nb.worley(x, y, **kw) - NUMPY.worley(x, y, **kw))) <= 1e-12
 
 
-def test_shapes_and_broadcasting(backend: ModuleType) -> None:
+def test_shapes_and_broadcasting(backend: Backend) -> None:
     """(1,W)x(H,1), 1-D x with (H,1) y, full grids and mixed forms give broadcast shapes."""
     fkw = dict(octaves=2, lacunarity=2.0, gain=0.5, freq_x=3.0, freq_y=3.0, to_01=True, seed=4)
     wkw = dict(distance="manhattan", combination="F1", freq_x=3.0, freq_y=3.0, to_01=True, seed=4)
@@ -309,7 +313,7 @@ def test_shapes_and_broadcasting(backend: ModuleType) -> None:
         assert fn(np.zeros((0, 3), np.float32), np.zeros((0, 1), np.float32), **kw).shape == (0, 3)
 
 
-def test_non_finite_coordinates(backend: ModuleType) -> None:
+def test_non_finite_coordinates(backend: Backend) -> None:
     """NaN/inf never crash; fBm gives 0 (every attenuation test fails), Worley F1 inf."""
     x = np.array([[np.nan, np.inf, 0.25]])
     y = np.array([[0.5]])
@@ -327,7 +331,7 @@ def test_non_finite_coordinates(backend: ModuleType) -> None:
     assert np.isnan(w01[0, 0])
 
 
-def test_invalid_arguments(backend: ModuleType) -> None:
+def test_invalid_arguments(backend: Backend) -> None:
     x, y = _axes(4, 4, 0.0, 1.0)
     with pytest.raises(ValueError):
         backend.fbm(
@@ -355,7 +359,7 @@ def test_invalid_arguments(backend: ModuleType) -> None:
 
 @pytest.mark.parametrize("rotate", [False, True])
 @pytest.mark.parametrize("to_01", [False, True])
-def test_fbm_seed_batch_matches_per_seed(backend: ModuleType, rotate: bool, to_01: bool) -> None:
+def test_fbm_seed_batch_matches_per_seed(backend: Backend, rotate: bool, to_01: bool) -> None:
     x, y = _axes(40, 33, 0.0, 2.0)
     if rotate:
         x, y = _rotated(x, y, 15.0)
@@ -369,9 +373,7 @@ def test_fbm_seed_batch_matches_per_seed(backend: ModuleType, rotate: bool, to_0
 
 @pytest.mark.parametrize("distance", DISTANCES)
 @pytest.mark.parametrize("rotate", [False, True])
-def test_worley_seed_batch_matches_per_seed(
-    backend: ModuleType, distance: str, rotate: bool
-) -> None:
+def test_worley_seed_batch_matches_per_seed(backend: Backend, distance: str, rotate: bool) -> None:
     x, y = _axes(36, 29, -0.5, 1.5)
     if rotate:
         x, y = _rotated(x, y, 60.0)
@@ -403,7 +405,7 @@ def test_numba_batch_matches_numpy_batch() -> None:
         to_01=True,
         seeds=list(range(20)),
     )
-    diff = nb.fbm_seed_batch(x, y, **kw) - noise_numpy.fbm_seed_batch(x, y, **kw)
+    diff = nb.fbm_seed_batch(x, y, **kw) - NUMPY.fbm_seed_batch(x, y, **kw)
     assert np.max(np.abs(diff)) <= 1e-6
 
 
@@ -413,12 +415,13 @@ _NO_CACHE_SCRIPT = """
 import numpy as np
 from numba.core import caching
 caching.CacheImpl._locator_classes = []  # as if no cache directory were writable
-from matloom.engine.kernels import noise_numba, noise_numpy
+from matloom.engine.backends import get_backend
+from matloom.engine.kernels import noise_numba
 assert type(noise_numba._fbm_separable_kernel._cache).__name__ == "NullCache"  # fell back
 x = np.linspace(0, 1, 9, dtype=np.float32)[None, :]
 y = np.linspace(0, 1, 7, dtype=np.float32)[:, None]
 kw = dict(octaves=2, lacunarity=2.0, gain=0.5, freq_x=3.0, freq_y=3.0, to_01=False, seed=2)
-assert np.array_equal(noise_numba.fbm(x, y, **kw), noise_numpy.fbm(x, y, **kw))
+assert np.array_equal(get_backend("numba").fbm(x, y, **kw), get_backend("numpy").fbm(x, y, **kw))
 print("ok")
 """
 
@@ -442,4 +445,7 @@ def test_numba_works_without_writable_cache() -> None:
 
 def test_warm_up_runs() -> None:
     """The CLI warm-up entry point compiles/loads every kernel without error."""
-    _numba().warm_up(include_batch=True)
+    _numba()
+    from matloom.engine.kernels import noise_numba
+
+    noise_numba.warm_up(include_batch=True)

@@ -16,19 +16,52 @@ lies within 2**-44 of a float32 rounding boundary; such texels (about 1 in 10**6
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from matloom.engine.kernels.register_numba import _jit, load_leaves, run_code
+from matloom.vocab.layout import LAYOUT, Group
 
-#: Channel slots of a layer in the layer tables (``chan_reg``/``chan_mode`` columns).
-CH_ALPHA = 0
-CH_BASECOLOR = 1  # 1, 2, 3
-CH_SCALARS = 4  # 4..10 in SCALAR_CHANNELS order
-CH_IOR = 11
-CH_EMISSIVE = 12  # 12, 13, 14
-CH_STRENGTH = 15
-CH_HEIGHT = 16
-N_CHANNELS = 17
+# Channel slots of a layer in the layer tables (``chan_reg``/``chan_mode`` columns) and output
+# planes (accumulator rows), all from :mod:`matloom.vocab.layout`; numba freezes them as
+# constants when it compiles (a change of the layout must recompile these kernels).
+#: Input slots per layer and the coverage (alpha) slot.
+N_CHANNELS = LAYOUT.n_slots
+CH_ALPHA = LAYOUT.coverage.slots[0]
+#: Output planes: coverage, the scalars, the max channels (the first N_MAP_PLANES, the 2-D maps),
+#: then the colour components.
+N_PLANES = LAYOUT.n_planes
+N_MAP_PLANES = LAYOUT.n_map_planes
+PLANE_COVERAGE = LAYOUT.coverage.planes[0]
+#: Over-blended scalars (slot order: the [0, 1] ones, then ior): slot, plane, clamp [lo, hi].
+SCALAR_SLOTS = tuple(c.slots[0] for c in LAYOUT.scalars)
+SCALAR_PLANES = tuple(c.planes[0] for c in LAYOUT.scalars)
+SCALAR_LO = tuple(-np.inf if c.clamp[0] is None else float(c.clamp[0]) for c in LAYOUT.scalars)
+SCALAR_HI = tuple(np.inf if c.clamp[1] is None else float(c.clamp[1]) for c in LAYOUT.scalars)
+N_SCALARS = len(SCALAR_SLOTS)
+#: Colour components (basecolor r g b, emissive r g b): slot, plane, whether x strength.
+COLOUR_SLOTS = tuple(s for c in LAYOUT.colours for s in c.slots[:3])
+COLOUR_PLANES = tuple(p for c in LAYOUT.colours for p in c.planes)
+COLOUR_EMISSIVE = tuple(c.group is Group.COLOUR_STRENGTH for c in LAYOUT.colours for _ in range(3))
+N_COLOURS = len(COLOUR_SLOTS)
+#: First plane of each colour channel (its interleaved (H, W, 3) output), in ``colours`` order.
+COLOUR_OUTPUT_PLANES = tuple(c.planes[0] for c in LAYOUT.colours)
+#: Max-blended channels (height): slot, plane.
+MAX_SLOTS = tuple(c.slots[0] for c in LAYOUT.maxed)
+MAX_PLANES = tuple(c.planes[0] for c in LAYOUT.maxed)
+N_MAX = len(MAX_SLOTS)
+
+
+def _strength_slot() -> int:
+    """The slot of the one colour x strength channel's strength (the kernel takes one)."""
+    lit = LAYOUT.in_group(Group.COLOUR_STRENGTH)
+    if len(lit) > 1:
+        raise ValueError("the compositing kernel takes at most one colour+strength channel")
+    return lit[0].slots[3] if lit else CH_ALPHA  # no strength: never read as one
+
+
+CH_STRENGTH = _strength_slot()
 
 #: Channel modes: RAW = evaluate and convert here; READY = register holds the final float32
 #: value; DECODED = emissive colour already linear (float64); ZERO = constant 0 after conversion.
@@ -150,18 +183,21 @@ def _coverage(regs, chan_reg, alphas, weights, running, weight_nan):  # type: ig
 
 
 @_jit()
-def _add_scalar(acc, w, src, mode, ior):  # type: ignore[no-untyped-def]
-    """acc += w * converted channel (clamp to [0, 1], or max(v, 1) for ior) in float32."""
+def _add_scalar(acc, w, src, mode, lo, hi):  # type: ignore[no-untyped-def]
+    """acc += w * converted channel (float32, clamped to [lo, hi]: [0, 1], or below at 1 for
+    ior with hi = inf); NaN passes the clamp."""
     if mode == READY or mode == ZERO:
         for j in range(acc.size):
             acc[j] += w[j] * np.float32(src[j])
-    elif ior:
-        for j in range(acc.size):
-            c = np.float32(src[j])
-            acc[j] += w[j] * (np.float32(1.0) if c < np.float32(1.0) else c)
-    else:
+    elif lo == 0.0 and hi == 1.0:
         for j in range(acc.size):
             acc[j] += w[j] * _clip01_f32(src[j])
+    else:
+        low, high = np.float32(lo), np.float32(hi)
+        for j in range(acc.size):
+            c = np.float32(src[j])
+            c = low if c < low else c
+            acc[j] += w[j] * (high if c > high else c)
 
 
 @_jit(inline=True)
@@ -264,9 +300,10 @@ def _accumulate(
     idx,
     work,
 ):  # type: ignore[no-untyped-def]
-    """Bottom-up: add every layer's weighted channels to the row accumulators ``acc`` (16, W):
-    rows 1..8 the 7 scalars and ior, 9 the height max, 10..12 basecolor, 13..15 emissive.
-    ``touched[p]`` is set for every accumulator row that received a value (others stay 0).
+    """Bottom-up: add every layer's weighted channels to the row accumulators ``acc``
+    (N_PLANES, W), one row per output plane (1..8 the 7 scalars and ior, 9 the height max,
+    10..12 basecolor, 13..15 emissive). ``touched[p]`` is set for every accumulator row that
+    received a value (others stay 0).
     Colours of a layer visible on under half of the row are decoded only where it is visible
     (``idx``/``work`` scratch), unless a colour could be NaN/inf where it is hidden."""
     for layer in range(chan_reg.shape[0]):
@@ -274,32 +311,33 @@ def _accumulate(
         skip_zero = not weight_nan[layer]
         m = _visible_index(w, idx)
         strength = regs[chan_reg[layer, CH_STRENGTH]]
-        strength_finite = m >= 0 and _all_finite(strength, False)
-        for c in range(8):
-            ch = CH_SCALARS + c if c < 7 else CH_IOR
-            if not (chan_mode[layer, ch] == ZERO and skip_zero):
-                touched[1 + c] = True
-                _add_scalar(acc[1 + c], w, regs[chan_reg[layer, ch]], chan_mode[layer, ch], c == 7)
-        for k in range(6):
-            ch = CH_BASECOLOR + k if k < 3 else CH_EMISSIVE + k - 3
+        strength_finite = m >= 0 and _all_finite(strength, np.bool_(False))
+        for c in range(N_SCALARS):
+            ch, p = SCALAR_SLOTS[c], SCALAR_PLANES[c]
             mode = chan_mode[layer, ch]
             if not (mode == ZERO and skip_zero):
-                touched[10 + k] = True
+                touched[p] = True
+                _add_scalar(acc[p], w, regs[chan_reg[layer, ch]], mode, SCALAR_LO[c], SCALAR_HI[c])
+        for k in range(N_COLOURS):
+            ch, p, emissive = COLOUR_SLOTS[k], COLOUR_PLANES[k], COLOUR_EMISSIVE[k]
+            mode = chan_mode[layer, ch]
+            if not (mode == ZERO and skip_zero):
+                touched[p] = True
                 src = regs[chan_reg[layer, ch]]
                 if (
                     m >= 0
                     and mode != READY
                     and mode != ZERO
-                    and (k < 3 or strength_finite)
-                    and _all_finite(src, True)
+                    and (not emissive or strength_finite)
+                    and _all_finite(src, np.bool_(True))
                 ):
                     _add_colour_visible(
-                        acc[10 + k],
+                        acc[p],
                         w,
                         src,
                         strength,
                         mode,
-                        k >= 3,
+                        emissive,
                         luts,
                         margin,
                         flags,
@@ -309,42 +347,54 @@ def _accumulate(
                     )
                     continue
                 _add_colour(
-                    acc[10 + k],
+                    acc[p],
                     w,
                     src,
                     strength,
                     mode,
-                    k >= 3,
+                    emissive,
                     luts,
                     margin,
                     flags,
                     lin,
                 )
-        heights, alpha, top = regs[chan_reg[layer, CH_HEIGHT]], alphas[layer], acc[9]
-        for j in range(top.size):
-            h = np.float32(heights[j])
-            if alpha[j] > np.float32(0.0) and np.isfinite(h) and h > top[j]:
-                top[j] = h
+        alpha = alphas[layer]
+        for q in range(N_MAX):
+            heights, top = regs[chan_reg[layer, MAX_SLOTS[q]]], acc[MAX_PLANES[q]]
+            for j in range(top.size):
+                h = np.float32(heights[j])
+                if alpha[j] > np.float32(0.0) and np.isfinite(h) and h > top[j]:
+                    top[j] = h
+
+
+@_jit(inline=True)
+def _is_max_plane(p: int) -> bool:
+    """True for the output plane of a max-blended channel (settled apart, not divided)."""
+    for q in range(N_MAX):
+        if MAX_PLANES[q] == p:
+            return True
+    return False
 
 
 @_jit()
-def _finish(acc, touched, running, planes, basecolor, emissive, i, zeroed):  # type: ignore[no-untyped-def]
-    """Coverage = 1 - running; un-premultiply (0 where not covered); settle the height; write
-    output row ``i`` (colours interleaved). ``acc[0]`` is reused for the divisor; untouched
-    accumulators are 0 and stay 0 (0 / divisor = 0), so they are not divided, and with
-    ``zeroed`` (outputs freshly zero-allocated) not even written: their pages stay untouched."""
+def _finish(acc, touched, running, planes, colours, i, zeroed):  # type: ignore[no-untyped-def]
+    """Coverage = 1 - running; un-premultiply (0 where not covered); settle the max channels;
+    write output row ``i`` (colours interleaved into ``colours`` unless ``planes`` has all
+    N_PLANES). The coverage row of ``acc`` is reused for the divisor; untouched accumulators
+    are 0 and stay 0 (0 / divisor = 0), so they are not divided, and with ``zeroed`` (outputs
+    freshly zero-allocated) not even written: their pages stay untouched."""
     zero, one = np.float32(0.0), np.float32(1.0)
-    cover, divisor = planes[0, i], acc[0]
+    cover, divisor = planes[PLANE_COVERAGE, i], acc[PLANE_COVERAGE]
     for j in range(running.size):
         c = one - running[j]
         cover[j] = c
         divisor[j] = c if c > zero else one  # divide unconditionally: the loops vectorise
-    planar = planes.shape[0] == 16
-    for p in range(1, 16):
-        if p == 9:
+    planar = planes.shape[0] == N_PLANES
+    for p in range(N_PLANES):
+        if p == PLANE_COVERAGE or _is_max_plane(p):
             continue
         src = acc[p]
-        dst = planes[p, i] if (p < 9 or planar) else src
+        dst = planes[p, i] if (p < N_MAP_PLANES or planar) else src
         if not touched[p]:
             if not zeroed:
                 dst[:] = zero
@@ -353,56 +403,76 @@ def _finish(acc, touched, running, planes, basecolor, emissive, i, zeroed):  # t
             q = src[j] / divisor[j]
             dst[j] = q if cover[j] > zero else zero
     if not planar:
-        base, emit = basecolor[i], emissive[i]
-        for j in range(cover.size):
-            for k in range(3):
-                base[j, k] = acc[10 + k, j]
-        if not zeroed or touched[13] or touched[14] or touched[15]:
-            for j in range(cover.size):
-                for k in range(3):
-                    emit[j, k] = acc[13 + k, j]
-    top, height = acc[9], planes[9, i]
-    for j in range(height.size):
-        h = top[j]
-        height[j] = (zero if h == -np.inf else h) + zero
+        for out in range(len(COLOUR_OUTPUT_PLANES)):
+            p0, rgb = COLOUR_OUTPUT_PLANES[out], colours[out][i]
+            if not zeroed or touched[p0] or touched[p0 + 1] or touched[p0 + 2]:
+                for j in range(cover.size):
+                    for k in range(3):
+                        rgb[j, k] = acc[p0 + k, j]
+    for q in range(N_MAX):
+        top, height = acc[MAX_PLANES[q]], planes[MAX_PLANES[q], i]
+        for j in range(height.size):
+            h = top[j]
+            height[j] = (zero if h == -np.inf else h) + zero
+
+
+class CompositeArgs(NamedTuple):
+    """The arguments of :func:`composite_rows` but the row range (built by
+    :func:`matloom.engine.fused.kernel_args`): the register program, the candidate, the sRGB
+    decode set-up and the outputs."""
+
+    loads: np.ndarray
+    code: np.ndarray
+    consts: np.ndarray
+    n_regs: int
+    leaves64: tuple[np.ndarray, ...]
+    leaves32: tuple[np.ndarray, ...]
+    #: candidate of batched (S, H, W) leaves
+    cand: int
+    chan_reg: np.ndarray
+    chan_mode: np.ndarray
+    #: (:func:`decode_table`, :func:`fast_decode_table`)
+    luts: tuple[np.ndarray, np.ndarray]
+    #: DECODE_MARGIN, or < 0 for the preview mode
+    margin: float
+    planes: np.ndarray
+    #: one (H, W, 3) float32 output per colour channel (basecolor, emissive)
+    colours: tuple[np.ndarray, ...]
+    #: output row of band row 0
+    row0: int
+    flags: np.ndarray
+    #: the outputs were zero-filled by the caller
+    zeroed: bool
 
 
 @_jit()
-def composite_rows(
-    loads,
-    code,
-    consts,
-    n_regs,
-    leaves64,
-    leaves32,
-    cand,
-    chan_reg,
-    chan_mode,
-    luts,
-    margin,
-    planes,
-    basecolor,
-    emissive,
-    row0,
-    flags,
-    zeroed,
-    first,
-    last,
-):  # type: ignore[no-untyped-def]
+def composite_rows(args, first, last):  # type: ignore[no-untyped-def]
     """Evaluate and composite rows ``first``..``last - 1`` of one band (leaf rows and ``flags``
-    rows are band-local; output row = ``row0`` + band row).
+    rows are band-local; output row = ``args.row0`` + band row); ``args`` is a
+    :class:`CompositeArgs`.
 
     Outputs (fully overwritten on those rows, except that with ``zeroed`` -- the caller
-    zero-filled them -- channels no layer writes are left alone): ``planes`` (10, H, W) float32
-    = alpha, the 7 scalars, ior, height; ``basecolor`` and ``emissive`` (H, W, 3); ``flags``
-    (band rows, W) uint8 is set to 1 at uncertain texels (never cleared). Serial and
+    zero-filled them -- channels no layer writes are left alone): ``planes`` (N_MAP_PLANES, H, W)
+    float32 = alpha, the 7 scalars, ior, height; ``colours`` = basecolor and emissive (H, W, 3);
+    ``flags`` (band rows, W) uint8 is set to 1 at uncertain texels (never cleared). Serial and
     ``nogil``: callers run row ranges on threads (numba's parallel loops cannot take tuples
     of arrays).
 
-    ``luts`` = (:func:`decode_table`, :func:`fast_decode_table`). Preview mode (``margin`` < 0):
-    the sRGB decode uses the linear table and nothing is flagged; with (16, H, W) ``planes`` the colours are written as
-    planes 10..12 (basecolor) and 13..15 (emissive) instead of interleaved.
+    Preview mode (``margin`` < 0): the sRGB decode uses the linear table and nothing is flagged;
+    with (N_PLANES, H, W) ``planes`` the colours are written as planes 10..12 (basecolor) and
+    13..15 (emissive) instead of interleaved (``colours`` is then not written).
     """
+    # Unpacked once: reading a tuple field in the row loop would count references per row.
+    loads, code, consts, n_regs = args.loads, args.code, args.consts, args.n_regs
+    leaves64, leaves32, cand = args.leaves64, args.leaves32, args.cand
+    chan_reg, chan_mode, luts, margin = args.chan_reg, args.chan_mode, args.luts, args.margin
+    planes, colours, row0, flags, zeroed = (
+        args.planes,
+        args.colours,
+        args.row0,
+        args.flags,
+        args.zeroed,
+    )
     width = planes.shape[2]
     n_layers = chan_reg.shape[0]
     regs = np.empty((n_regs, width))
@@ -412,8 +482,8 @@ def composite_rows(
     weights = np.empty((n_layers, width), np.float32)
     running = np.empty(width, np.float32)
     weight_nan = np.zeros(n_layers, np.bool_)
-    acc = np.empty((16, width), np.float32)
-    touched = np.zeros(16, np.bool_)
+    acc = np.empty((N_PLANES, width), np.float32)
+    touched = np.zeros(N_PLANES, np.bool_)
     lin = np.empty((2, width))
     idx = np.empty(width, np.int64)
     work = np.empty((4, width))
@@ -422,7 +492,8 @@ def composite_rows(
         run_code(code, consts, regs)
         _coverage(regs, chan_reg, alphas, weights, running, weight_nan)
         acc[:] = np.float32(0.0)
-        acc[9, :] = -np.inf
+        for q in range(N_MAX):
+            acc[MAX_PLANES[q], :] = -np.inf
         touched[:] = False
         _accumulate(
             regs,
@@ -440,4 +511,24 @@ def composite_rows(
             idx,
             work,
         )
-        _finish(acc, touched, running, planes, basecolor, emissive, row0 + i, zeroed)
+        _finish(acc, touched, running, planes, colours, row0 + i, zeroed)
+
+
+@_jit()
+def frozen_layout():  # type: ignore[no-untyped-def]
+    """The layout constants as the compiled kernels see them (a stale on-disk cache would
+    show the old ones): (N_CHANNELS, N_PLANES, N_MAP_PLANES, CH_ALPHA, CH_STRENGTH,
+    SCALAR_SLOTS, SCALAR_PLANES, COLOUR_SLOTS, COLOUR_PLANES, MAX_SLOTS, MAX_PLANES)."""
+    return (
+        N_CHANNELS,
+        N_PLANES,
+        N_MAP_PLANES,
+        CH_ALPHA,
+        CH_STRENGTH,
+        SCALAR_SLOTS,
+        SCALAR_PLANES,
+        COLOUR_SLOTS,
+        COLOUR_PLANES,
+        MAX_SLOTS,
+        MAX_PLANES,
+    )

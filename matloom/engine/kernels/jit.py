@@ -18,17 +18,38 @@ loop by default. MatLoom alternates short parallel loops with its own compositin
 threads, and on a 2-core machine the spinning workers take the CPU from them: with
 ``OMP_WAIT_POLICY=PASSIVE`` a 256x256 evaluation needs ~30 % less CPU and sweeps run faster
 (``benchmarks/``). :func:`configure_threads` sets that default unless the variable is already set
-(it must be set before OpenMP starts, i.e. before the first parallel kernel runs).
+(it must be set before OpenMP starts, i.e. before the first parallel kernel runs). The kernels of
+the evaluation path are serial ``nogil`` functions run on row ranges from threads
+(``threads.parallel_rows``): a ``prange`` kernel costs numba a parfor pipeline and a second,
+unsigned-index specialisation of everything it calls, which made the first render compile for
+much longer (docs/performance.md, "Cold start"); only the seed-batch kernels of sweeps still use
+``prange``.
+
+Compile progress: importing this module installs :mod:`compile_report`'s listener, which tells
+a registered reporter (the CLI's) when a kernel compiles; with none registered it is silent.
+
+Stale caches: numba keys a cached kernel on the source of its own file only, so a kernel whose
+callee (or a constant it freezes) lives in an edited file would be loaded stale. Importing this
+module puts :class:`AbiLocator` first in numba's cache locators: for MatLoom's files it is
+numba's own locator (same directory, same file names) with the file's ABI hash
+(:func:`matloom.engine.kernels.abi.file_hash`, the source of its whole import closure) added
+to the freshness stamp, so such a kernel is recompiled and its cache entry replaced. Where the
+user lists the locators (``NUMBA_CACHE_LOCATOR_CLASSES``) numba uses theirs.
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numba
+from numba.core import caching
 from numba.core import config as numba_config
+
+from matloom.engine.kernels import abi
+from matloom.engine.kernels.compile_report import install_listener
 
 #: Environment variable that turns the 512-bit vector preference off ("0").
 WIDE_VECTORS_ENV = "MATLOOM_NUMBA_WIDE_VECTORS"
@@ -73,6 +94,58 @@ def configure_threads() -> None:
 
 
 configure_threads()
+install_listener()  # compile progress for front ends that ask for it (silent otherwise)
+
+#: Source files under this directory get :class:`AbiLocator`'s stamps.
+_OURS = abi.PACKAGE_ROOT / "matloom"
+
+
+def _cache_impl() -> Any:
+    """numba's cache implementation base class (named ``_CacheImpl`` before numba 0.61)."""
+    return getattr(caching, "CacheImpl", None) or caching._CacheImpl
+
+
+class AbiLocator(caching._CacheLocator):  # type: ignore[misc]
+    """numba's locator for a MatLoom kernel, with the kernel file's ABI hash in its stamp."""
+
+    def __init__(self, base: Any, abi_hash: str) -> None:
+        self._base = base
+        self._abi_hash = abi_hash
+
+    def ensure_cache_path(self) -> None:
+        self._base.ensure_cache_path()
+
+    def get_cache_path(self) -> str:
+        return self._base.get_cache_path()
+
+    def get_source_stamp(self) -> Any:
+        return (self._base.get_source_stamp(), "matloom-abi", self._abi_hash)
+
+    def get_disambiguator(self) -> str:
+        return self._base.get_disambiguator()
+
+    @classmethod
+    def from_function(cls, py_func: Any, py_file: str) -> AbiLocator | None:
+        """The first of numba's other locators that takes the function, wrapped; None for
+        files outside MatLoom (or when no other locator takes it: no caching then)."""
+        path = Path(py_file).resolve()
+        if not path.is_file() or not path.is_relative_to(_OURS):
+            return None
+        for other in list(_cache_impl()._locator_classes):
+            base = None if other is cls else other.from_function(py_func, py_file)
+            if base is not None:
+                return cls(base, abi.file_hash(path))
+        return None
+
+
+def install_abi_locator() -> None:
+    """Put :class:`AbiLocator` first in numba's cache locators (idempotent)."""
+    classes = _cache_impl()._locator_classes
+    if AbiLocator not in classes:
+        classes.insert(0, AbiLocator)
+
+
+install_abi_locator()
 
 
 def jit(

@@ -1,5 +1,8 @@
 """Element-wise math nodes with the reference's special rules (spec §2.2).
 
+These are the numpy implementations of the element-wise ops (:mod:`matloom.engine.ops`): the
+evaluators call them only through ``OPS[name].numpy``.
+
 Every function is plain numpy on its inputs, so the result dtype follows numpy promotion of
 the inputs exactly as in the reference (float32 coordinate grids stay float32 until they meet a
 float64 grid such as a Constant). No numpy RuntimeWarning leaks out: domain errors simply give
@@ -92,11 +95,6 @@ def mul(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     """``a * b`` (0 * inf gives NaN quietly)."""
     with _quiet():
         return np.multiply(np.asarray(a), np.asarray(b))
-
-
-def neg(v: ArrayLike) -> np.ndarray:
-    """Unary minus."""
-    return np.negative(np.asarray(v))
 
 
 def minimum(a: ArrayLike, b: ArrayLike) -> np.ndarray:

@@ -1,16 +1,17 @@
-"""Wrapper of the optional compiled fBm kernel ``_cnoise`` (bit-identical to ``noise_numpy``).
+"""The fBm loops of the optional compiled kernel ``_cnoise`` (bit-identical to ``noise_numpy``).
 
 The extension is built by setup.py when a C compiler is present (``optional=True``: installs
 without one still succeed).  It exists for cold-start speed: importing it costs microseconds,
 where numba costs ~0.4 s, so a one-shot ``matloom render`` on the numpy backend gets a fast
-fBm.  ``noise_numpy.fbm`` calls :func:`fbm` here when :func:`available` and the environment
-variable ``MATLOOM_PURE_NUMPY`` is not ``"1"``.
+fBm.  The numpy backend runs :data:`FBM_LOOPS` when :func:`available` and the environment
+variable ``MATLOOM_PURE_NUMPY`` is not ``"1"`` (the choice is made in
+:mod:`matloom.engine.backends`).
 
-Everything that rounds in the coordinate dtype stays in Python/numpy exactly as in
-``noise_numpy.fbm``: separable axes are scaled per octave with ``scale_coords``; for full grids
-the per-octave frequencies are rounded to the grid dtype (``freq_in_dtype``) and the C code
-multiplies in that dtype before widening, as numpy does.  Importing this module never imports
-numba.
+Everything that rounds in the coordinate dtype stays in Python/numpy, in the shared plan of
+:mod:`matloom.engine.kernels.noise`: separable axes are scaled per octave with ``scale_coords``;
+for full grids the per-octave frequencies are rounded to the grid dtype (``freq_in_dtype``) and
+the C code multiplies in that dtype before widening, as numpy does.  Importing this module never
+imports numba.
 """
 
 from __future__ import annotations
@@ -21,13 +22,8 @@ from types import ModuleType
 
 import numpy as np
 
-from matloom.engine.kernels.opensimplex import (
-    coord_layout,
-    freq_in_dtype,
-    octave_axes,
-    octave_schedule,
-    perm_from_seed,
-)
+from matloom.engine.kernels.noise import FbmLoops, FbmPlan
+from matloom.engine.kernels.opensimplex import perm_from_seed
 from matloom.engine.kernels.threads import run_split
 
 _cnoise: ModuleType | None
@@ -36,7 +32,7 @@ try:
 except ImportError:  # not built (no C compiler at install time): pure numpy is used instead
     _cnoise = None
 
-__all__ = ["fbm", "available"]
+__all__ = ["FBM_LOOPS", "available"]
 
 #: Texels per thread below which the kernel runs on the calling thread only.
 MIN_TEXELS_PER_THREAD = 32768
@@ -74,52 +70,45 @@ def available() -> bool:
     return _cnoise is not None and _numpy_cast_values() is not None
 
 
-def fbm(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
-) -> np.ndarray:
-    """fBm of OpenSimplex noise on the broadcast of x and y (float64); see ``noise_numpy.fbm``.
-
-    Raises RuntimeError when the extension is not available (check :func:`available`).
-    """
+def _cast_values() -> tuple[int, int, int]:
+    """:func:`_numpy_cast_values`; RuntimeError when the extension is not :func:`available`."""
     cast_values = _numpy_cast_values()
     if _cnoise is None or cast_values is None:
         raise RuntimeError(
             "matloom's C extension _cnoise is not available; reinstall matloom with a C "
-            "compiler present, or use noise_numpy.fbm_numpy"
+            "compiler present, or use the numpy loops (MATLOOM_PURE_NUMPY=1)"
         )
-    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
-    perm = perm_from_seed(seed)
-    amps = np.array(sched.amps, dtype=np.float64)
-    lay = coord_layout(x, y)
-    if lay.separable:
-        xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
-        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
+    return cast_values
 
-        def rows(start: int, stop: int) -> None:
-            part_ys = np.ascontiguousarray(ys[:, start:stop])
-            args = (amps, perm, cast_values, sched.norm, bool(to_01))
-            _cnoise.fbm_separable(out[start:stop], xs, part_ys, *args)  # type: ignore[union-attr]
 
-        run_split(_threads(out.size, out.shape[0]), rows, out.shape[0])
-        return out.reshape(lay.shape)
-    with np.errstate(over="ignore"):  # numpy's own scalar conversion overflows the same way
-        fxs = freq_in_dtype(sched.freqs_x, lay.x_grid.dtype)
-        fys = freq_in_dtype(sched.freqs_y, lay.y_grid.dtype)
-    flat = np.empty(lay.x_grid.size, dtype=np.float64)
-    xg, yg = lay.x_grid, lay.y_grid
+def _fbm_separable(
+    plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
+) -> None:
+    """The separable fBm into ``out`` (H, W): row slices on threads."""
+    args = (plan.amps, perm_from_seed(seed), _cast_values(), plan.norm, plan.to_01)
+    xs, ys = plan.xs, plan.ys
+
+    def rows(start: int, stop: int) -> None:
+        part_ys = np.ascontiguousarray(ys[:, start:stop])
+        _cnoise.fbm_separable(out[start:stop], xs, part_ys, *args)  # type: ignore[union-attr]
+
+    run_split(_threads(out.size, out.shape[0]), rows, out.shape[0])
+
+
+def _fbm_grid(
+    plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
+) -> None:
+    """The flat-grid fBm into ``out`` (N,): spans on threads."""
+    args = (plan.fxs, plan.fys, plan.amps, perm_from_seed(seed), _cast_values())
+    xg, yg = plan.layout.x_grid, plan.layout.y_grid
+    norm, to_01 = plan.norm, plan.to_01
 
     def span(start: int, stop: int) -> None:
-        args = (fxs, fys, amps, perm, cast_values, sched.norm, bool(to_01))
-        _cnoise.fbm_grid(flat[start:stop], xg[start:stop], yg[start:stop], *args)  # type: ignore[union-attr]
+        part = (out[start:stop], xg[start:stop], yg[start:stop])
+        _cnoise.fbm_grid(*part, *args, norm, to_01)  # type: ignore[union-attr]
 
-    run_split(_threads(flat.size, flat.size), span, flat.size)
-    return flat.reshape(lay.shape)
+    run_split(_threads(out.size, out.size), span, out.size)
+
+
+#: The C extension's fBm loops (raise RuntimeError when it is not :func:`available`).
+FBM_LOOPS = FbmLoops("c", separable=_fbm_separable, grid=_fbm_grid)

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 from numba import prange
 
+from matloom.engine.kernels.noise import FbmPlan
 from matloom.engine.kernels.noise_numba_core import (
     finish_fbm,
     frame,
@@ -29,16 +30,9 @@ from matloom.engine.kernels.noise_numba_core import (
     lattice_key,
     vertex_weight,
 )
-from matloom.engine.kernels.opensimplex import (
-    FBM_SCALE,
-    NORM_CONSTANT2,
-    coord_layout,
-    octave_axes,
-    octave_schedule,
-    perms_for_seeds,
-)
+from matloom.engine.kernels.opensimplex import FBM_SCALE, NORM_CONSTANT2, perms_for_seeds
 
-__all__ = ["fbm_seed_batch"]
+__all__ = ["seed_batch", "fixed_point_shift"]
 
 #: Pixels accumulated together before their (seed-major) output is written.
 _PIXEL_BLOCK = 16
@@ -179,7 +173,7 @@ def _fbm_batch_row(
                 out[s, i, j0 + jj] = finish_fbm(acc[jj, s] * unit, 1.0, to_01)
 
 
-@jit_kernel()
+@jit_kernel(parallel=True)
 def _fbm_batch_kernel(
     keys: np.ndarray,
     perm_cols: np.ndarray,
@@ -221,58 +215,24 @@ def fixed_point_shift(coefs: Sequence[float]) -> int | None:
     return k
 
 
-def _octave_coords(
-    x: np.ndarray, y: np.ndarray, freqs_x: Sequence[float], freqs_y: Sequence[float]
-) -> tuple[np.ndarray, np.ndarray, bool, int, int, tuple[int, ...]]:
-    """Per-octave float64 coordinates (scaled in the coordinate dtype, like the reference).
-
-    Returns (xs, ys, separable, H, W, output shape): xs (O, W) / ys (O, H) for separable axes,
-    else both (O, H * W) flat grids.
-    """
-    lay = coord_layout(x, y)
-    if lay.separable:
-        xs, ys = octave_axes(lay.x_axis, lay.y_axis, freqs_x, freqs_y)
-        return xs, ys, True, lay.y_axis.size, lay.x_axis.size, lay.shape
-    xs, ys = octave_axes(lay.x_grid, lay.y_grid, freqs_x, freqs_y)
-    size = lay.x_grid.size
-    width = lay.shape[-1] if len(lay.shape) >= 2 and lay.shape[-1] > 0 else max(size, 1)
-    return xs, ys, False, size // width, width, lay.shape
-
-
-def fbm_seed_batch(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seeds: Sequence[int],
-    mask: np.ndarray | None = None,
-) -> np.ndarray:
-    """fBm for every seed in ``seeds`` at once: float32 (S, *broadcast(x, y).shape).
+def seed_batch(plan: FbmPlan, seeds: list[int], mask: np.ndarray | None) -> np.ndarray | None:
+    """fBm of ``plan`` for every seed at once: float32 (S, H, W); None (per-seed calls) when no
+    fixed-point scale is safe (extreme gains).
 
     With a boolean ``mask`` (the 2-D broadcast shape of x and y) only the texels where it is
     set are computed; the others hold the fBm of a zero sum (0.5 with ``to_01``, else 0), a
     placeholder inside the fBm's range (coverage culling, see matloom.engine.cull).
     """
-    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
-    xs, ys, separable, height, width, shape = _octave_coords(x, y, sched.freqs_x, sched.freqs_y)
-    seeds = [int(s) for s in seeds]
-    out = np.empty((len(seeds), height, width), dtype=np.float32)
-    scale = FBM_SCALE / (NORM_CONSTANT2 * sched.norm)
-    coefs = np.array([scale * a for a in sched.amps], dtype=np.float64)
+    scale = FBM_SCALE / (NORM_CONSTANT2 * plan.norm)
+    coefs = np.array([scale * a for a in plan.schedule.amps], dtype=np.float64)
     shift = fixed_point_shift(coefs.tolist())
     if shift is None:  # extreme gains: no safe fixed-point scale, evaluate seed by seed
-        from matloom.engine.kernels.noise_numba import fbm
-
-        kw = dict(octaves=octaves, lacunarity=lacunarity, gain=gain, freq_x=freq_x)
-        layers = [fbm(x, y, freq_y=freq_y, to_01=to_01, seed=s, **kw) for s in seeds]
-        return np.array(layers, dtype=np.float32).reshape((len(seeds), *shape))
+        return None
+    xs, ys, height, width = plan.octave_coords()
+    out = np.empty((len(seeds), height, width), dtype=np.float32)
     if out.size == 0:
-        return out.reshape((len(seeds), *shape))
+        return out
+    separable = plan.layout.separable
     everywhere = mask is None or np.ndim(mask) != 2
     mask2 = np.ones((1, 1), np.bool_) if everywhere else np.ascontiguousarray(mask, np.bool_)
     used = np.zeros(1 << 16, dtype=np.bool_)
@@ -284,6 +244,6 @@ def fbm_seed_batch(
     keys = np.flatnonzero(used)
     scaled = coefs * 2.0**shift
     unit = 2.0**-shift
-    args = (xs, ys, separable, scaled, unit, bool(to_01), mask2, out)
+    args = (xs, ys, separable, scaled, unit, plan.to_01, mask2, out)
     _fbm_batch_kernel(keys, perm_cols, grad_half, grads, *args)
-    return out.reshape((len(seeds), *shape))
+    return out

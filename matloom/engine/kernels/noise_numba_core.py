@@ -34,13 +34,14 @@ _NORM = NORM_CONSTANT2
 _SAFE_FLOOR = 4.0e18
 
 
-def jit_kernel(parallel: bool = True, inline: bool = False) -> Callable[[Callable[..., Any]], Any]:
+def jit_kernel(parallel: bool = False, inline: bool = False) -> Callable[[Callable[..., Any]], Any]:
     """:func:`matloom.engine.kernels.jit.jit` with ``fastmath=False`` (bit-exact arithmetic).
 
     ``error_model="numpy"``: float division by zero gives inf/NaN like numpy instead of raising.
+    ``nogil``: callers may run serial kernels on row ranges from several threads.
     ``inline=True`` inlines the function into its callers at numba IR level (small helpers).
     """
-    return jit(parallel=parallel, inline=inline, fastmath=False, error_model="numpy")
+    return jit(parallel=parallel, inline=inline, nogil=True, fastmath=False, error_model="numpy")
 
 
 @jit_kernel(parallel=False, inline=True)

@@ -1,4 +1,5 @@
-"""numba Worley (cellular) noise, single-seed and seed-batched; numbers as ``noise_numpy``.
+"""The numba loops of Worley (cellular) noise, single-seed and seed-batched (:data:`WORLEY_LOOPS`,
+run by :mod:`matloom.engine.kernels.noise`); numbers as ``noise_numpy``'s.
 
 The reference hashes every one of the 25 cells around each pixel.  Here the feature points of
 all cells the image can touch are tabulated once per call (and once per seed in a batch) when
@@ -14,23 +15,21 @@ rooted once (sqrt is correctly rounded and monotone, so F1/F2 are bit-identical)
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 from numba import prange
 
+from matloom.engine.kernels.noise import WorleyLoops, WorleyPlan
 from matloom.engine.kernels.noise_numba_core import jit_kernel
 from matloom.engine.kernels.opensimplex import (
     WORLEY_HASH_CX,
     WORLEY_HASH_CY,
     WORLEY_MIX1,
     WORLEY_MIX2,
-    coord_layout,
-    worley_codes,
     worley_seed_term,
 )
+from matloom.engine.kernels.threads import parallel_rows
 
-__all__ = ["worley", "worley_seed_batch", "worley_cell_box"]
+__all__ = ["WORLEY_LOOPS", "worley_cell_box"]
 
 #: Largest feature-point table (cells) built per call; beyond it cells are hashed per pixel.
 _MAX_TABLE_CELLS = 1 << 22
@@ -242,10 +241,18 @@ def _layout_row(
 
 @jit_kernel()
 def _worley_kernel(
-    coords: tuple, params: tuple, seed_term: int, tx: np.ndarray, ty: np.ndarray, out: np.ndarray
+    coords: tuple,
+    params: tuple,
+    seed_term: int,
+    tx: np.ndarray,
+    ty: np.ndarray,
+    out: np.ndarray,
+    first: int,
+    last: int,
 ) -> None:
-    """Parallel over the rows of the (H, W) ``out``."""
-    for i in prange(out.shape[0]):
+    """Rows ``first``..``last - 1`` of the (H, W) ``out``; serial and ``nogil``:
+    :func:`_dense` splits the rows over threads."""
+    for i in range(first, last):
         _layout_row(i, coords, params, seed_term, tx, ty, out[i])
 
 
@@ -262,7 +269,7 @@ def _batch_seed(
         _layout_row(i, coords, params, seed_terms[s], tx, ty, out[s, i])
 
 
-@jit_kernel()
+@jit_kernel(parallel=True)
 def _batch_kernel(
     coords: tuple, params: tuple, seed_terms: np.ndarray, box: tuple, out: np.ndarray
 ) -> None:
@@ -296,80 +303,51 @@ def _cell_index(w: np.ndarray, origin: int) -> np.ndarray:
     return np.where(finite, index, -1).astype(np.int64)
 
 
-def _prepare(
-    x: np.ndarray, y: np.ndarray, freq_x: float, freq_y: float
-) -> tuple[tuple, tuple[int, int], tuple[int, ...], tuple[int, int, int, int]]:
-    """Scaled coordinates and cell indices for the kernels.
-
-    u = x * freq_x, v = y * freq_y in float64 (the reference's Worley scaling).  Returns
-    (coords, (H, W), output shape, cell box) with coords = (u, v, ix, iy, separable).
-    """
-    lay = coord_layout(x, y)
-    if lay.separable:
-        u = lay.x_axis.astype(np.float64) * freq_x
-        v = lay.y_axis.astype(np.float64) * freq_y
-        shape2d = (v.size, u.size)
-    else:
-        u = lay.x_grid.astype(np.float64) * freq_x
-        v = lay.y_grid.astype(np.float64) * freq_y
-        width = lay.shape[-1] if len(lay.shape) >= 2 and lay.shape[-1] > 0 else max(u.size, 1)
-        shape2d = (u.size // width, width)
-    box = worley_cell_box(u, v, shape2d[0] * shape2d[1])
-    coords = (u, v, _cell_index(u, box[0]), _cell_index(v, box[1]), lay.separable)
-    return coords, shape2d, lay.shape, box
+def _prepare(plan: WorleyPlan) -> tuple[tuple, tuple[int, int, int, int]]:
+    """The kernels' coordinates and cell box: (coords, box) with coords = (u, v, ix, iy,
+    separable): the plan's float64 u/v (axes or flat grids) and each one's table index."""
+    u, v = plan.scaled()
+    height, width = plan.shape2d
+    box = worley_cell_box(u, v, height * width)
+    coords = (u, v, _cell_index(u, box[0]), _cell_index(v, box[1]), plan.layout.separable)
+    return coords, box
 
 
-def worley(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    distance: str,
-    combination: str,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
-) -> np.ndarray:
-    """Worley noise on the broadcast of x and y (float64); see ``noise_numpy.worley``."""
-    metric, combo, norm = worley_codes(distance, combination)
+def _dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
+    """Worley noise into ``out`` (H, W): feature table (when small enough), then row ranges
+    on threads."""
     seed_term = worley_seed_term(seed)
-    coords, shape2d, shape, (cx0, cy0, nx, ny) = _prepare(x, y, freq_x, freq_y)
+    coords, (cx0, cy0, nx, ny) = _prepare(plan)
     tx = np.empty((max(ny, 1), max(nx, 1)), dtype=np.float64)
     ty = np.empty_like(tx)
     if nx > 0:
         fill_table(np.int64(cx0), np.int64(cy0), seed_term, tx, ty)
-    out = np.empty(shape2d, dtype=np.float64)
-    if out.size:
-        params = (metric, combo, float(norm), bool(to_01), nx > 0)
-        _worley_kernel(coords, params, seed_term, tx, ty, out)
-    return out.reshape(shape)
+    params = (plan.metric, plan.combo, plan.norm, plan.to_01, nx > 0)
+    parallel_rows(
+        out.shape[0],
+        out.shape[1],
+        lambda a, b: _worley_kernel(coords, params, seed_term, tx, ty, out, a, b),
+    )
 
 
-def worley_seed_batch(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    distance: str,
-    combination: str,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seeds: Sequence[int],
-) -> np.ndarray:
-    """Worley for every seed in ``seeds``: float32 (S, *broadcast(x, y).shape).
+def _seed_batch(plan: WorleyPlan, seeds: list[int]) -> np.ndarray | None:
+    """Every seed at once, float32 (S, H, W); None (per-seed calls) when the feature table
+    would be too large, or the image is empty.
 
     Coordinates and per-pixel cells are derived once; per seed only the feature-point table is
     rebuilt.  Parallel over seeds.
     """
-    metric, combo, norm = worley_codes(distance, combination)
-    coords, shape2d, shape, (cx0, cy0, nx, ny) = _prepare(x, y, freq_x, freq_y)
-    if nx == 0 or shape2d[0] * shape2d[1] == 0:  # table too large, or empty: per-seed calls
-        kw = dict(distance=distance, combination=combination, freq_x=freq_x, freq_y=freq_y)
-        layers = [worley(x, y, to_01=to_01, seed=int(s), **kw) for s in seeds]
-        return np.array(layers, dtype=np.float32).reshape((len(seeds), *shape))
+    height, width = plan.shape2d
+    coords, (cx0, cy0, nx, ny) = _prepare(plan)
+    if nx == 0 or height * width == 0:
+        return None
     seed_terms = np.array([worley_seed_term(s) for s in seeds], dtype=np.int64)
-    out = np.empty((len(seeds), *shape2d), dtype=np.float32)
-    params = (metric, combo, float(norm), bool(to_01), True)
+    out = np.empty((len(seeds), height, width), dtype=np.float32)
+    params = (plan.metric, plan.combo, plan.norm, plan.to_01, True)
     box = (np.int64(cx0), np.int64(cy0), nx, ny)
     _batch_kernel(coords, params, seed_terms, box, out)
-    return out.reshape((len(seeds), *shape))
+    return out
+
+
+#: The numba Worley loops (with a seed-batch kernel).
+WORLEY_LOOPS = WorleyLoops("numba", dense=_dense, seed_batch=_seed_batch)

@@ -1,9 +1,11 @@
-"""Pure-numpy fBm (OpenSimplex 2014) and Worley noise, bit-compatible with the reference engine.
+"""The numpy loops of fBm (OpenSimplex 2014) and Worley noise, bit-compatible with the reference.
 
-This is the portable backend (no numba).  ``noise_numba`` exports the same functions and must
-agree with this module to <= 1e-12.  The arithmetic of ``_noise2`` mirrors opensimplex 0.4.5.1's
-``internals._noise2`` operation by operation (same operands, same order), vectorised with
-``np.where`` in place of the branches.  Work is done in flat chunks to keep temporaries in cache.
+This is the portable backend (no numba): :data:`FBM_LOOPS` and :data:`WORLEY_LOOPS` are run by
+the one dispatch of :mod:`matloom.engine.kernels.noise` on its shared plans. The numba and C
+loops must agree with these to <= 1e-12 (the C fBm bit for bit).  The arithmetic of
+:func:`noise2` mirrors opensimplex 0.4.5.1's ``internals._noise2`` operation by operation (same
+operands, same order), vectorised with ``np.where`` in place of the branches.  Work is done in
+flat chunks to keep temporaries in cache.
 
 Reference facts the fixtures pinned down beyond the spec text: Worley scales coordinates in
 float64 (fBm scales each octave in the coordinate dtype), and its hash runs on wrapping int64,
@@ -12,12 +14,9 @@ so the ``>> 33`` shifts are arithmetic (sign-propagating), not logical.
 
 from __future__ import annotations
 
-import os
-from collections.abc import Sequence
-
 import numpy as np
 
-from matloom.engine.kernels import noise_c
+from matloom.engine.kernels.noise import FbmLoops, FbmPlan, WorleyLoops, WorleyPlan
 from matloom.engine.kernels.opensimplex import (
     FBM_SCALE,
     GRADIENTS2,
@@ -29,15 +28,12 @@ from matloom.engine.kernels.opensimplex import (
     WORLEY_MIX1,
     WORLEY_MIX2,
     WORLEY_SEARCH,
-    coord_layout,
-    octave_schedule,
     perm_from_seed,
     scale_coords,
-    worley_codes,
     worley_seed_term,
 )
 
-__all__ = ["fbm", "fbm_numpy", "worley", "fbm_seed_batch", "worley_seed_batch", "noise2"]
+__all__ = ["FBM_LOOPS", "WORLEY_LOOPS", "noise2", "worley_hash"]
 
 _CHUNK = 1 << 15  # elements per vectorised block
 _TWO_SQUISH = 2.0 * SQUISH_CONSTANT2
@@ -141,92 +137,39 @@ def _row_blocks(height: int, width: int) -> list[slice]:
     return [slice(r, min(r + rows, height)) for r in range(0, height, rows)]
 
 
-def use_c_kernel() -> bool:
-    """True when the compiled ``_cnoise`` fBm is built and ``MATLOOM_PURE_NUMPY`` is not "1"."""
-    return os.environ.get("MATLOOM_PURE_NUMPY") != "1" and noise_c.available()
-
-
-def fbm(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
-) -> np.ndarray:
-    """fBm of OpenSimplex noise on the broadcast of x and y (float64 result).
-
-    Per octave k the coordinates are ``x * f_k`` in the coordinate dtype (float32 axes round
-    each octave's coordinates to float32, like the reference); the noise runs in float64.
-    Runs the compiled kernel (``noise_c``, bit-identical) when :func:`use_c_kernel`, else
-    :func:`fbm_numpy`.
-    """
-    kw = dict(octaves=octaves, lacunarity=lacunarity, gain=gain, freq_x=freq_x, freq_y=freq_y)
-    if use_c_kernel():
-        return noise_c.fbm(x, y, to_01=to_01, seed=seed, **kw)
-    return fbm_numpy(x, y, to_01=to_01, seed=seed, **kw)
-
-
-def fbm_numpy(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
-) -> np.ndarray:
-    """The pure-numpy fBm (what ``fbm`` runs without the C kernel); see :func:`fbm`."""
-    sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
+def _fbm_separable(
+    plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
+) -> None:
+    """The separable fBm into ``out`` (H, W), in row blocks of about ``_CHUNK`` texels."""
     perm = perm_from_seed(seed)
-    lay = coord_layout(x, y)
-    if lay.separable:
-        xs = [scale_coords(lay.x_axis, f) for f in sched.freqs_x]
-        ys = [scale_coords(lay.y_axis, f) for f in sched.freqs_y]
-        out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
-        for rows in _row_blocks(*out.shape):
-            total = np.zeros((rows.stop - rows.start, out.shape[1]))
-            for k, amp in enumerate(sched.amps):
-                n = noise2(xs[k][None, :], ys[k][rows, None], perm)
-                total = total + n * FBM_SCALE * amp
-            out[rows] = _finish_fbm(total, sched.norm, to_01)
-        return out.reshape(lay.shape)
-    flat = np.empty(lay.x_grid.size, dtype=np.float64)
-    for start in range(0, flat.size, _CHUNK):
+    xs, ys, amps = plan.xs, plan.ys, plan.schedule.amps
+    for rows in _row_blocks(*out.shape):
+        total = np.zeros((rows.stop - rows.start, out.shape[1]))
+        for k, amp in enumerate(amps):
+            n = noise2(xs[k][None, :], ys[k][rows, None], perm)
+            total = total + n * FBM_SCALE * amp
+        out[rows] = _finish_fbm(total, plan.norm, plan.to_01)
+
+
+def _fbm_grid(
+    plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
+) -> None:
+    """The flat-grid fBm into ``out`` (N,), in chunks of ``_CHUNK`` texels; each octave's
+    coordinates are scaled in the grid dtype (``scale_coords``)."""
+    perm = perm_from_seed(seed)
+    sched, lay = plan.schedule, plan.layout
+    for start in range(0, out.size, _CHUNK):
         part = slice(start, start + _CHUNK)
-        total = np.zeros(flat[part].size)
+        total = np.zeros(out[part].size)
         for k, amp in enumerate(sched.amps):
             xk = scale_coords(lay.x_grid[part], sched.freqs_x[k])
             yk = scale_coords(lay.y_grid[part], sched.freqs_y[k])
             total = total + noise2(xk, yk, perm) * FBM_SCALE * amp
-        flat[part] = _finish_fbm(total, sched.norm, to_01)
-    return flat.reshape(lay.shape)
+        out[part] = _finish_fbm(total, plan.norm, plan.to_01)
 
 
-def fbm_seed_batch(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    octaves: int,
-    lacunarity: float,
-    gain: float,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seeds: Sequence[int],
-) -> np.ndarray:
-    """fBm for many seeds, float32 (S, H, W) (numpy reference version: loops over seeds)."""
-    kw = dict(octaves=octaves, lacunarity=lacunarity, gain=gain, freq_x=freq_x, freq_y=freq_y)
-    layers = [fbm(x, y, to_01=to_01, seed=int(s), **kw).astype(np.float32) for s in seeds]
-    shape = np.broadcast_shapes(np.shape(x), np.shape(y))
-    return np.stack(layers) if layers else np.empty((0, *shape), dtype=np.float32)
+#: The pure-numpy fBm loops (what the numpy backend runs without the C extension).
+FBM_LOOPS = FbmLoops("numpy", separable=_fbm_separable, grid=_fbm_grid)
 
 
 # --- Worley -----------------------------------------------------------------------------------
@@ -289,58 +232,24 @@ def _worley_points(
     return f1, f2
 
 
-def worley(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    distance: str,
-    combination: str,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seed: int,
-) -> np.ndarray:
-    """Worley (cellular) noise on the broadcast of x and y (float64 result).
-
-    u = x * freq_x and v = y * freq_y are computed in float64 (unlike fBm, float32 axes are
-    widened first -- the fixtures confirm this).  One feature point per cell at
-    (c + h(c, seed, 0), c' + h(c, seed, 1)); F1/F2 over the 5 x 5 block around (floor u, floor v).
-    """
-    metric, combo, norm = worley_codes(distance, combination)
+def _worley_dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
+    """Worley noise into ``out`` (H, W): separable axes in row blocks, flat grids in chunks
+    of ``_CHUNK`` texels."""
     seed_term = worley_seed_term(seed)
-    lay = coord_layout(x, y)
-    if lay.separable:
-        u_axis = lay.x_axis.astype(np.float64) * freq_x
-        v_axis = lay.y_axis.astype(np.float64) * freq_y
-        out = np.empty((v_axis.size, u_axis.size), dtype=np.float64)
+    metric, combo, norm, to_01 = plan.metric, plan.combo, plan.norm, plan.to_01
+    if plan.layout.separable:
+        u_axis, v_axis = plan.scaled()
         for rows in _row_blocks(*out.shape):
             u, v = np.broadcast_arrays(u_axis[None, :], v_axis[rows, None])
             f1, f2 = _worley_points(u.ravel(), v.ravel(), seed_term, metric)
             out[rows] = _combine(f1, f2, combo, norm, to_01).reshape(u.shape)
-        return out.reshape(lay.shape)
-    flat = np.empty(lay.x_grid.size, dtype=np.float64)
+        return
+    flat = out.reshape(-1)
     for start in range(0, flat.size, _CHUNK):
-        part = slice(start, start + _CHUNK)
-        u = lay.x_grid[part].astype(np.float64) * freq_x
-        v = lay.y_grid[part].astype(np.float64) * freq_y
+        u, v = plan.scaled(start, start + _CHUNK)
         f1, f2 = _worley_points(u, v, seed_term, metric)
-        flat[part] = _combine(f1, f2, combo, norm, to_01)
-    return flat.reshape(lay.shape)
+        flat[start : start + _CHUNK] = _combine(f1, f2, combo, norm, to_01)
 
 
-def worley_seed_batch(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    distance: str,
-    combination: str,
-    freq_x: float,
-    freq_y: float,
-    to_01: bool,
-    seeds: Sequence[int],
-) -> np.ndarray:
-    """Worley for many seeds, float32 (S, H, W) (numpy reference version: loops over seeds)."""
-    kw = dict(distance=distance, combination=combination, freq_x=freq_x, freq_y=freq_y)
-    layers = [worley(x, y, to_01=to_01, seed=int(s), **kw).astype(np.float32) for s in seeds]
-    shape = np.broadcast_shapes(np.shape(x), np.shape(y))
-    return np.stack(layers) if layers else np.empty((0, *shape), dtype=np.float32)
+#: The numpy Worley loops.
+WORLEY_LOOPS = WorleyLoops("numpy", dense=_worley_dense)

@@ -11,10 +11,10 @@ not take (other ranks, mixed or non-float dtypes) go to the numpy version.
 from __future__ import annotations
 
 import numpy as np
-from numba import prange
 
 from matloom.engine.kernels import patterns
 from matloom.engine.kernels.noise_numba_core import jit_kernel
+from matloom.engine.kernels.threads import parallel_rows
 
 
 @jit_kernel(parallel=False, inline=True)
@@ -34,30 +34,42 @@ def _floor_mod(a: float, b: float) -> float:
 
 
 @jit_kernel(parallel=False, inline=True)
-def _coverage(s: float, consts: np.ndarray, hard: bool) -> float:
-    """``patterns.smooth_coverage`` of one inset; consts[4] = feather / 2, consts[5] = feather,
-    consts[6..9] = 0, 1, 2, 3 in the coordinate dtype."""
+def _coverage(s: float, ramp_consts: tuple, hard: bool) -> float:
+    """``patterns.smooth_coverage`` of one inset; ``ramp_consts`` = (feather / 2, feather, 0, 1,
+    2, 3) in the coordinate dtype (consts[4:10], read once per call of a kernel: reading them
+    from the array per texel kept the loops from vectorising)."""
+    half_feather, feather, zero, one, two, three = ramp_consts
     if hard:
-        return 1.0 if s >= consts[6] else 0.0
-    t = (s + consts[4]) / consts[5]
+        return 1.0 if s >= zero else 0.0
+    t = (s + half_feather) / feather
     if t == t:  # np.clip keeps NaN
-        t = consts[6] if t < consts[6] else (consts[7] if t > consts[7] else t)
-    ramp = consts[9] - consts[8] * t
+        t = zero if t < zero else (one if t > one else t)
+    ramp = three - two * t
     return np.float64(ramp * (t * t))
 
 
 @jit_kernel()
 def _bricks_kernel(
-    x: np.ndarray, y: np.ndarray, consts: np.ndarray, by_row: bool, hard: bool, out: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    consts: np.ndarray,
+    by_row: bool,
+    hard: bool,
+    out: np.ndarray,
+    first: int,
+    last: int,
 ) -> None:
-    """Coverage of each texel; x, y broadcast to ``out``'s shape. consts (coordinate dtype):
-    bw, bh, offset, mortar / 2, feather / 2, feather, 0, 1, 2, 3, bw - mortar / 2,
-    bh - mortar / 2."""
+    """Coverage of each texel of rows ``first``..``last - 1``; x, y broadcast to ``out``'s
+    shape. consts (coordinate dtype): bw, bh, offset, mortar / 2, feather / 2, feather, 0, 1,
+    2, 3, bw - mortar / 2, bh - mortar / 2. Serial and ``nogil``: :func:`bricks` splits the
+    rows over threads."""
     bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
     bw_in, bh_in = consts[10], consts[11]
-    for i in prange(out.shape[0]):
-        for j in range(out.shape[1]):
-            xv, yv = x[i, j], y[i, j]
+    ramp = (consts[4], consts[5], consts[6], consts[7], consts[8], consts[9])
+    for i in range(first, last):
+        x_row, y_row, out_row = x[i], y[i], out[i]  # zero-based rows: the loop vectorises
+        for j in range(out_row.size):
+            xv, yv = x_row[j], y_row[j]
             if by_row:
                 row = np.floor(yv / bh)
                 lx = _floor_mod(xv - row * offset * bw, bw)
@@ -70,18 +82,25 @@ def _bricks_kernel(
                 _nan_min(lx - half, bw_in - lx),
                 _nan_min(ly - half, bh_in - ly),
             )
-            out[i, j] = _coverage(inset, consts, hard)
+            out_row[j] = _coverage(inset, ramp, hard)
 
 
 @jit_kernel()
 def _bricks_rows_kernel(
-    x_axis: np.ndarray, y_axis: np.ndarray, consts: np.ndarray, hard: bool, out: np.ndarray
+    x_axis: np.ndarray,
+    y_axis: np.ndarray,
+    consts: np.ndarray,
+    hard: bool,
+    out: np.ndarray,
+    first: int,
+    last: int,
 ) -> None:
     """``_bricks_kernel`` for axis="row" on a separable grid (x row, y column, as 1-D axes):
     the row's course, its offset and its y distances are computed once per row."""
     bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
     bw_in, bh_in = consts[10], consts[11]
-    for i in prange(out.shape[0]):
+    ramp = (consts[4], consts[5], consts[6], consts[7], consts[8], consts[9])
+    for i in range(first, last):
         yv = y_axis[i]
         row = np.floor(yv / bh)
         shift = row * offset * bw
@@ -90,7 +109,7 @@ def _bricks_rows_kernel(
         out_row = out[i]
         for j in range(out.shape[1]):
             lx = _floor_mod(x_axis[j] - shift, bw)
-            out_row[j] = _coverage(_nan_min(_nan_min(lx - half, bw_in - lx), y_inset), consts, hard)
+            out_row[j] = _coverage(_nan_min(_nan_min(lx - half, bw_in - lx), y_inset), ramp, hard)
 
 
 def bricks(
@@ -130,8 +149,16 @@ def bricks(
     shape = np.broadcast_shapes(x.shape, y.shape)
     out = np.empty(shape, dtype=np.float64)
     if axis == "row" and x.shape == (1, shape[1]) and y.shape == (shape[0], 1):
-        _bricks_rows_kernel(x[0], y[:, 0], consts, feather == 0, out)
+        x_axis, y_axis, hard = x[0], y[:, 0], feather == 0
+        parallel_rows(
+            shape[0],
+            shape[1],
+            lambda a, b: _bricks_rows_kernel(x_axis, y_axis, consts, hard, out, a, b),
+        )
         return out
     xb, yb = np.broadcast_to(x, shape), np.broadcast_to(y, shape)
-    _bricks_kernel(xb, yb, consts, axis == "row", feather == 0, out)
+    by_row, hard = axis == "row", feather == 0
+    parallel_rows(
+        shape[0], shape[1], lambda a, b: _bricks_kernel(xb, yb, consts, by_row, hard, out, a, b)
+    )
     return out

@@ -1,7 +1,8 @@
 """numba kernel for sweep previews: normals + cavity AO + fixed-light shading in one pass.
 
-Input is the planar (16, H, W) output of the compositing kernel in preview mode (alpha, the 7
-scalars, ior, height, basecolor r g b, emissive r g b); output is the uint8 RGB preview. The
+Input is the planar (N_PLANES, H, W) output of the compositing kernel in preview mode (alpha,
+the 7 scalars, ior, height, basecolor r g b, emissive r g b; plane indices from
+:mod:`matloom.vocab.layout`); output is the uint8 RGB preview. The
 relief follows :mod:`matloom.engine.relief` (same float32 formulas) and the shading follows
 :func:`matloom.render.preview.shade`, but in float32 with vectorised approximations of log2 and
 exp2 for the powers (relative error about 1e-5), so a sweep preview may differ from
@@ -17,6 +18,16 @@ import numpy as np
 
 from matloom.engine.kernels.register_numba import _jit
 from matloom.engine.kernels.relief_numba import _box_row
+from matloom.vocab.layout import LAYOUT, RELIEF_SOURCE
+
+# Planes of the channels the shading reads (numba freezes them as constants at compile time).
+_ALPHA = LAYOUT.plane(LAYOUT.coverage.name)
+_METALLIC, _ROUGHNESS = LAYOUT.plane("metallic"), LAYOUT.plane("roughness")
+_SHEEN, _COAT = LAYOUT.plane("sheen"), LAYOUT.plane("coat")
+_TRANSMISSION, _SUBSURFACE = LAYOUT.plane("transmission"), LAYOUT.plane("subsurface")
+_ANISOTROPY, _IOR = LAYOUT.plane("anisotropy"), LAYOUT.plane("ior")
+_HEIGHT = LAYOUT.plane(RELIEF_SOURCE)
+_BASECOLOR, _EMISSIVE = LAYOUT.plane("basecolor"), LAYOUT.plane("emissive")  # r; g, b follow
 
 _LN2 = math.log(2.0)
 #: Taylor coefficients of 2**f = exp(f ln 2) on [0, 1) (relative error < 1e-6).
@@ -171,7 +182,7 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
         n_dot_l[j] = _clip01(nx * l0 + ny * l1 + nz * l2)
         n_dot_h[j] = _clip01(nx * h0 + ny * h1 + nz * h2)
         nz_row[j] = nz
-    roughness, anisotropy = p[2, i], p[7, i]
+    roughness, anisotropy = p[_ROUGHNESS, i], p[_ANISOTROPY, i]
     for j in range(sx.size):
         smooth = one - _clip01(roughness[j])
         tmp[j] = (smooth * smooth * np.float32(100.0) + np.float32(2.0)) / (
@@ -183,7 +194,7 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
     exp2_row(tmp, spec, bits)
     for j in range(sx.size):  # numpy's pow: 1 ** NaN = 1
         spec[j] = one if n_dot_h[j] == one else spec[j]
-    coat = p[4, i]
+    coat = p[_COAT, i]
     for j in range(sx.size):
         nh = n_dot_h[j]
         nh2 = nh * nh
@@ -195,7 +206,7 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
             * _clip01(coat[j])
             * (np.float32(0.5) + np.float32(0.5) * nh16 * nh16 * nh16 * nh2)
         )
-    metallic, ior = p[1, i], p[8, i]
+    metallic, ior = p[_METALLIC, i], p[_IOR, i]
     for j in range(sx.size):
         m = _clip01(metallic[j])
         metal[j] = m
@@ -203,7 +214,7 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
         eta = one if eta < one else (three if eta > three else eta)
         r0 = (one - eta) / (one + eta)
         f0[j] = r0 * r0 * (one - m)
-    sheen, subsurface = p[3, i], p[6, i]
+    sheen, subsurface = p[_SHEEN, i], p[_SUBSURFACE, i]
     for j in range(sx.size):
         shn = _clip01(sheen[j])
         ss = _clip01(subsurface[j])
@@ -211,14 +222,14 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
         gain[j] = np.float32(0.2) + (one - metal[j]) * wrap * ao[j] + shn * np.float32(0.1)
         tilt = one - nz_row[j]
         rim[j] = np.float32(0.5) * shn * (tilt * tilt) * (tilt * tilt) * tilt
-    transmission, alpha = p[5, i], p[0, i]
+    transmission, alpha = p[_TRANSMISSION, i], p[_ALPHA, i]
     for c in range(3):
-        encode_row(p[10 + c, i], albedo, coefs)
+        encode_row(p[_BASECOLOR + c, i], albedo, coefs)
         for j in range(sx.size):
             a = albedo[j]
             tmp[j] = a * gain[j] + rim[j] + (f0[j] + a * metal[j]) * spec[j] + coat_lobe[j]
         if has_emissive:
-            emissive = p[13 + c, i]
+            emissive = p[_EMISSIVE + c, i]
             for j in range(sx.size):
                 glow[j] = emissive[j] / (one + emissive[j])
             encode_row(glow, albedo, coefs)
@@ -233,18 +244,18 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
 
 @_jit()
 def relief_shade(planes, spacing, wx, div_x, wy, div_y, depth, light, half, coefs, mean, out):  # type: ignore[no-untyped-def]
-    """Shade the composited ``planes`` (16, H, W) into ``out`` (H, W, 3) uint8.
+    """Shade the composited ``planes`` (N_PLANES, H, W) into ``out`` (H, W, 3) uint8.
 
     ``spacing`` = float32 (dx, 2 dx, dy, 2 dy); ``wx``/``wy`` and ``div_x``/``div_y`` are the AO
     box taps and divisors, ``depth`` the AO depth scale; ``mean`` is (H, W) float32 scratch.
     ``light`` and ``half`` are float32 unit vectors, ``coefs`` = :func:`encode_coefficients`.
     """
-    h = planes[9]
+    h = planes[_HEIGHT]
     rows, cols = h.shape
     for i in range(rows):
         _box_row(h[i], wx, div_x, mean[i])
     has_emissive = False
-    for c in range(13, 16):
+    for c in range(_EMISSIVE, _EMISSIVE + 3):
         for i in range(rows):
             for j in range(cols):
                 has_emissive |= planes[c, i, j] != np.float32(0.0)

@@ -10,10 +10,14 @@ divisor is 0; min/max propagate NaN like ``np.minimum``/``np.maximum``); a float
 float64 result rounded once to float32, which equals the float32 operation for + - * / and
 sqrt. So the register values equal the numpy evaluator's values bit for bit.
 
-Note for developers: numba's on-disk cache of a kernel is keyed on the file that defines it,
-not on the files of the functions it calls. After editing this module, delete the cached
-``composite_numba``/``preview_numba`` entries in ``kernels/__pycache__`` (or touch those files),
-or their cached code keeps the old register machine.
+The opcodes and the meaning of their operands come from the table of
+:mod:`matloom.engine.kernels.register_ops` (``REGISTER_OPS``): :func:`run_code` decodes a row
+by the opcode's arity and parameter block, never by the opcode's number.
+
+numba's on-disk cache of a kernel is keyed on the file that defines it, not on the files of the
+functions it calls; :mod:`matloom.engine.kernels.jit` adds a hash of the kernel's import closure
+(:mod:`matloom.engine.kernels.abi`) to that key, so the compositing kernels that call this
+module are recompiled after it is edited.
 """
 
 from __future__ import annotations
@@ -23,18 +27,27 @@ from typing import Any
 import numpy as np
 
 from matloom.engine.kernels.jit import jit
+from matloom.engine.kernels.register_ops import ARITY, REGISTER_OPS
 
-#: Register-program opcodes (rows of ``code``: op, dst, a, b, round_to_f32, const_mask).
-OP_LOAD64, OP_LOAD32 = 0, 1
-OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_MIN, OP_MAX = 2, 3, 4, 5, 6, 7
-OP_ABS, OP_FLOOR, OP_CEIL, OP_SQRT = 8, 9, 10, 11
+#: Register-program opcodes (rows of ``code``: op, dst, a, b, round_to_f32, const_mask), from
+#: the table (numba freezes these module constants into the kernels).
+OP_LOAD64 = REGISTER_OPS["load64"].code
+OP_LOAD32 = REGISTER_OPS["load32"].code
+OP_ADD = REGISTER_OPS["add"].code
+OP_SUB = REGISTER_OPS["sub"].code
+OP_MUL = REGISTER_OPS["mul"].code
+OP_DIV = REGISTER_OPS["div"].code
+OP_MIN = REGISTER_OPS["min"].code
+OP_MAX = REGISTER_OPS["max"].code
+OP_ABS = REGISTER_OPS["abs"].code
+OP_FLOOR = REGISTER_OPS["floor"].code
+OP_CEIL = REGISTER_OPS["ceil"].code
+OP_SQRT = REGISTER_OPS["sqrt"].code
 #: Threshold (grid-path rules of ``kernels.threshold``); ``b`` = first of its 6 constants
 #: (below_at, below_to, above_at, above_to, transition_width, 1 * has_above + 2 * has_below).
-OP_THRESHOLD = 12
+OP_THRESHOLD = REGISTER_OPS["threshold"].code
 #: ``r[a] * c1 + c2`` (two roundings, as the separate * and + give); ``b`` = index of c1, c2.
-OP_AXPB = 13
-BINARY_OPS = {"+": OP_ADD, "-": OP_SUB, "*": OP_MUL, "/": OP_DIV, "min": OP_MIN, "max": OP_MAX}
-UNARY_OPS = {"abs": OP_ABS, "floor": OP_FLOOR, "ceil": OP_CEIL, "sqrt": OP_SQRT}
+OP_AXPB = REGISTER_OPS["axpb"].code
 
 _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
 
@@ -230,7 +243,7 @@ def run_code(code, consts, regs):  # type: ignore[no-untyped-def]
             _threshold(regs, dst, a, consts, b)
         elif op == OP_AXPB:
             _axpb(regs, dst, a, consts[b], consts[b + 1])
-        elif op >= OP_ABS:
+        elif ARITY[op] == 1:
             _unary(op, regs, dst, a)
         elif mask == 2:
             _binary_right_const(op, regs, dst, a, consts[b])

@@ -2,17 +2,20 @@
 
 Both kernels repeat the float32 operations of the numpy reference path in the same order (the
 same divisors rounded to float32, the AO taps summed in ascending offset order with the same
-weights), so their results are identical; they only avoid the temporaries and run the rows in
-parallel. AO windows wider than ``relief.EXACT_TAP_LIMIT`` taps stay on the numpy path.
+weights), so their results are identical; they only avoid the temporaries and run the rows on
+threads (serial ``nogil`` kernels over row ranges: a ``prange`` kernel takes far longer to
+compile). AO windows wider than ``relief.EXACT_TAP_LIMIT`` taps stay on the numpy path.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
-from numba import prange
 
 from matloom.engine import relief
 from matloom.engine.kernels.composite_numba import _jit
+from matloom.engine.kernels.threads import parallel_rows
 
 
 @_jit(inline=True)
@@ -24,18 +27,21 @@ def _clip01(v: np.float32) -> np.float32:
     return v
 
 
-@_jit(parallel=True)
-def normals_kernel(h, dx1, dx2, dy1, dy2, out):  # type: ignore[no-untyped-def]
-    """out[i, j] = normalise(-dH/dX, -dH/dY, 1) from central differences (one-sided at edges).
+@_jit()
+def normals_kernel(h, dx1, dx2, dy1, dy2, out, first, last):  # type: ignore[no-untyped-def]
+    """out[i, j] = normalise(-dH/dX, -dH/dY, 1) from central differences (one-sided at edges),
+    for rows ``first``..``last - 1`` (serial and ``nogil``: :func:`normals` splits the rows
+    over threads).
 
     ``dx1``/``dx2`` are float32(dx) and float32(2 dx) (likewise for y), as numpy rounds them.
-    Neighbours are read through shifted slices so that the loops vectorise.
+    Neighbours are read through shifted slices so that the loops vectorise. ``sx``/``sy`` are
+    reused across rows: every row writes the same entries, the others stay 0.
     """
     rows, cols = h.shape
     one = np.float32(1.0)
-    for i in prange(rows):
-        sx = np.zeros(cols, np.float32)
-        sy = np.zeros(cols, np.float32)
+    sx = np.zeros(cols, np.float32)
+    sy = np.zeros(cols, np.float32)
+    for i in range(first, last):
         row = h[i]
         if cols > 2:
             right, left, mid = row[2:], row[:-2], sx[1:-1]
@@ -81,14 +87,20 @@ def _box_row(src, weights, divisor, acc):  # type: ignore[no-untyped-def]
         acc[j] = acc[j] / divisor
 
 
-@_jit(parallel=True)
-def ao_kernel(h, wx, div_x, wy, div_y, depth, strength, mean, out):  # type: ignore[no-untyped-def]
-    """Separable box mean (rows, then columns) of h, then ao = clip(1 - s clip((m - h) / d))."""
-    rows, cols = h.shape
-    for i in prange(rows):
+@_jit()
+def _ao_rows(h, wx, div_x, mean, first, last):  # type: ignore[no-untyped-def]
+    """Pass 1 of the AO, rows ``first``..``last - 1``: horizontal box means of h into mean."""
+    for i in range(first, last):
         _box_row(h[i], wx, div_x, mean[i])
+
+
+@_jit()
+def _ao_columns(h, wy, div_y, depth, strength, mean, out, first, last):  # type: ignore[no-untyped-def]
+    """Pass 2, rows ``first``..``last - 1``: vertical box of ``mean`` (all rows of pass 1),
+    then ao = clip(1 - s clip((m - h) / d))."""
+    rows, cols = h.shape
     reach = (wy.size - 1) // 2
-    for i in prange(rows):
+    for i in range(first, last):
         acc = out[i]
         acc[:] = np.float32(0.0)
         for o in range(wy.size):
@@ -101,11 +113,17 @@ def ao_kernel(h, wx, div_x, wy, div_y, depth, strength, mean, out):  # type: ign
             acc[j] = _clip01(np.float32(1.0) - strength * cavity)
 
 
-#: Below this many texels the serial kernels run (a parallel launch costs more than it saves,
-#: and far more on a machine whose cores are busy with other processes).
+#: Below this many texels the kernels run on the calling thread only (starting threads costs
+#: more than it saves, and far more on a machine whose cores are busy with other processes).
 PARALLEL_MIN_TEXELS = 1 << 18
-_normals_serial = _jit()(normals_kernel.py_func)
-_ao_serial = _jit()(ao_kernel.py_func)
+
+
+def _split_rows(h: np.ndarray, work: Callable[[int, int], None]) -> None:
+    """``work(first, last)`` over the rows of h: on threads from PARALLEL_MIN_TEXELS up."""
+    if h.size >= PARALLEL_MIN_TEXELS:
+        parallel_rows(h.shape[0], h.shape[1], work)
+    else:
+        work(0, h.shape[0])
 
 
 def _tap_weights(radius: float) -> tuple[np.ndarray, np.float32] | None:
@@ -124,8 +142,8 @@ def normals(height: np.ndarray, dx: float, dy: float) -> np.ndarray:
     h = np.ascontiguousarray(height, dtype=np.float32)
     out = np.empty(h.shape + (3,), dtype=np.float32)
     with np.errstate(all="ignore"):
-        kernel = normals_kernel if h.size >= PARALLEL_MIN_TEXELS else _normals_serial
-        kernel(h, np.float32(dx), np.float32(2.0 * dx), np.float32(dy), np.float32(2.0 * dy), out)
+        steps = (np.float32(dx), np.float32(2.0 * dx), np.float32(dy), np.float32(2.0 * dy))
+        _split_rows(h, lambda a, b: normals_kernel(h, *steps, out, a, b))
     return out
 
 
@@ -145,9 +163,9 @@ def ambient_occlusion(
     mean = np.empty_like(h)
     out = np.empty_like(h)
     depth = np.float32(max(radius_x, 1) * float(dx))
+    (wx, div_x), (wy, div_y) = taps_x, taps_y
     with np.errstate(all="ignore"):
-        kernel = ao_kernel if h.size >= PARALLEL_MIN_TEXELS else _ao_serial
-        kernel(
-            h, taps_x[0], taps_x[1], taps_y[0], taps_y[1], depth, np.float32(strength), mean, out
-        )
+        gain = np.float32(strength)
+        _split_rows(h, lambda a, b: _ao_rows(h, wx, div_x, mean, a, b))
+        _split_rows(h, lambda a, b: _ao_columns(h, wy, div_y, depth, gain, mean, out, a, b))
     return out

@@ -3,7 +3,7 @@
 :func:`path_distance_inside` is a drop-in for
 :func:`matloom.engine.kernels.shapes.path_distance_inside`: it evaluates the identical float64
 formulas (same operation order, no fast-math, NaN propagation like ``np.minimum``) per pixel,
-in parallel over rows, and applies the same ``cutoff`` rule (distances above it become +inf).
+with the rows split over threads, and applies the same ``cutoff`` rule (distances above it become +inf).
 Culling differs from the numpy backend (per row and per pixel instead of per tile) but only
 ever skips edges that provably cannot bring a distance down to ``cutoff``, so the outputs are
 identical. Selected with ``backend="numba"`` in ``fill``/``stroke``.
@@ -11,11 +11,11 @@ identical. Selected with ``backend="numba"`` in ``fill``/``stroke``.
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 
 from matloom.engine.kernels.jit import jit
 from matloom.engine.kernels.shapes import as_grid_2d, cull_margin, path_edges
+from matloom.engine.kernels.threads import parallel_rows
 
 MODE_NONE = 0
 MODE_NONZERO = 1
@@ -228,7 +228,7 @@ def _scanline_row(
 @jit()
 def _load_row(coords: np.ndarray, i: int, out: np.ndarray) -> None:
     """Row ``i`` of a coordinate array that broadcasts to the grid ((1|H), (1|W))."""
-    row = np.int64(i) if coords.shape[0] > 1 else np.int64(0)  # prange indices may be uint64
+    row = np.int64(i) if coords.shape[0] > 1 else np.int64(0)  # one integer type either way
     if coords.shape[1] == 1:
         out[:] = coords[row, 0]
     else:
@@ -271,28 +271,29 @@ def _process_row(
         distance_row[j] = np.inf if dist > cutoff else dist
 
 
-@jit(parallel=True)
-def _path_kernel(
+@jit(nogil=True)
+def _path_rows(
     px: np.ndarray,
     py: np.ndarray,
-    height: int,
-    width: int,
     edges: np.ndarray,
     boxes: np.ndarray,
     mode: int,
     limit: float,
     cutoff: float,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Min distance to ``edges`` (M, 4) (inf above ``cutoff``) and inside mask, row-parallel.
+    distance: np.ndarray,
+    inside: np.ndarray,
+    first: int,
+    last: int,
+) -> None:
+    """Rows ``first``..``last - 1`` of the min distance to ``edges`` (M, 4) (inf above
+    ``cutoff``) and of the inside mask. Serial and ``nogil``: :func:`path_distance_inside`
+    splits the rows over threads.
 
-    ``px``/``py`` broadcast to (height, width); each row is copied into contiguous buffers so
-    that every helper sees one array type (one compiled specialisation).
+    ``px``/``py`` broadcast to ``distance``'s shape; each row is copied into contiguous
+    buffers so that every helper sees one array type (one compiled specialisation).
     """
-    distance = np.empty((height, width), dtype=np.float64)
-    inside = np.zeros((height, width), dtype=np.bool_)
-    for i in numba.prange(height):
+    for i in range(first, last):
         _process_row(px, py, i, edges, boxes, mode, limit, cutoff, distance[i], inside[i])
-    return distance, inside
 
 
 def _kernel_coords(values: np.ndarray) -> np.ndarray:
@@ -323,15 +324,8 @@ def path_distance_inside(
     boxes = np.ascontiguousarray(
         np.stack([xs.min(axis=1), xs.max(axis=1), ys.min(axis=1), ys.max(axis=1)], axis=1)
     )
-    distance, inside = _path_kernel(
-        _kernel_coords(px),
-        _kernel_coords(py),
-        height,
-        width,
-        edges,
-        boxes,
-        code,
-        limit,
-        float(cutoff),
-    )
+    distance = np.empty((height, width), dtype=np.float64)
+    inside = np.zeros((height, width), dtype=np.bool_)
+    args = (_kernel_coords(px), _kernel_coords(py), edges, boxes, code, limit, float(cutoff))
+    parallel_rows(height, width, lambda a, b: _path_rows(*args, distance, inside, a, b))
     return distance.reshape(shape), (inside.reshape(shape) if code != MODE_NONE else None)

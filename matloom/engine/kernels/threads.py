@@ -1,7 +1,9 @@
 """Splitting work over threads for kernels that release the GIL (``nogil`` numba, ``_cnoise``).
 
-numba's ``prange`` cannot pass tuples of arrays into its parallel region, so such kernels are
-serial and release the GIL; :func:`parallel_rows` runs them on row ranges from several threads.
+The numba kernels of the evaluation path (compositing, fBm, Worley, Bricks, paths, relief) are
+serial, ``nogil`` and take a range of rows; :func:`parallel_rows` runs them on row ranges from
+several threads. ``prange`` is avoided there: it cannot pass tuples of arrays into its parallel
+region, and a parallel kernel takes far longer to compile (docs/performance.md, "Cold start").
 The thread count follows ``numba.get_num_threads()`` (``NUMBA_NUM_THREADS``), so
 ``numba.set_num_threads(1)`` also makes these kernels serial. :func:`run_split` is the runner
 underneath, also used by the C fBm; importing this module imports neither numba nor an

@@ -1,0 +1,218 @@
+"""The interpreter: AST -> field values, every function dispatched through the op table.
+
+Fields are numpy arrays broadcastable to (H, W): ``X()`` stays a (1, W) float32 axis and
+constants stay scalars until an operation needs more, so separable work is never expanded.
+Each Define is evaluated once per distinct coordinate frame (a DAG, not a tree; equal frames
+reached by different paths share it, see :mod:`matloom.lang.cost`). Primitive kernels come from
+a :class:`~matloom.engine.backends.Backend`.
+
+:class:`Evaluator` is the interpreter over dense values; a schedule changes the kind of value by
+overriding its hooks (:meth:`Evaluator.apply` for element-wise ops, :meth:`Evaluator.fbm` /
+:meth:`Evaluator.worley` for noise, :meth:`Evaluator.eval` for memoisation): lazy expressions
+(:mod:`matloom.engine.lazy`), seed batches (:mod:`matloom.engine.schedules.seed_batch`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cache
+from typing import Any
+
+import numpy as np
+
+from matloom.engine.backends import Backend
+from matloom.engine.composite import RawLayer
+from matloom.engine.kernels import shapes
+from matloom.engine.kernels.mathops import count_zero
+from matloom.engine.ops import OPS, Kind, Op, operator_ops
+from matloom.lang import ast as A
+from matloom.lang.cost import FrameTable, transform_values
+from matloom.lang.static import param_value
+from matloom.vocab import CONSTANTS, FUNCTIONS
+from matloom.vocab.spec import Kind as ParamKind
+
+Field = Any  # np.ndarray (broadcastable to (H, W)) or np.float64 scalar
+Coords = tuple[Any, Any]
+#: The binary operators' ops ("+" -> Add, ...).
+OPERATORS: dict[str, Op] = operator_ops()
+
+
+class Frame(tuple):
+    """Coordinates (x, y) that know their frame number ``fid`` (see :meth:`Evaluator.transform`)."""
+
+    fid: int
+
+    def __new__(cls, x: Any, y: Any, fid: int) -> Frame:
+        self = super().__new__(cls, (x, y))
+        self.fid = fid
+        return self
+
+
+@dataclass
+class EvalStats:
+    """Counters gathered during one evaluation (reported by the CLI)."""
+
+    zero_divisions: int = 0
+    define_evaluations: int = 0
+    notes: list[str] = field(default_factory=list)
+    #: Texels of culled fBm fields (engine.cull): considered, and actually computed.
+    noise_texels: int = 0
+    noise_texels_computed: int = 0
+
+
+@cache
+def operand_names(func: str) -> tuple[str, ...]:
+    """The expression parameters of ``func`` (an element-wise op's operands), registry order."""
+    return tuple(p.name for p in FUNCTIONS[func].params if p.kind is ParamKind.EXPR)
+
+
+@cache
+def static_names(func: str, frequency: bool = True) -> tuple[str, ...]:
+    """The static parameters of ``func`` (``frequency=False``: without frequencies)."""
+    return tuple(
+        p.name
+        for p in FUNCTIONS[func].params
+        if p.kind not in (ParamKind.EXPR, ParamKind.SHAPE, ParamKind.SEGMENT)
+        and (frequency or not p.is_frequency)
+    )
+
+
+@cache
+def _noise_names(func: str) -> tuple[str, ...]:
+    """Kernel keywords of a noise function besides frequencies, to_01 and seed."""
+    return tuple(n for n in static_names(func, False) if n not in ("to_01", "seed"))
+
+
+class Evaluator:
+    """Evaluates the expressions of one program on one sampling grid (dense values)."""
+
+    def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend: Backend) -> None:
+        self.program = program
+        self.backend = backend
+        self.base: Coords = Frame(x, y, 0)
+        self.defines = {d.name: d.expr for d in program.defines}
+        self.memo: dict[tuple[str, int], Field] = {}
+        #: the distinct coordinate frames (equal composed transforms share one number)
+        self.frame_table = FrameTable()
+        #: frames of coordinates passed in by a caller: (ids of x, y) -> (frame, coordinates)
+        self._foreign: dict[tuple[int, int], tuple[int, Coords]] = {}
+        self.stats = EvalStats()
+
+    # ---------------------------------------------------------------- public
+    def field(self, node: A.Node, coords: Coords | None = None) -> Field:
+        return self.eval(node, coords or self.base)
+
+    # ---------------------------------------------------------------- dispatch
+    def eval(self, node: A.Node, c: Coords) -> Field:
+        if isinstance(node, A.Num):
+            return np.float64(node.value)
+        if isinstance(node, A.Const):
+            return np.float64(CONSTANTS[node.name])
+        if isinstance(node, A.Ref):
+            return self.ref(node.name, c)
+        if isinstance(node, A.Neg):
+            return self.binop("*", np.float64(-1.0), self.eval(node.operand, c))
+        if isinstance(node, A.BinOp):
+            return self.binop(node.op, self.eval(node.left, c), self.eval(node.right, c))
+        if isinstance(node, A.Call):
+            return self.call(node, c)
+        raise TypeError(f"cannot evaluate {type(node).__name__} as a field")
+
+    def ref(self, name: str, c: Coords) -> Field:
+        key = (name, self._frame_id(c))
+        if key not in self.memo:
+            self.stats.define_evaluations += 1
+            self.memo[key] = self.eval(self.defines[name], c)
+        return self.memo[key]
+
+    def _frame_id(self, c: Coords) -> int:
+        """Number of the coordinate frame of ``c`` (the memo key of Define values)."""
+        fid = getattr(c, "fid", None)
+        if fid is not None:
+            return fid
+        entry = self._foreign.get((id(c[0]), id(c[1])))
+        if entry is None:  # the entry keeps ``c`` alive so that the ids stay unique
+            entry = (self.frame_table.unique(), c)
+            self._foreign[(id(c[0]), id(c[1]))] = entry
+        return entry[0]
+
+    def binop(self, op: str, a: Field, b: Field) -> Field:
+        if op not in OPERATORS:
+            raise ValueError(f"unknown operator {op}")
+        return self.operate(OPERATORS[op], [a, b], {})
+
+    def call(self, call: A.Call, c: Coords) -> Field:
+        op = OPS.get(call.func)
+        if op is None or op.kind is Kind.GEOMETRY:
+            raise ValueError(f"{call.func}(...) cannot be evaluated as a field")
+        if op.kind is Kind.FIELD:
+            return op.numpy(self, call, c)
+        args = [self.eval(call.arg(name), c) for name in operand_names(call.func)]  # type: ignore[arg-type]
+        return self.operate(op, args, self.params(call))
+
+    def operate(self, op: Op, args: list[Field], params: dict[str, Any]) -> Field:
+        """An element-wise op: counts zero divisors, then :meth:`apply`."""
+        if op.divisor is not None:
+            self.count_divisor(args[op.divisor])
+        return self.apply(op, args, params)
+
+    def count_divisor(self, b: Field) -> None:
+        self.stats.zero_divisions += count_zero(b)
+
+    def apply(self, op: Op, args: list[Field], params: dict[str, Any]) -> Field:
+        """The value of an element-wise op (dense: its numpy implementation)."""
+        with np.errstate(all="ignore"):
+            return op.numpy(*args, **params)
+
+    # ---------------------------------------------------------------- parameters
+    def num(self, call: A.Call, name: str) -> Any:
+        """Static value of a numeric/enum/bool parameter (its default when not written)."""
+        return param_value(call, name)
+
+    def params(self, call: A.Call, frequency: bool = True) -> dict[str, Any]:
+        """Every static parameter of ``call`` (``frequency=False``: without frequencies)."""
+        return {p: self.num(call, p) for p in static_names(call.func, frequency)}
+
+    def freqs(self, call: A.Call) -> tuple[float, float]:
+        base = self.num(call, "base_freq")
+        fx = self.num(call, "base_freq_x")
+        fy = self.num(call, "base_freq_y")
+        return (base if fx is None else fx), (base if fy is None else fy)
+
+    # ---------------------------------------------------------------- primitives
+    def fbm(self, call: A.Call, c: Coords) -> Field:
+        return self.backend.fbm(c[0], c[1], **self.noise_args(call))
+
+    def worley(self, call: A.Call, c: Coords) -> Field:
+        return self.backend.worley(c[0], c[1], **self.noise_args(call))
+
+    def noise_args(self, call: A.Call) -> dict[str, Any]:
+        """The keyword arguments of the fBm/Worley kernel for ``call``."""
+        fx, fy = self.freqs(call)
+        seed = self.num(call, "seed")
+        if seed is None:
+            raise ValueError(f"{call.func} has no seed; canonicalise the program first")
+        kw = dict(freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seed=seed)
+        return {**kw, **{name: self.num(call, name) for name in _noise_names(call.func)}}
+
+    def transform(self, call: A.Call, c: Coords) -> Coords:
+        """Coordinates of ``call``'s operand. Their frame is the composed transform, so a Define
+        used in equal frames reached by different paths is evaluated once (the first path's
+        value is shared; see :mod:`matloom.lang.cost`)."""
+        a, b = transform_values(call)
+        new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
+        return Frame(*new, self.frame_table.child(self._frame_id(c), call.func, (a, b)))
+
+    def shape(self, node: A.Call) -> shapes.Shape:
+        """The geometry of a shape (or path segment) node."""
+        return OPS[node.func].numpy(self, node)  # type: ignore[no-any-return]
+
+
+def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:
+    """Evaluate one layer's channels into a :class:`RawLayer` (defaults where not written)."""
+    raw = RawLayer()
+    if layer.alpha is not None:
+        raw.alpha = ev.field(layer.alpha)
+    for ch in layer.channels:
+        raw.set(ch.name, [ev.field(a) for a in ch.args])
+    return raw

@@ -1,0 +1,157 @@
+"""The background kernel compiler of :mod:`matloom.engine.kernels.warmup` (run as
+``python -m matloom.engine.kernels.warmup_steps DIR``): the warm-up steps and their runner.
+
+Each step evaluates a small program on the numba backend, so the kernels are compiled for exactly
+the argument types real renders pass; together the steps cover every evaluation kernel (fBm and
+Worley on separable axes and rotated grids, with and without coverage masks; both Bricks kernels;
+paths; compositing; relief; preview shading). On a machine with two or more cores a helper
+process compiles the primitive kernels of the later steps (evaluating them unfused, so without
+the compositing kernel) while this process compiles compositing and shading; the later steps
+then run fused and mostly load from the cache. Importing this module does not import numba.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+_TILE = """View(0, 0, 2, 2)
+Define(tileMask, Bricks(brick_width=0.48, brick_height=0.48, offset=0, mortar=0.02, feather=0.008))
+Define(glaze, fBm(octaves=3, base_freq=7, to_01=True, seed=1))
+Define(grout, fBm(octaves=4, base_freq=30, to_01=True, seed=2))
+Material(Layer(1).basecolor(40 + grout * 12, 42, 45).roughness(0.85 + grout * 0.1),
+  Layer(tileMask).basecolor(12, 13, 16).coat(0.95).height(tileMask * 0.016 + glaze * 0.001))"""
+_ROTATED = """View(0, 0, 2, 2)
+Define(mask, Rotate(Bricks(brick_width=0.5, brick_height=0.25, offset=0.5, mortar=0.02), 15))
+Define(grain, Rotate(fBm(octaves=2, base_freq=3, to_01=True, seed=3), 30))
+Define(fleck, Rotate(fBm(octaves=2, base_freq=9, to_01=True, seed=6), 30))
+Material(Layer(1).basecolor(90 + grain * 40, 80, 70).roughness(0.5 + grain * 0.2),
+  Layer(mask).basecolor(140, 95, 60).roughness(0.3 + fleck * 0.2).height(mask * 0.01))"""
+_WORLEY = """View(0, 0, 2, 2)
+Define(cells, Worley(seed=4))
+Define(edges, Rotate(Worley(distance="manhattan", combination="F2-F1", seed=5), 20))
+Material(Layer(1).basecolor(100 + cells * 50, 90 + edges * 40, 80).height(edges * 0.01))"""
+_COLUMNS = """View(0, 0, 3, 3)
+Define(course, Bricks(brick_width=0.25, brick_height=0.9, offset=0.33, mortar=0.03,
+  axis="column", feather=0.02))
+Material(Layer(1).basecolor(190, 185, 175), Layer(course).basecolor(120, 70, 50))"""
+_PATHS = """View(-0.1, -0.1, 1.1, 1.1)
+Define(star, Fill(Path(0.5, 0.9, LineTo(0.26, 0.18), LineTo(0.88, 0.62), LineTo(0.12, 0.62)),
+  mode="EvenOdd", feather=0.01))
+Define(line, Stroke(Path(0.1, 0.1, LineTo(0.9, 0.3), CubicTo(0.5, 0.5, 0.3, 0.9, 0.8, 0.8)), 0.02))
+Material(Layer(1).basecolor(240, 240, 240), Layer(star).basecolor(200, 20, 30).height(0.01),
+  Layer(line).basecolor(10, 10, 10).emissive(255, 128, 0, 2))"""
+
+#: (label, program) of each warm-up step; ``None``: shade the previous step's maps.
+STEPS: tuple[tuple[str, str | None], ...] = (
+    ("fBm and compositing", _TILE),
+    ("preview shading", None),
+    ("rotated fBm and Bricks", _ROTATED),
+    ("Worley", _WORLEY),
+    ("column Bricks", _COLUMNS),
+    ("paths", _PATHS),
+)
+
+#: The first steps compile every kernel of the paper's tile program (fBm, Bricks rows,
+#: compositing, relief, shading): ``matloom demo`` waits for these only.
+TILE_STEPS = 2
+#: Size of the step renders (the kernels do not depend on it).
+STEP_SIZE = 24
+#: Index of the first step whose primitives the helper process compiles.
+_HELPED_FROM = 2
+
+
+def run_steps(
+    progress: Callable[[int, int, str], None] | None = None, helper: bool = True
+) -> float:
+    """Compile (or load) every kernel of :data:`STEPS` in this process (with the helper process
+    when ``helper`` and there are two or more cores); returns seconds. ``progress(done, total,
+    label)`` is called before each step and at the end."""
+    import matloom
+    from matloom.render.preview import shade
+
+    start = time.perf_counter()
+    helping = _start_helper() if helper and (os.cpu_count() or 1) > 1 else None
+    maps = None
+    try:
+        for k, (label, program) in enumerate(STEPS):
+            if progress is not None:
+                progress(k, len(STEPS), label)
+            if k == _HELPED_FROM and helping is not None:
+                helping.wait()
+                helping = None
+            if program is None:
+                shade(maps, backend="numba")
+            else:
+                maps = matloom.evaluate(program, STEP_SIZE, STEP_SIZE, backend="numba")
+    finally:
+        if helping is not None:
+            helping.kill()
+    if progress is not None:
+        progress(len(STEPS), len(STEPS), "")
+    return time.perf_counter() - start
+
+
+def _start_helper() -> subprocess.Popen[bytes] | None:
+    try:
+        return subprocess.Popen(  # noqa: S603 - our own module, same interpreter
+            [sys.executable, "-m", "matloom.engine.kernels.warmup_steps", "--primitives"],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    except OSError:
+        return None
+
+
+def compile_primitives() -> None:
+    """The helper: the primitive kernels of the later steps, evaluated unfused."""
+    from dataclasses import replace
+
+    import matloom
+    from matloom.engine.backends import get_backend
+
+    unfused = replace(get_backend("numba"), fused=False)
+    for _, program in STEPS[_HELPED_FROM:]:
+        if program is not None:
+            matloom.evaluate(program, STEP_SIZE, STEP_SIZE, backend=unfused)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the steps into the cache directory ``argv[0]``, then write the stamp (or the error)
+    and release the lock (see :mod:`matloom.engine.kernels.warmup`)."""
+    from matloom.engine.kernels import warmup
+
+    args = sys.argv[1:] if argv is None else argv
+    if args[:1] == ["--primitives"]:  # the helper (as nice as its parent)
+        compile_primitives()
+        return 0
+    os.nice(5)  # the foreground work comes first
+    directory = Path(args[0]) if args else warmup.cache_dir()
+    if directory is None:
+        return 1
+    key = warmup.stamp_key()
+    status = directory / warmup.STATUS_NAME
+
+    def report(done: int, total: int, label: str) -> None:
+        warmup.write_json(status, {"done": done, "total": total, "step": label})
+
+    try:
+        seconds = run_steps(report)
+        warmup.write_json(directory / warmup.STAMP_NAME, {"key": key, "seconds": round(seconds, 2)})
+        return 0
+    except Exception as exc:  # noqa: BLE001 - recorded, so that the CLI stops waiting for us
+        error = f"{type(exc).__name__}: {exc}"
+        warmup.write_json(directory / warmup.STAMP_NAME, {"key": key, "error": error})
+        return 1
+    finally:
+        status.unlink(missing_ok=True)
+        (directory / warmup.LOCK_NAME).unlink(missing_ok=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,109 @@
+"""Field and geometry rules of the ops that are not element-wise (referenced by the op table).
+
+A field rule is ``rule(interpreter, call, coords)``: it asks the interpreter (any schedule's
+:class:`~matloom.engine.interpret.Evaluator`) for operands, static parameters and the backend's
+kernels, so that one rule serves the dense, banded and seed-batched schedules.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from matloom.engine.kernels import shapes
+from matloom.engine.kernels import threshold as _threshold
+from matloom.lang import ast as A
+from matloom.lang.static import static_number
+
+
+def x(ev: Any, call: A.Call, c: Any) -> Any:
+    return c[0]
+
+
+def y(ev: Any, call: A.Call, c: Any) -> Any:
+    return c[1]
+
+
+def constant(ev: Any, call: A.Call, c: Any) -> Any:
+    return np.float64(ev.num(call, "value"))
+
+
+def fbm(ev: Any, call: A.Call, c: Any) -> Any:
+    return ev.fbm(call, c)
+
+
+def worley(ev: Any, call: A.Call, c: Any) -> Any:
+    return ev.worley(call, c)
+
+
+def bricks(ev: Any, call: A.Call, c: Any) -> Any:
+    return ev.backend.bricks(c[0], c[1], **ev.params(call))
+
+
+def weave(ev: Any, call: A.Call, c: Any) -> Any:
+    fx, fy = ev.freqs(call)
+    return ev.backend.weave(c[0], c[1], freq_x=fx, freq_y=fy, **ev.params(call, frequency=False))
+
+
+def fill(ev: Any, call: A.Call, c: Any) -> Any:
+    geom = ev.shape(call.arg("shape"))
+    return ev.backend.fill(
+        geom, c[0], c[1], mode=ev.num(call, "mode"), feather=ev.num(call, "feather")
+    )
+
+
+def stroke(ev: Any, call: A.Call, c: Any) -> Any:
+    geom = ev.shape(call.arg("shape"))
+    return ev.backend.stroke(
+        geom, c[0], c[1], width=ev.num(call, "width"), feather=ev.num(call, "feather")
+    )
+
+
+def transformed(ev: Any, call: A.Call, c: Any) -> Any:
+    """The operand evaluated in the transformed coordinates (see ``Evaluator.transform``)."""
+    return ev.eval(call.arg("expr"), ev.transform(call, c))
+
+
+def threshold(value: Any, **params: Any) -> np.ndarray:
+    """Threshold's numpy implementation (grid-path rules of ``kernels.threshold``)."""
+    return _threshold.threshold(np.asarray(value), **params)
+
+
+def check_threshold(**params: Any) -> None:
+    """Raise the kernel's error for invalid parameters (before Threshold is deferred)."""
+    if float(params["transition_width"]) < 0:
+        _threshold.threshold(np.zeros(1), **params)
+
+
+# ------------------------------------------------------------------ geometry
+def _values(node: A.Call) -> dict[str, float]:
+    return {a.param: float(static_number(a.value) or 0.0) for a in node.args}
+
+
+def _positional(node: A.Call) -> list[float]:
+    return [float(static_number(a.value) or 0.0) for a in node.args]
+
+
+def rect(ev: Any, node: A.Call) -> shapes.Shape:
+    v = _values(node)
+    return shapes.make_rect(v["x"], v["y"], v["width"], v["height"], v.get("radius", 0.0))
+
+
+def ellipse(ev: Any, node: A.Call) -> shapes.Shape:
+    v = _values(node)
+    return shapes.EllipseGeom(v["cx"], v["cy"], v["rx"], v["ry"])
+
+
+def path(ev: Any, node: A.Call) -> shapes.Shape:
+    v = _values(node)
+    segments = tuple(ev.shape(s) for s in node.extra)
+    return shapes.PathGeom(v["start_x"], v["start_y"], segments)
+
+
+def line_to(ev: Any, node: A.Call) -> Any:
+    return shapes.LineSeg(*_positional(node))
+
+
+def cubic_to(ev: Any, node: A.Call) -> Any:
+    return shapes.CubicSeg(*_positional(node))

@@ -1,0 +1,251 @@
+"""The op table: every registry function's engine rules, one entry each (see :mod:`.op`).
+
+To add an element-wise function: its registry entry (:mod:`matloom.vocab.functions`) and one
+:data:`OPS` entry here (numpy implementation, static rule, bounds rule, opcode or NUMPY). Nothing
+else in the engine, the checker or the sweep names a function.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from matloom.engine.ops.op import (
+    NUMPY,
+    Bounds,
+    Interval,
+    Kind,
+    Op,
+    Ref,
+    not_constant,
+    unbounded,
+)
+
+_MATHOPS = "matloom.engine.kernels.mathops:"
+_FIELDS = "matloom.engine.ops.fields:"
+
+
+# ------------------------------------------------------------------ static (constant) rules
+def _unary(fn: Callable[[Any], Any]) -> Callable[[list[Any], bool], Any]:
+    def rule(values: list[Any], strict: bool) -> Any:
+        return float(fn(values[0])) if len(values) == 1 else None
+
+    return rule
+
+
+def _binary(fn: Callable[[Any, Any], Any]) -> Callable[[list[Any], bool], Any]:
+    def rule(values: list[Any], strict: bool) -> Any:
+        return fn(values[0], values[1]) if len(values) == 2 else None
+
+    return rule
+
+
+def _coordinate(values: list[Any], strict: bool) -> float | None:
+    """X()/Y() are 0 at the origin, where a numeric argument is evaluated (not strict)."""
+    return None if strict else 0.0
+
+
+def _constant(values: list[Any], strict: bool) -> Any:
+    return values[0] if values else 0.0
+
+
+def _pow(a: float | int, b: float | int) -> float:
+    if a < 0 and not float(b).is_integer():
+        return math.nan
+    if a == 0 and b < 0:
+        return math.inf
+    return float(a) ** float(b)
+
+
+def _log(values: list[Any], strict: bool) -> float:
+    x = float(values[0])
+    base = float(values[1]) if len(values) > 1 else math.e
+    if x == 0:
+        return -math.inf
+    if x < 0:
+        return math.nan
+    if base == 10:
+        return math.log10(x)
+    if base == 2:
+        return math.log2(x)
+    return math.log(x) if base == math.e else math.log(x) / math.log(base)
+
+
+# ------------------------------------------------------------------ bounds (interval) rules
+def _add_bounds(a: Interval, b: Interval) -> Bounds:
+    candidates = [a[0] + b[0], a[1] + b[1]]
+    return (min(candidates), max(candidates))
+
+
+def _sub_bounds(a: Interval, b: Interval) -> Bounds:
+    candidates = [a[0] - b[1], a[1] - b[0]]
+    return (min(candidates), max(candidates))
+
+
+def _mul_bounds(a: Interval, b: Interval) -> Bounds:
+    candidates = [a[i] * b[k] for i in (0, 1) for k in (0, 1)]
+    return (min(candidates), max(candidates))
+
+
+def _div_bounds(a: Interval, b: Interval) -> Bounds:
+    if b == (0.0, 0.0):
+        return (0.0, 0.0)  # safe division gives 0 wherever the divisor is 0
+    if b[0] <= 0.0 <= b[1]:
+        return None  # near-zero divisors are unbounded
+    quotients = [a[i] / b[k] for i in (0, 1) for k in (0, 1)]
+    return (min(quotients), max(quotients))
+
+
+def _min_bounds(a: Interval, b: Interval) -> Bounds:
+    return (min(a[0], b[0]), min(a[1], b[1]))
+
+
+def _max_bounds(a: Interval, b: Interval) -> Bounds:
+    return (max(a[0], b[0]), max(a[1], b[1]))
+
+
+def _abs_bounds(a: Interval) -> Bounds:
+    lo = 0.0 if a[0] <= 0.0 <= a[1] else min(abs(a[0]), abs(a[1]))
+    return (lo, max(abs(a[0]), abs(a[1])))
+
+
+def _monotone(fn: Callable[[float], float]) -> Callable[[Interval], Bounds]:
+    def rule(a: Interval) -> Bounds:
+        return (fn(a[0]), fn(a[1]))
+
+    return rule
+
+
+def _sqrt_bounds(a: Interval) -> Bounds:
+    return (math.sqrt(a[0]), math.sqrt(a[1])) if a[0] >= 0.0 else None
+
+
+def _periodic_bounds(a: Interval) -> Bounds:
+    """Sin/Cos of a finite interval (NaN only for infinite input, which has no bounds)."""
+    return (-1.0, 1.0)
+
+
+# ------------------------------------------------------------------ fast-path parameter blocks
+def _threshold_block(
+    below_at: Any, below_to: Any, above_at: Any, above_to: Any, transition_width: Any
+) -> list[float]:
+    """The 6 constants of the ``threshold`` opcode (see register_numba)."""
+    below, above = below_at, above_at
+    return [
+        0.0 if below is None else float(below),
+        0.0 if below is None else float(below if below_to is None else below_to),
+        0.0 if above is None else float(above),
+        0.0 if above is None else float(above if above_to is None else above_to),
+        float(transition_width),
+        float((above is not None) + 2 * (below is not None)),
+    ]
+
+
+# ------------------------------------------------------------------ the table
+def _math(
+    name: str,
+    numpy: str,
+    static: Callable[[list[Any], bool], Any],
+    bounds: Callable[..., Bounds],
+    fast: str | None,
+    **extra: Any,
+) -> Op:
+    return Op(name, Kind.ELEMENTWISE, Ref(numpy), static, bounds, fast, **extra)
+
+
+def _field(name: str, rule: str, coords: Callable[..., Any] | None = None) -> Op:
+    return Op(name, Kind.FIELD, Ref(_FIELDS + rule), not_constant, unbounded, NUMPY, coords=coords)
+
+
+def _coordinate_field(name: str, rule: str) -> Op:
+    return Op(name, Kind.FIELD, Ref(_FIELDS + rule), _coordinate, unbounded, NUMPY)
+
+
+def _geometry(name: str, rule: str) -> Op:
+    return Op(name, Kind.GEOMETRY, Ref(_FIELDS + rule), not_constant, unbounded, NUMPY)
+
+
+_ENTRIES: tuple[Op, ...] = (
+    # coordinates and constants
+    _coordinate_field("X", "x"),
+    _coordinate_field("Y", "y"),
+    Op("Constant", Kind.FIELD, Ref(_FIELDS + "constant"), _constant, unbounded, NUMPY),
+    # element-wise math: numpy implementation, static rule, bounds rule, opcode or NUMPY
+    _math("Add", _MATHOPS + "add", _binary(lambda a, b: a + b), _add_bounds, "add"),
+    _math("Sub", _MATHOPS + "sub", _binary(lambda a, b: a - b), _sub_bounds, "sub"),
+    _math("Mul", _MATHOPS + "mul", _binary(lambda a, b: a * b), _mul_bounds, "mul"),
+    _math(
+        "Div",
+        _MATHOPS + "safe_div",
+        _binary(lambda a, b: 0.0 if b == 0 else a / b),
+        _div_bounds,
+        "div",
+        divisor=1,
+    ),
+    _math("Pow", _MATHOPS + "pow_", _binary(_pow), unbounded, NUMPY),
+    _math(
+        "Min",
+        _MATHOPS + "minimum",
+        lambda v, s: min(v) if len(v) == 2 else None,
+        _min_bounds,
+        "min",
+    ),
+    _math(
+        "Max",
+        _MATHOPS + "maximum",
+        lambda v, s: max(v) if len(v) == 2 else None,
+        _max_bounds,
+        "max",
+    ),
+    _math("Abs", _MATHOPS + "abs_", _unary(abs), _abs_bounds, "abs"),
+    _math(
+        "Sqrt",
+        _MATHOPS + "sqrt",
+        _unary(lambda v: math.sqrt(v) if v >= 0 else math.nan),
+        _sqrt_bounds,
+        "sqrt",
+    ),
+    _math("Floor", _MATHOPS + "floor", _unary(math.floor), _monotone(math.floor), "floor"),
+    _math("Ceil", _MATHOPS + "ceil", _unary(math.ceil), _monotone(math.ceil), "ceil"),
+    _math("Sin", _MATHOPS + "sin", _unary(math.sin), _periodic_bounds, NUMPY),
+    _math("Cos", _MATHOPS + "cos", _unary(math.cos), _periodic_bounds, NUMPY),
+    _math("Log", _MATHOPS + "log", _log, unbounded, NUMPY),
+    _math(
+        "Threshold",
+        _FIELDS + "threshold",
+        not_constant,
+        unbounded,  # not analysed by culling
+        "threshold",
+        dtype="float64",
+        block=_threshold_block,
+        check=Ref(_FIELDS + "check_threshold"),
+    ),
+    # primitive fields (backend kernels)
+    _field("fBm", "fbm"),
+    _field("Worley", "worley"),
+    _field("Bricks", "bricks"),
+    _field("Weave", "weave"),
+    _field("Fill", "fill"),
+    _field("Stroke", "stroke"),
+    # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
+    _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b)),
+    _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b)),
+    _field("Rotate", "transformed", coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y)),
+    # geometry (arguments of Fill/Stroke; not fields)
+    _geometry("Rect", "rect"),
+    _geometry("Ellipse", "ellipse"),
+    _geometry("Path", "path"),
+    _geometry("LineTo", "line_to"),
+    _geometry("CubicTo", "cubic_to"),
+)
+
+#: Every registry function's :class:`Op`, by function name.
+OPS: dict[str, Op] = {op.name: op for op in _ENTRIES}
+
+
+def operator_ops() -> dict[str, Op]:
+    """The ops of the binary operators (``"+"`` -> Add, ...), from the registry."""
+    from matloom.vocab import FUNCTIONS
+
+    return {spec.operator: OPS[name] for name, spec in FUNCTIONS.items() if spec.operator}

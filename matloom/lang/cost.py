@@ -1,0 +1,302 @@
+"""Static evaluation cost: coordinate frames and the expression nodes an evaluation visits.
+
+The evaluator memoises each Define per *coordinate frame*: the composed affine map from the
+sampling grid to the coordinates an expression is evaluated at (``Translate``, ``Scale`` and
+``Rotate`` each compose one more map). A frame is identified by the six coefficients of that map
+(composed in float64 from the very numbers the evaluator applies, rounded to 40 significant bits:
+:func:`frame_key`), so equal frames reached by different paths compare equal:
+``Translate(Translate(d, 1, 0), 2, 0)`` and ``Translate(Translate(d, 2, 0), 1, 0)`` are one
+frame, and so are two rotations applied in either order. :class:`FrameTable` numbers the distinct frames for the evaluator and for
+:func:`expanded_cost`, which counts, without evaluating anything, the expression nodes the
+evaluator will visit: each Define once per distinct frame it is used in. That count times the
+texel count bounds the work of an evaluation (see ``docs/limits.md``).
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from dataclasses import dataclass
+from typing import Any
+
+from matloom.lang import ast as A
+from matloom.lang.static import is_static, param_value
+from matloom.vocab import FUNCTIONS, Kind
+
+MAX_EXPANDED_NODES = 200_000
+"""Most expression-node evaluations one program may need (E071), whatever the image size."""
+
+TRANSFORMS = ("Translate", "Scale", "Rotate")
+
+#: x' = a x + b y + c, y' = d x + e y + f (the sampling grid's x, y): (a, b, c, d, e, f).
+Affine = tuple[float, float, float, float, float, float]
+IDENTITY: Affine = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0)
+#: Significant bits of the frame coefficients that frames must share to be equal.
+KEY_BITS = 40
+
+
+def transform_values(call: A.Call) -> tuple[float, float]:
+    """The two numbers a transform applies: (dx, dy) of Translate, (sx, sy) of Scale, (cos, sin)
+    of Rotate's angle. The evaluator maps (x, y) to (x - dx, y - dy), (x / sx, y / sy) and
+    (cos x + sin y, -sin x + cos y)."""
+    if call.func == "Translate":
+        return param_value(call, "dx"), param_value(call, "dy")
+    if call.func == "Scale":
+        return param_value(call, "sx"), param_value(call, "sy")
+    rad = math.radians(param_value(call, "degrees"))
+    return math.cos(rad), math.sin(rad)
+
+
+def _matrix(func: str, u: float, v: float) -> Affine:
+    if func == "Translate":
+        return (1.0, 0.0, -u, 0.0, 1.0, -v)
+    if func == "Scale":
+        return (1.0 / u, 0.0, 0.0, 0.0, 1.0 / v, 0.0)
+    return (u, v, 0.0, -v, u, 0.0)
+
+
+def compose(frame: Affine, func: str, values: tuple[float, float]) -> Affine | None:
+    """The frame reached by applying transform ``func`` with ``values`` in ``frame`` (float64
+    arithmetic); None when it is not finite (or a scale is 0): such a frame equals no other."""
+    try:
+        t0, t1, t2, t3, t4, t5 = _matrix(func, float(values[0]), float(values[1]))
+    except (ValueError, OverflowError, ZeroDivisionError, TypeError):
+        return None
+    a, b, c, d, e, f = frame
+    out = (
+        t0 * a + t1 * d,
+        t0 * b + t1 * e,
+        t0 * c + t1 * f + t2,
+        t3 * a + t4 * d,
+        t3 * b + t4 * e,
+        t3 * c + t4 * f + t5,
+    )
+    return out if all(map(math.isfinite, out)) else None
+
+
+def frame_key(affine: Affine) -> tuple[int, ...]:
+    """The coefficients rounded to :data:`KEY_BITS` significant bits (their IEEE bit patterns
+    with the low mantissa bits rounded off; -0.0 counts as 0.0).
+
+    Frames reached by different paths differ by float64 rounding (~1e-16 relative), which this
+    absorbs (a rare pair that straddles a rounding step just stays two frames). Coefficients
+    closer than 2**-40 relative give coordinates equal to far below float32 resolution."""
+    bits = _WORDS.unpack(_DOUBLES.pack(*(v + 0.0 for v in affine)))
+    return tuple((b + _HALF) >> _DROP for b in bits)
+
+
+_DOUBLES, _WORDS = struct.Struct("<6d"), struct.Struct("<6Q")
+_DROP = 52 - KEY_BITS
+_HALF = 1 << (_DROP - 1)
+
+
+class FrameTable:
+    """The distinct coordinate frames met so far, numbered in order of first use (0 = the grid).
+
+    A frame keeps the coefficients of the first path that reached it."""
+
+    def __init__(self) -> None:
+        self._affine: list[Affine | None] = [IDENTITY]
+        self._ids: dict[tuple[int, ...], int] = {frame_key(IDENTITY): 0}
+        self._children: dict[tuple[int, str, float, float], int] = {}
+
+    def __len__(self) -> int:
+        return len(self._affine)
+
+    def child(self, parent: int, func: str, values: tuple[float, float]) -> int:
+        """The frame of transform ``func`` (with ``values``) applied in frame ``parent``."""
+        key = (parent, func, *values)
+        fid = self._children.get(key)  # NaN never equals itself: such frames stay unshared
+        if fid is None:
+            base = self._affine[parent]
+            affine = None if base is None else compose(base, func, values)
+            fid = self._add(affine)
+            self._children[key] = fid
+        return fid
+
+    def unique(self) -> int:
+        """A new frame equal to no other (coordinates that no transform of the grid made)."""
+        return self._add(None)
+
+    def _add(self, affine: Affine | None) -> int:
+        key = None if affine is None else frame_key(affine)
+        if key is not None and key in self._ids:
+            return self._ids[key]
+        self._affine.append(affine)
+        if key is not None:
+            self._ids[key] = len(self._affine) - 1
+        return len(self._affine) - 1
+
+    def is_rotated(self, fid: int) -> bool:
+        """True when the frame mixes x and y (its coordinates are full grids, not axes)."""
+        affine = self._affine[fid]
+        return affine is None or affine[1] != 0 or affine[3] != 0
+
+
+@dataclass(frozen=True)
+class Cost:
+    """What :func:`expanded_cost` found (counts stop growing once ``over``)."""
+
+    #: expression nodes the evaluator visits (more than the cap when ``over``)
+    nodes: int
+    #: visits of nodes that may allocate a field-sized array (not literals, constant math,
+    #: X()/Y(), Define references or transforms)
+    arrays: int
+    #: the part of ``arrays`` of the ``batched`` nodes
+    batched_arrays: int
+    #: distinct (Define, frame) pairs: the Define values the evaluator keeps
+    define_evaluations: int
+    #: distinct coordinate frames, and those of them that are rotated (full-grid coordinates)
+    frames: int
+    rotated_frames: int
+    #: most field values alive at once along the evaluation stack (an upper bound)
+    pending: int
+    #: non-constant layer channel values (each may be a field of its own), and layers
+    channel_fields: int
+    layers: int
+    over: bool
+
+
+def _field_children(node: A.Node) -> tuple[A.Node, ...]:
+    """The sub-expressions the evaluator evaluates as fields (not static parameters)."""
+    if not isinstance(node, A.Call):
+        return A.children(node)
+    spec = FUNCTIONS.get(node.func)
+    if spec is None:
+        return A.children(node)
+    kinds = {p.name: p.kind for p in spec.params}
+    return tuple(a.value for a in node.args if kinds.get(a.param) is Kind.EXPR)
+
+
+def _shape_nodes(node: A.Call) -> int:
+    """Extra nodes of a Fill/Stroke: its shape and the shape's path segments."""
+    shape = node.arg("shape")
+    return 1 + len(shape.extra) if isinstance(shape, A.Call) else 0
+
+
+def _transform_values(node: A.Call) -> tuple[float, float] | None:
+    try:
+        return transform_values(node)
+    except (ValueError, TypeError, OverflowError, AssertionError, KeyError):
+        return None
+
+
+#: What the walk needs of a node: ("ref", name), ("transform", func, values or None, body) or
+#: ("field", extra nodes, field children, whether it may allocate an array).
+_Info = tuple[Any, ...]
+_SHAPED = ("Fill", "Stroke")
+#: Functions whose value is a scalar when their field operands are (as numpy gives it).
+_SCALAR_MATH = frozenset(
+    ("Constant", "Abs", "Sqrt", "Floor", "Ceil", "Sin", "Cos", "Log", "Min", "Max")
+)
+
+
+def _constant(node: A.Node, cache: dict[int, bool]) -> bool:
+    """True when the evaluator's value of ``node`` is a scalar (literals and math on them)."""
+    hit = cache.get(id(node))
+    if hit is None:
+        if isinstance(node, A.Num | A.Const):
+            hit = True
+        elif isinstance(node, A.Call) and node.func not in _SCALAR_MATH:
+            hit = False
+        elif isinstance(node, A.Neg | A.BinOp | A.Call):
+            hit = all(_constant(k, cache) for k in _field_children(node))
+        else:
+            hit = False
+        cache[id(node)] = hit
+    return hit
+
+
+def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
+    if isinstance(node, A.Ref):
+        return ("ref", node.name)
+    if isinstance(node, A.Call) and node.func in TRANSFORMS:
+        return ("transform", node.func, _transform_values(node), node.arg("expr"))
+    extra = _shape_nodes(node) if isinstance(node, A.Call) and node.func in _SHAPED else 0
+    axis = isinstance(node, A.Call) and node.func in ("X", "Y")
+    return ("field", extra, _field_children(node), not (axis or _constant(node, constants)))
+
+
+def _roots(program: A.Program) -> list[A.Node]:
+    roots: list[A.Node] = []
+    for layer in program.layers:
+        if layer.alpha is not None:
+            roots.append(layer.alpha)
+        roots.extend(a for ch in layer.channels for a in ch.args)
+    return roots
+
+
+class _Walk:
+    """The evaluator's traversal without the arrays (see :func:`expanded_cost`)."""
+
+    def __init__(self, program: A.Program) -> None:
+        self.defines = {d.name: d.expr for d in program.defines}
+        self.table = FrameTable()
+        self.seen: set[tuple[str, int]] = set()
+        self.rotated: set[int] = set()
+        self.infos: dict[int, _Info] = {}
+        self.constants: dict[int, bool] = {}
+        self.nodes = self.arrays = self.pending = self.batched_arrays = 0
+        #: ids of the nodes whose arrays are counted in ``batched_arrays`` too
+        self.batched: frozenset[int] = frozenset()
+
+    def run(self, roots: list[A.Node], cap: int) -> None:
+        stack: list[tuple[A.Node, int, int]] = [(r, 0, 0) for r in reversed(roots)]
+        infos = self.infos
+        while stack and self.nodes <= cap:
+            node, frame, held = stack.pop()
+            self.nodes += 1
+            info = infos.get(id(node))
+            if info is None:
+                info = infos[id(node)] = _info(node, self.constants)
+            if info[0] == "ref":
+                key = (info[1], frame)
+                if key not in self.seen and info[1] in self.defines:
+                    self.seen.add(key)
+                    stack.append((self.defines[info[1]], frame, held))
+            elif info[0] == "transform":
+                child = self.child_frame(info[1], info[2], frame)
+                turned = child != frame and self.table.is_rotated(child)
+                if turned:
+                    self.rotated.add(child)
+                if info[3] is not None:
+                    stack.append((info[3], child, held + turned))
+            else:
+                self.nodes += info[1]
+                self.arrays += info[3]
+                if info[3] and id(node) in self.batched:
+                    self.batched_arrays += 1
+                kids = info[2]
+                self.pending = max(self.pending, held + len(kids) + 1)
+                stack.extend((kids[i], frame, held + i) for i in range(len(kids) - 1, -1, -1))
+
+    def child_frame(self, func: str, values: tuple[float, float] | None, frame: int) -> int:
+        if values is None:
+            return self.table.unique()
+        return self.table.child(frame, func, values)
+
+
+def expanded_cost(
+    program: A.Program, cap: int = MAX_EXPANDED_NODES, batched: frozenset[int] = frozenset()
+) -> Cost:
+    """Count, without evaluating, the nodes an evaluation of ``program`` visits (stops past
+    ``cap``). It walks the layer expressions in evaluation order, entering a Define's body the
+    first time the Define is referenced in each distinct frame, as the evaluator's memo does.
+    ``batched``: ids of nodes (e.g. the seed-dependent ones of a sweep) whose array visits are
+    also counted apart."""
+    roots = _roots(program)
+    walk = _Walk(program)
+    walk.batched = batched
+    walk.run(roots, cap)
+    return Cost(
+        nodes=walk.nodes,
+        arrays=walk.arrays,
+        batched_arrays=walk.batched_arrays,
+        define_evaluations=len(walk.seen),
+        frames=len(walk.table),
+        rotated_frames=len(walk.rotated),
+        pending=walk.pending,
+        channel_fields=sum(1 for r in roots if not is_static(r)),
+        layers=len(program.layers),
+        over=walk.nodes > cap,
+    )

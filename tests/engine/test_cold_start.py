@@ -1,0 +1,182 @@
+"""First-run kernel compilation: readiness stamp and lock, the CLI's cold-start policy, the
+compile progress messages, and (slow) the whole flow from an empty numba cache."""
+
+from __future__ import annotations
+
+import io
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from matloom.cli.progress import COMPILING, KernelProgress
+from matloom.engine import backends
+from matloom.engine.kernels import compile_report, warmup
+
+ROOT = Path(__file__).resolve().parents[2]
+TILE = ROOT / "tests" / "data" / "parity" / "tile.mat"
+
+
+def _dead_pid() -> int:
+    proc = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    return int(proc.stdout)
+
+
+def test_state_follows_the_stamp_and_the_lock(tmp_path: Path) -> None:
+    assert warmup.state(tmp_path) == warmup.WarmupState(ready=False)
+    (tmp_path / warmup.LOCK_NAME).write_text(str(os.getpid()))  # a live "compiler"
+    warmup.write_json(tmp_path / warmup.STATUS_NAME, {"done": 2, "total": 6})
+    assert warmup.state(tmp_path) == warmup.WarmupState(False, running=True, done=2, total=6)
+    (tmp_path / warmup.LOCK_NAME).write_text(str(_dead_pid()))  # it died
+    assert not warmup.state(tmp_path).running
+    warmup.write_json(tmp_path / warmup.STAMP_NAME, {"key": "an older install"})
+    assert not warmup.state(tmp_path).ready
+    warmup.write_json(tmp_path / warmup.STAMP_NAME, {"key": warmup.stamp_key()})
+    assert warmup.state(tmp_path).ready
+    warmup.write_json(tmp_path / warmup.STAMP_NAME, {"key": warmup.stamp_key(), "error": "x"})
+    assert warmup.state(tmp_path) == warmup.WarmupState(ready=False, error="x")
+
+
+def test_stamp_key_follows_code_generation_settings(monkeypatch: pytest.MonkeyPatch) -> None:
+    key = warmup.stamp_key()
+    monkeypatch.setenv("MATLOOM_NUMBA_WIDE_VECTORS", "0")
+    assert warmup.stamp_key() != key
+
+
+def test_background_compiler_can_be_switched_off(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv(warmup.BACKGROUND_ENV, "0")
+    assert warmup.ensure_background(tmp_path) == warmup.WarmupState(ready=False)
+    assert not (tmp_path / warmup.LOCK_NAME).exists()
+
+
+class _Recorder:
+    def __init__(self) -> None:
+        self.events: list[tuple[str, ...]] = []
+
+    def kernel_compiling(self, name: str) -> None:
+        self.events.append(("compiling", name))
+
+    def kernel_compiled(self, name: str, seconds: float) -> None:
+        self.events.append(("compiled", name))
+
+    def background_compiling(self, done: int, total: int) -> None:
+        self.events.append(("background", f"{done}/{total}"))
+
+
+@pytest.fixture()
+def recorder(monkeypatch: pytest.MonkeyPatch) -> _Recorder:
+    rec = _Recorder()
+    previous = compile_report.set_reporter(rec)
+    yield rec
+    compile_report.set_reporter(previous)
+
+
+def test_cold_start_policy_evaluates_on_numpy_while_the_kernels_compile(
+    monkeypatch: pytest.MonkeyPatch, recorder: _Recorder
+) -> None:
+    pytest.importorskip("numba")
+    states = [warmup.WarmupState(False, running=True, done=1, total=6)]
+    monkeypatch.setattr(warmup, "ensure_background", lambda: states[0])
+    monkeypatch.setattr(backends, "_ready", [False])
+    big = 1024 * 1024
+    assert backends.choose_backend("auto", big).name == "numba"  # library default: compile
+    assert recorder.events == []
+    previous = backends.set_cold_start("background")
+    try:
+        assert backends.choose_backend("auto", big).name == "numpy"
+        assert recorder.events == [("background", "1/6")]
+        assert backends.choose_backend("numba", big).name == "numba"  # asked for: no fallback
+        states[0] = warmup.WarmupState(ready=True)
+        assert backends.choose_backend("auto", big).name == "numba"
+    finally:
+        backends.set_cold_start(previous)
+    with pytest.raises(ValueError, match="cold-start policy"):
+        backends.set_cold_start("later")
+
+
+def test_compile_events_of_matloom_kernels_reach_the_reporter(recorder: _Recorder) -> None:
+    numba = pytest.importorskip("numba")
+    import matloom.engine.kernels.jit  # noqa: F401 - installs the listener
+
+    def ours(x: float) -> float:
+        return x + 1.0
+
+    def theirs(x: float) -> float:
+        return x * 2.0
+
+    ours.__module__ = "matloom.engine.kernels.example"
+    numba.njit(ours)(1.0)
+    numba.njit(theirs)(1.0)
+    assert recorder.events == [
+        ("compiling", "example.ours"),
+        ("compiled", "example.ours"),
+    ]
+
+
+def test_kernel_progress_lines(monkeypatch: pytest.MonkeyPatch) -> None:
+    out = io.StringIO()
+    progress = KernelProgress(out)
+    progress.close()
+    assert out.getvalue() == ""  # nothing compiled: quiet
+    progress = KernelProgress(out)
+    progress.kernel_compiling("composite_numba.composite_rows")
+    progress.kernel_compiled("composite_numba.composite_rows", 5.0)
+    progress.close()
+    first, summary = out.getvalue().splitlines()
+    assert first.startswith(COMPILING) and "composite_rows" in first
+    assert summary.startswith(COMPILING) and "1 kernel(s) compiled" in summary
+    out = io.StringIO()
+    progress = KernelProgress(out)
+    progress.background_compiling(2, 6)
+    monkeypatch.setattr(warmup, "state", lambda: warmup.WarmupState(False, True, 3, 6))
+    progress.close()
+    started, summary = out.getvalue().splitlines()
+    assert started.startswith(COMPILING) and "2/6 in the background" in started
+    assert "3/6 done, continuing in the background" in summary
+
+
+def _render(out: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    cmd = [sys.executable, "-m", "matloom", "render", str(TILE), "--size", "512", "-o", str(out)]
+    return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600, check=False)
+
+
+@pytest.mark.slow
+@pytest.mark.numba
+def test_first_render_says_it_compiles_and_a_warm_one_is_quiet(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Empty numba cache: the first render reports the (background) compilation and renders on
+    the numpy path; once compiled, a render is quiet and its maps are the same bytes. Slow: the
+    background compiler needs 20 s of CPU or more."""
+    pytest.importorskip("numba")
+    cache = tmp_path / "numba-cache"
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    env.pop(warmup.BACKGROUND_ENV, None)
+    try:
+        cold = _render(tmp_path / "cold", env)
+        assert cold.returncode == 0, cold.stderr
+        assert f"{COMPILING} 0/{len(warmup.STEPS)} in the background" in cold.stderr
+        assert warmup.wait(cache, timeout=900).ready
+        warm = _render(tmp_path / "warm", env)
+        assert warm.returncode == 0, warm.stderr
+        assert COMPILING not in warm.stderr, warm.stderr
+    finally:
+        pid = warmup._lock_pid(cache) if cache.exists() else None
+        if pid and pid != os.getpid() and warmup._alive(pid):
+            os.killpg(pid, signal.SIGTERM)
+    maps = sorted(p.name for p in (tmp_path / "cold").iterdir() if not p.name.startswith("."))
+    assert "basecolor.png" in maps and "height.exr" in maps
+    for name in maps:  # every file, the preview included: a cold start changes no byte
+        a, b = (tmp_path / run / name for run in ("cold", "warm"))
+        assert a.read_bytes() == b.read_bytes(), name
