@@ -156,83 +156,64 @@ def sweep_cmd(
     as_json: bool,
 ) -> None:
     """Render the original and K seed variants of FILE; with a scorer, keep the best."""
+    from matloom.author.scorers.base import ScorerUnavailableError
+    from matloom.cli.progress import LazyProgress
     from matloom.io.outdir import OutputFolder
     from matloom.lang.printer import format_program
+    from matloom.render.sweep import run_sweep
 
     if scorer and not prompt:
         raise click.UsageError("--scorer needs --prompt")
     program, _ = load_program(file)
     text = format_program(program)
-    with contextlib.ExitStack() as stack:
+    with contextlib.ExitStack() as stack:  # the folder is locked before the work starts
         out = stack.enter_context(OutputFolder(out_dir)) if out_dir else None
-        _sweep_and_report(
-            text, out, variants, size, scorer, prompt, seed, jobs, sheet, top, as_json
+        with _limits_as_errors(ScorerUnavailableError), LazyProgress("sweep") as bar:
+            res = run_sweep(
+                text,
+                variants=variants,
+                size=size,
+                scorer=scorer,
+                prompt=prompt,
+                seed=seed,
+                jobs=jobs,
+                keep=top,
+                progress=bar,
+            )
+        if res.message:
+            click.echo(res.message, err=True)
+        report = {
+            "candidates": res.n_candidates,
+            "seconds": round(res.seconds, 3),
+            "candidates_per_second": round(res.rate, 1),
+            "best_index": res.best_index,
+            "best_score": res.candidates[res.best_index].score,
+            "scorer": scorer,
+            "seed": seed,
+            "size": size,
+            "scores": [c.score for c in res.candidates] if scorer else None,
+        }
+        if out is not None:
+            _write_sweep_folder(out, res, report)
+        if sheet:
+            from matloom.render.sheet import contact_sheet
+
+            labels = [
+                f"#{i}"
+                + (f" {res.candidates[i].score:.1f}" if res.candidates[i].score is not None else "")
+                for i, _ in res.top_images
+            ]
+            _save_png(sheet, contact_sheet([im for _, im in res.top_images], labels))
+        click.echo(
+            f"{res.n_candidates} candidates in {res.seconds:.2f} s "
+            f"({res.rate:.0f}/s); best #{res.best_index}",
+            err=True,
         )
-
-
-def _sweep_and_report(  # noqa: PLR0913 - the sweep command's options, passed through
-    text: str,
-    out,  # noqa: ANN001 - OutputFolder | None, locked before the work starts
-    variants: int,
-    size: int,
-    scorer: str | None,
-    prompt: str | None,
-    seed: int,
-    jobs: int,
-    sheet: str | None,
-    top: int,
-    as_json: bool,
-) -> None:
-    from matloom.author.scorers.base import ScorerUnavailableError
-    from matloom.cli.progress import LazyProgress
-    from matloom.render.sweep import run_sweep
-
-    with _limits_as_errors(ScorerUnavailableError), LazyProgress("sweep") as bar:
-        res = run_sweep(
-            text,
-            variants=variants,
-            size=size,
-            scorer=scorer,
-            prompt=prompt,
-            seed=seed,
-            jobs=jobs,
-            keep=top,
-            progress=bar,
-        )
-    if res.message:
-        click.echo(res.message, err=True)
-    report = {
-        "candidates": res.n_candidates,
-        "seconds": round(res.seconds, 3),
-        "candidates_per_second": round(res.rate, 1),
-        "best_index": res.best_index,
-        "best_score": res.candidates[res.best_index].score,
-        "scorer": scorer,
-        "seed": seed,
-        "size": size,
-        "scores": [c.score for c in res.candidates] if scorer else None,
-    }
-    if out is not None:
-        _write_sweep_folder(out, res, report)
-    if sheet:
-        from matloom.render.sheet import contact_sheet
-
-        labels = [
-            f"#{i}"
-            + (f" {res.candidates[i].score:.1f}" if res.candidates[i].score is not None else "")
-            for i, _ in res.top_images
-        ]
-        _save_png(sheet, contact_sheet([im for _, im in res.top_images], labels))
-    click.echo(
-        f"{res.n_candidates} candidates in {res.seconds:.2f} s "
-        f"({res.rate:.0f}/s); best #{res.best_index}",
-        err=True,
-    )
-    if as_json:
-        click.echo(json.dumps(report, indent=2))
-    else:
-        click.echo(res.best_program)
-    sys.stdout.flush()
+        if as_json:
+            click.echo(json.dumps(report, indent=2))
+        else:
+            click.echo(res.best_program)
+        sys.stdout.flush()
 
 
 def _write_sweep_folder(out, res, report: dict) -> None:  # noqa: ANN001

@@ -28,6 +28,7 @@ inf / (1 + inf) = NaN -> 0; NaN albedo -> 0; see the ``nan_inf_fields`` fixture)
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from collections.abc import Callable
@@ -227,8 +228,10 @@ _SHADERS: dict[str, Callable[[dict[str, np.ndarray], np.ndarray, np.ndarray], np
 }
 
 
+@functools.cache
 def _numba_importable() -> bool:
-    """True when the numba shading kernels can be imported (imports numba)."""
+    """True when the numba shading kernels can be imported (imports numba; asked once, since
+    ``auto`` asks on every shade and a failed import is not cached by Python)."""
     try:
         import matloom.engine.kernels.shade_numba  # noqa: F401
     except ImportError:
