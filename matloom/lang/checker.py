@@ -271,6 +271,13 @@ class Checker:
             p = spec.param(arg.param)
             assert p is not None
             self.argument(spec.name, p, arg)
+            if p.needs is not None and _absent(node.arg(p.needs)) and not _is_none(arg.value):
+                self.warn(
+                    "W008",
+                    f"{spec.name}: {p.name} has no effect without {p.needs}",
+                    arg.span,
+                    hint=f"write {p.needs}=... or remove {p.name} (fmt drops it)",
+                )
         for seg in node.extra:
             seg_spec = FUNCTIONS.get(seg.func) if isinstance(seg, A.Call) else None
             if seg_spec is None or seg_spec.returns is not Returns.SEGMENT:
@@ -448,6 +455,11 @@ def _span_of(node: A.Node, fallback: Span) -> Span:
 
 def _is_none(node: A.Node) -> bool:
     return isinstance(node, A.Lit) and node.value is None
+
+
+def _absent(node: A.Node | None) -> bool:
+    """Not written, or written as None."""
+    return node is None or _is_none(node)
 
 
 def _describe(v: A.Node) -> str:

@@ -193,8 +193,9 @@ def _format_threshold(call: A.Call) -> str:
     parts = [format_expr(call.arg("expr"))] if call.arg("expr") is not None else []
     for side in ("below", "above"):
         at, to = _value(call, f"{side}_at"), _value(call, f"{side}_to")
-        if at is not None:
-            parts.append(f"{side}_at={fmt_num(at)}")  # type: ignore[arg-type]
+        if at is None:
+            continue  # without its cut-off a side's target has no effect (the reference drops it)
+        parts.append(f"{side}_at={fmt_num(at)}")  # type: ignore[arg-type]
         if to is not None and to != at:
             parts.append(f"{side}_to={fmt_num(to)}")  # type: ignore[arg-type]
     w = _value(call, "transition_width")

@@ -288,19 +288,21 @@ def _pattern_specs() -> list[FunctionSpec]:
             P(
                 "below_to",
                 Kind.FLOAT,
-                "value below the lower cutoff (default: below_at)",
+                "value below the lower cutoff (default: below_at; no effect without below_at)",
                 None,
                 nullable=True,
                 search=(0.0, 1.0),
+                needs="below_at",
             ),
             P("above_at", Kind.FLOAT, "upper cutoff", None, nullable=True, search=(0.0, 1.0)),
             P(
                 "above_to",
                 Kind.FLOAT,
-                "value above the upper cutoff (default: above_at)",
+                "value above the upper cutoff (default: above_at; no effect without above_at)",
                 None,
                 nullable=True,
                 search=(0.0, 1.0),
+                needs="above_at",
             ),
             P(
                 "transition_width",

@@ -85,6 +85,9 @@ class ParamSpec:
     #: Range used by parameter search, and whether to search it on a log scale.
     search: tuple[float, float] | None = None
     search_log: bool = False
+    #: A parameter without which this one has no effect (the checker warns, W008; the printer
+    #: drops it, as the reference's serialiser does).
+    needs: str | None = None
 
     @property
     def required(self) -> bool:

@@ -113,7 +113,8 @@ def test_plan_scales_octaves_in_the_coordinate_dtype() -> None:
     expected = (x[0] * np.float32(FBM["freq_x"] * FBM["lacunarity"])).astype(np.float64)
     assert np.array_equal(plan.xs[1], expected)
     grid = noise.plan_fbm(*_rotated(x, y), to_01=True, **FBM)
-    assert grid.xs is None and grid.fxs is not None and grid.fxs.dtype == np.float32
+    # full grids: float64 frequencies, the float32 grid widened before the product
+    assert grid.xs is None and grid.fxs is not None and grid.fxs.dtype == np.float64
 
 
 @pytest.mark.parametrize("rotate", [False, True])

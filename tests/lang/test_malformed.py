@@ -254,3 +254,13 @@ def test_seedless_noise_warns_w003_and_still_parses() -> None:
 def test_check_never_raises_on_the_table() -> None:
     for case in CASES:
         assert all(isinstance(d, matloom.Diagnostic) for d in matloom.check(case.text))
+
+
+def test_threshold_target_without_cutoff_warns_w008_and_is_dropped() -> None:
+    text = "Material(Layer(1).roughness(Threshold(X(), below_to=0.2, above_at=0.5, above_to=1)))"
+    assert [(d.code, d.column) for d in matloom.check(text)] == [("W008", 44)]
+    printed = matloom.format(matloom.parse(text))
+    assert "below_to" not in printed and "above_to=1" in printed
+    both = "Material(Layer(1).roughness(Threshold(X(), below_at=0.1, below_to=0.2)))"
+    assert matloom.check(both) == []
+    assert "below_to=0.2" in matloom.format(matloom.parse(both))

@@ -71,8 +71,9 @@ def _normal_call(call: A.Call) -> A.Node:  # noqa: C901 - one rule per documente
         for arg in call.args:
             at = call.arg(arg.param.replace("_to", "_at")) if arg.param.endswith("_to") else None
             same_as_at = at is not None and _static(at) == _static(arg.value)
+            inert = arg.param.endswith("_to") and (at is None or _static(at) is None)
             zero_width = arg.param == "transition_width" and _static(arg.value) == 0
-            if not (same_as_at or zero_width):
+            if not (same_as_at or inert or zero_width):
                 kept.append(arg)
         return replace(call, args=tuple(kept))
     if call.func == "Log":

@@ -443,7 +443,8 @@ static PyObject *fbm_separable(PyObject *self, PyObject *args)
 /* --- fbm_grid --------------------------------------------------------------------------- */
 
 typedef struct {
-    const void *xg, *yg, *fxs, *fys;
+    const void *xg, *yg;
+    const double *fxs, *fys;
     char x_fmt, y_fmt;
     const double *amps;
     Py_ssize_t octaves, size;
@@ -451,20 +452,18 @@ typedef struct {
     int to_01;
 } GridJob;
 
-/* dst[j] = grid[start + j] * freqs[k] in the grid's dtype (float32 for 'f'), then widened. */
-ALWAYS_INLINE void scale_chunk(double *dst, const void *grid, const void *freqs, char fmt,
+/* dst[j] = (double)grid[start + j] * freqs[k]: widened first, multiplied in double. */
+ALWAYS_INLINE void scale_chunk(double *dst, const void *grid, const double *freqs, char fmt,
                                Py_ssize_t start, Py_ssize_t n, Py_ssize_t k)
 {
+    double freq = freqs[k];
     if (fmt == 'f') {
         const float *src = (const float *)grid + start;
-        float freq = ((const float *)freqs)[k];
         for (Py_ssize_t j = 0; j < n; j++) {
-            float product = src[j] * freq;
-            dst[j] = (double)product;
+            dst[j] = (double)src[j] * freq;
         }
     } else {
         const double *src = (const double *)grid + start;
-        double freq = ((const double *)freqs)[k];
         for (Py_ssize_t j = 0; j < n; j++) {
             dst[j] = src[j] * freq;
         }
@@ -497,15 +496,15 @@ static void grid_loop(double *out, const GridJob *job, const NoiseContext *ctx)
 PyDoc_STRVAR(fbm_grid_doc,
 "fbm_grid(out, x_grid, y_grid, freqs_x, freqs_y, amps, perm, cast_values, norm, to_01)\n\n"
 "fBm at N points into out (float64, N items).  x_grid/y_grid: float32 or float64 (N,);\n"
-"freqs_x/freqs_y: (O,) per-octave frequencies in the dtype of x_grid/y_grid (each octave's\n"
-"coordinates are multiplied in that dtype, then widened); amps: float64 (O,); the rest as in\n"
+"freqs_x/freqs_y: float64 (O,) per-octave frequencies (each octave's coordinates are widened\n"
+"to float64, then multiplied); amps: float64 (O,); the rest as in\n"
 "fbm_separable.");
 
 static PyObject *fbm_grid(PyObject *self, PyObject *args)
 {
     ArrayArg arr[6] = {{NULL, "out", "d", 1, 0, 0},     {NULL, "x_grid", "fd", 0, 0, 0},
-                       {NULL, "y_grid", "fd", 0, 0, 0}, {NULL, "freqs_x", "fd", 0, 0, 0},
-                       {NULL, "freqs_y", "fd", 0, 0, 0}, {NULL, "amps", "d", 0, 0, 0}};
+                       {NULL, "y_grid", "fd", 0, 0, 0}, {NULL, "freqs_x", "d", 0, 0, 0},
+                       {NULL, "freqs_y", "d", 0, 0, 0}, {NULL, "amps", "d", 0, 0, 0}};
     PyObject *perm_obj;
     long long cast_nan, cast_pos, cast_neg;
     GridJob job;
@@ -521,9 +520,6 @@ static PyObject *fbm_grid(PyObject *self, PyObject *args)
     }
     job.octaves = arr[5].count;
     job.size = arr[0].count;
-    if (arr[3].format != arr[1].format || arr[4].format != arr[2].format) {
-        return fail("freqs_x/freqs_y must have the dtype of x_grid/y_grid", views, 6);
-    }
     if (job.octaves < 1 || arr[3].count != job.octaves || arr[4].count != job.octaves) {
         return fail("need >= 1 amplitude and one frequency per octave in freqs_x/freqs_y", views,
                     6);
@@ -533,8 +529,8 @@ static PyObject *fbm_grid(PyObject *self, PyObject *args)
     }
     job.xg = views[1].buf;
     job.yg = views[2].buf;
-    job.fxs = views[3].buf;
-    job.fys = views[4].buf;
+    job.fxs = (const double *)views[3].buf;
+    job.fys = (const double *)views[4].buf;
     job.x_fmt = arr[1].format;
     job.y_fmt = arr[2].format;
     job.amps = (const double *)views[5].buf;

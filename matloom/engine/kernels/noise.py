@@ -29,9 +29,9 @@ from matloom.engine.kernels.opensimplex import (
     CoordLayout,
     OctaveSchedule,
     coord_layout,
-    freq_in_dtype,
     octave_axes,
     octave_schedule,
+    scale_grid,
     worley_codes,
 )
 
@@ -66,9 +66,9 @@ def _flat_shape2d(layout: CoordLayout, size: int) -> tuple[int, int]:
 class FbmPlan:
     """The backend-independent part of an fBm call (see the module docstring); read-only.
 
-    Separable layouts carry the per-octave float64 axes ``xs`` (O, W) and ``ys`` (O, H); full
-    grids carry the per-octave frequencies rounded to the grid dtype ``fxs``/``fys`` (O,): the
-    loops multiply ``grid * f`` in that dtype, as numpy does, before widening.
+    Separable layouts carry the per-octave float64 axes ``xs`` (O, W) and ``ys`` (O, H), each
+    scaled in the axes' dtype; full grids carry the float64 per-octave frequencies ``fxs``/``fys``
+    (O,): the loops widen the grid to float64 and then multiply (``scale_grid``).
     """
 
     schedule: OctaveSchedule
@@ -92,20 +92,9 @@ class FbmPlan:
             assert self.xs is not None and self.ys is not None
             return self.xs, self.ys, self.ys.shape[1], self.xs.shape[1]
         sched = self.schedule
-        xs, ys = octave_axes(lay.x_grid, lay.y_grid, sched.freqs_x, sched.freqs_y)
+        xs = np.stack([scale_grid(lay.x_grid, f) for f in sched.freqs_x])
+        ys = np.stack([scale_grid(lay.y_grid, f) for f in sched.freqs_y])
         return (xs, ys, *_flat_shape2d(lay, lay.x_grid.size))
-
-
-_FLOAT32_MAX = float(np.finfo(np.float32).max)
-
-
-def _freqs_in(freqs: tuple[float, ...], dtype: np.dtype) -> np.ndarray:
-    """:func:`freq_in_dtype`, quiet where a frequency overflows float32 (numpy's own scalar
-    conversion overflows the same way)."""
-    if dtype == np.float32 and max(abs(f) for f in freqs) > _FLOAT32_MAX:
-        with np.errstate(over="ignore"):
-            return freq_in_dtype(freqs, dtype)
-    return freq_in_dtype(freqs, dtype)
 
 
 def plan_fbm(
@@ -126,8 +115,8 @@ def plan_fbm(
     if lay.separable:
         xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         return FbmPlan(sched, bool(to_01), lay, amps, xs, ys)
-    fxs = _freqs_in(sched.freqs_x, lay.x_grid.dtype)
-    fys = _freqs_in(sched.freqs_y, lay.y_grid.dtype)
+    fxs = np.array(sched.freqs_x, dtype=np.float64)
+    fys = np.array(sched.freqs_y, dtype=np.float64)
     return FbmPlan(sched, bool(to_01), lay, amps, fxs=fxs, fys=fys)
 
 
@@ -188,8 +177,9 @@ def fbm(
     """fBm of OpenSimplex noise on the broadcast of x and y (float64 result), on ``loops``;
     ``params`` are :func:`plan_fbm`'s (octaves, lacunarity, gain, freq_x, freq_y, to_01).
 
-    Per octave k the coordinates are ``x * f_k`` in the coordinate dtype (float32 axes round
-    each octave's coordinates to float32, like the reference); the noise runs in float64. With
+    Per octave k the coordinates are ``x * f_k``: in the axes' dtype on separable axes (float32
+    axes round each octave's coordinates to float32, like the reference), in float64 on full
+    grids (like the reference's per-cell kernel); the noise runs in float64. With
     a boolean ``mask`` (the broadcast shape) only the texels where it is set are computed
     (bit-identical to the dense values); the others hold ``fill``.
     """

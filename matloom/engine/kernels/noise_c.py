@@ -9,9 +9,8 @@ variable ``MATLOOM_PURE_NUMPY`` is not ``"1"`` (the choice is made in
 
 Everything that rounds in the coordinate dtype stays in Python/numpy, in the shared plan of
 :mod:`matloom.engine.kernels.noise`: separable axes are scaled per octave with ``scale_coords``;
-for full grids the per-octave frequencies are rounded to the grid dtype (``freq_in_dtype``) and
-the C code multiplies in that dtype before widening, as numpy does.  Importing this module never
-imports numba.
+for full grids the C code widens each coordinate to float64 and multiplies it by the float64
+per-octave frequency (``scale_grid``).  Importing this module never imports numba.
 """
 
 from __future__ import annotations

@@ -107,7 +107,7 @@ def _fbm_grid_kernel(
     last: int,
 ) -> None:
     """Chunks ``first``..``last - 1`` (``CHUNK`` texels each) of the flat-grid fBm;
-    ``xg[n] * fxs[k]`` is computed in the grid dtype. Serial and ``nogil`` (see above)."""
+    ``xg[n] * fxs[k]`` is computed in float64 (``scale_grid``). Serial and ``nogil`` (see above)."""
     scratch = new_scratch()
     values = scratch[3]
     xb = np.empty(CHUNK)
@@ -121,8 +121,8 @@ def _fbm_grid_kernel(
             total[j] = 0.0
         for k in range(amps.size):
             for j in range(n):
-                xb[j] = np.float64(xg_chunk[j] * fxs[k])
-                yb[j] = np.float64(yg_chunk[j] * fys[k])
+                xb[j] = np.float64(xg_chunk[j]) * fxs[k]
+                yb[j] = np.float64(yg_chunk[j]) * fys[k]
             noise_chunk(xb, yb, n, grad_table, scratch)
             for j in range(n):
                 total[j] += values[j] * FBM_SCALE * amps[k]
@@ -249,7 +249,7 @@ def _fbm_grid_masked_kernel(
     last: int,
 ) -> None:
     """Blocks ``first``..``last - 1`` (``_MASK_BLOCK`` texels each) of the flat-grid fBm at the
-    texels where ``mask`` is set, ``fill`` elsewhere; coordinates are scaled in the grid dtype,
+    texels where ``mask`` is set, ``fill`` elsewhere; coordinates are scaled in float64,
     exactly as in ``_fbm_grid_kernel``. Serial and ``nogil`` (see above)."""
     idx = np.empty(_MASK_BLOCK, np.int64)
     xk = np.empty((amps.size, _MASK_BLOCK))
@@ -265,8 +265,8 @@ def _fbm_grid_masked_kernel(
                 m += 1
         for k in range(amps.size):
             for q in range(m):
-                xk[k, idx[q]] = np.float64(xg[j0 + idx[q]] * fxs[k])
-                yk[k, idx[q]] = np.float64(yg[j0 + idx[q]] * fys[k])
+                xk[k, idx[q]] = np.float64(xg[j0 + idx[q]]) * fxs[k]
+                yk[k, idx[q]] = np.float64(yg[j0 + idx[q]]) * fys[k]
         _fbm_points(xk, yk, idx, m, amps, norm, to_01, grad_table, out[j0 : j0 + n])
 
 

@@ -29,7 +29,7 @@ from matloom.engine.kernels.opensimplex import (
     WORLEY_MIX2,
     WORLEY_SEARCH,
     perm_from_seed,
-    scale_coords,
+    scale_grid,
     worley_seed_term,
 )
 
@@ -92,15 +92,19 @@ def _ext_offsets(
     return ext_x, ext_y, base
 
 
-def noise2(x: np.ndarray, y: np.ndarray, perm: np.ndarray) -> np.ndarray:
+def noise2(
+    x: np.ndarray, y: np.ndarray, perm: np.ndarray, skew_sum: np.ndarray | None = None
+) -> np.ndarray:
     """OpenSimplex 2-D noise at float64 points (x, y broadcast together), raw range ~+-0.866.
 
-    Non-finite inputs give 0 (every attenuation test fails), as in the reference.
+    Non-finite inputs give 0 (every attenuation test fails), as in the reference. ``skew_sum``
+    replaces the skew's ``x + y`` (exact in float64 by default); the parity tests pass the sum
+    rounded to float32 to reproduce the reference's compiled kernel (docs/compatibility.md).
     """
     x = np.asarray(x, dtype=np.float64)
     y = np.asarray(y, dtype=np.float64)
     with np.errstate(invalid="ignore"):
-        stretch_offset = (x + y) * STRETCH_CONSTANT2
+        stretch_offset = (x + y if skew_sum is None else skew_sum) * STRETCH_CONSTANT2
         xs = x + stretch_offset
         ys = y + stretch_offset
         xsb_f = np.floor(xs)
@@ -155,15 +159,15 @@ def _fbm_grid(
     plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
 ) -> None:
     """The flat-grid fBm into ``out`` (N,), in chunks of ``_CHUNK`` texels; each octave's
-    coordinates are scaled in the grid dtype (``scale_coords``)."""
+    coordinates are widened to float64 and scaled (``scale_grid``)."""
     perm = perm_from_seed(seed)
     sched, lay = plan.schedule, plan.layout
     for start in range(0, out.size, _CHUNK):
         part = slice(start, start + _CHUNK)
         total = np.zeros(out[part].size)
         for k, amp in enumerate(sched.amps):
-            xk = scale_coords(lay.x_grid[part], sched.freqs_x[k])
-            yk = scale_coords(lay.y_grid[part], sched.freqs_y[k])
+            xk = scale_grid(lay.x_grid[part], sched.freqs_x[k])
+            yk = scale_grid(lay.y_grid[part], sched.freqs_y[k])
             total = total + noise2(xk, yk, perm) * FBM_SCALE * amp
         out[part] = _finish_fbm(total, plan.norm, plan.to_01)
 

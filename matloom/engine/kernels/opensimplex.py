@@ -246,9 +246,12 @@ def octave_axes(
     return xs, ys
 
 
-def freq_in_dtype(freqs: tuple[float, ...], dtype: np.dtype) -> np.ndarray:
-    """Per-octave frequencies rounded to the coordinate dtype (what numpy does to the scalar)."""
-    return np.array(freqs, dtype=np.float64).astype(dtype)
+def scale_grid(coords: np.ndarray, freq: float) -> np.ndarray:
+    """``coords * freq`` for full (non-separable) grids: widened to float64 first, then
+    multiplied in float64 -- the reference's per-cell kernel, which takes the float32 rotated
+    coordinates and scales them by ``f_k`` without rounding the product (unlike the separable
+    axes of :func:`scale_coords`; see docs/compatibility.md)."""
+    return np.asarray(coords, dtype=np.float64) * freq
 
 
 @functools.lru_cache(maxsize=64)
