@@ -1,6 +1,6 @@
 """Coverage culling: compute a noise field only where some layer can see it.
 
-In the fused path (:mod:`matloom.engine.fused`) the fBm fields of a band are *deferred*
+In the fused path (:mod:`matloom.engine.schedules.banded`) the fBm fields of a band are *deferred*
 (:class:`DeferredField`) while the layers' channels are evaluated. :func:`resolve` then looks at
 how each deferred field is used:
 

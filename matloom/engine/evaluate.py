@@ -1,6 +1,6 @@
 """Evaluation: AST -> sampled fields -> composited :class:`MaterialMaps`.
 
-:func:`evaluate` picks a schedule: the fused, banded one (:mod:`matloom.engine.fused`) for a
+:func:`evaluate` picks a schedule: the fused, banded one (:mod:`matloom.engine.schedules.banded`) for a
 backend with compiled kernels, else the dense one (:mod:`matloom.engine.schedules.dense`). Both
 run the one interpreter (:mod:`matloom.engine.interpret`) over the op table
 (:mod:`matloom.engine.ops`) and give the same maps, bit for bit.
@@ -102,8 +102,8 @@ def evaluate(
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")
     v = view if isinstance(view, View) else View(*(view or program.view_tuple))
     x, y = sample_axes(v, width, height)
-    if be.fused:  # same maps as below, bit for bit (see matloom.engine.fused)
-        from matloom.engine.fused import evaluate_fused
+    if be.fused:  # same maps as below, bit for bit (see matloom.engine.schedules.banded)
+        from matloom.engine.schedules.banded import evaluate_fused
 
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)

@@ -1,6 +1,6 @@
 """Reuse of compiled register programs across evaluations of the same program.
 
-:func:`matloom.engine.fused.compile_layers` turns the channel values of a band (trees of
+:func:`matloom.engine.schedules.banded.compile_layers` turns the channel values of a band (trees of
 :class:`~matloom.engine.lazy.Lazy` operations over leaf arrays and constants) into a register
 program. Evaluating the same program again at the same size gives trees of the same *structure*
 with new leaf arrays (other seeds, other views). :func:`signature` describes that structure --

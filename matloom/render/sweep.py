@@ -77,11 +77,11 @@ class _Renderer:
     local: threading.local = field(default_factory=threading.local)
 
     def __post_init__(self) -> None:
-        from matloom.engine import fused
         from matloom.engine.backends import get_backend
         from matloom.engine.grid import sample_axes
         from matloom.engine.kernels import preview_numba, relief_numba
         from matloom.engine.maps import View
+        from matloom.engine.schedules import banded as fused
         from matloom.engine.schedules.seed_batch import SweepEvaluator
         from matloom.render.preview import _light_and_half_vectors
 
@@ -115,7 +115,7 @@ class _Renderer:
         """The compiled chunk program, or None when the fused kernel cannot take the program
         (see :class:`fused.UnsupportedProgram`; its variants are then previewed one by one with
         the exact engine). Runs on the preparation thread, one chunk ahead of the shading."""
-        from matloom.engine import fused
+        from matloom.engine.schedules import banded as fused
 
         try:
             return self.chunk_program(seed_maps)
@@ -140,8 +140,8 @@ class _Renderer:
 
     def render(self, prog: Any, cand: int) -> np.ndarray:
         """Preview of candidate ``cand`` of the chunk program ``prog`` (runs on any thread)."""
-        from matloom.engine import fused
         from matloom.engine.kernels import composite_numba, preview_numba
+        from matloom.engine.schedules import banded as fused
 
         buffers = getattr(self.local, "buffers", None)
         if buffers is None:

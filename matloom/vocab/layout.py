@@ -3,7 +3,7 @@ from the registry's :class:`~matloom.vocab.spec.ChannelSpec` entries.
 
 Readers: the numpy compositing (:mod:`matloom.engine.composite`: ``RawLayer`` fields and
 defaults, conversions), the compositing and preview kernels (slot and plane indices as
-module-level constants), the fused path (:mod:`matloom.engine.fused`), ``MaterialMaps``
+module-level constants), the fused path (:mod:`matloom.engine.schedules.banded`), ``MaterialMaps``
 (:mod:`matloom.engine.maps`: its array fields), the preview shading's input checks, the
 exporter (:mod:`matloom.io.export`: one row per map) and the dependency analysis
 (:mod:`matloom.lang.deps`). Nothing else writes a channel list.

@@ -45,8 +45,8 @@ def test_material_maps_fields_are_the_layout_fields() -> None:
 
 numba = pytest.importorskip("numba")
 
-from matloom.engine import fused  # noqa: E402
 from matloom.engine.kernels import composite_numba as K  # noqa: E402
+from matloom.engine.schedules import banded as fused  # noqa: E402
 
 
 def test_compiled_kernel_constants_follow_the_layout() -> None:

@@ -11,13 +11,13 @@ import pytest
 
 pytest.importorskip("numba")
 
-from matloom.engine import fused  # noqa: E402
 from matloom.engine.backends import get_backend  # noqa: E402
 from matloom.engine.cull import channel_bounds  # noqa: E402
 from matloom.engine.evaluate import EvalStats, evaluate, prepare  # noqa: E402
 from matloom.engine.grid import sample_axes  # noqa: E402
 from matloom.engine.lazy import DeferredField, make_lazy  # noqa: E402
 from matloom.engine.maps import View  # noqa: E402
+from matloom.engine.schedules import banded as fused  # noqa: E402
 from matloom.examples import example_text  # noqa: E402
 from matloom.lang.random_program import random_program  # noqa: E402
 

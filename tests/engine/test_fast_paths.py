@@ -17,11 +17,12 @@ import pytest
 pytest.importorskip("numba")
 
 import matloom  # noqa: E402
-from matloom.engine import fused, relief  # noqa: E402
+from matloom.engine import relief  # noqa: E402
 from matloom.engine.backends import get_backend  # noqa: E402
 from matloom.engine.evaluate import evaluate  # noqa: E402
 from matloom.engine.kernels import composite_numba, relief_numba  # noqa: E402
 from matloom.engine.maps import ARRAY_FIELDS  # noqa: E402
+from matloom.engine.schedules import banded as fused  # noqa: E402
 from matloom.lang.random_program import random_program  # noqa: E402
 from matloom.render.sweep import run_sweep  # noqa: E402
 

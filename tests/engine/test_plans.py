@@ -7,8 +7,8 @@ import pytest
 
 pytest.importorskip("numba")
 
-from matloom.engine import fused  # noqa: E402
 from matloom.engine.evaluate import evaluate  # noqa: E402
+from matloom.engine.schedules import banded as fused  # noqa: E402
 from matloom.examples import example_text  # noqa: E402
 from matloom.lang.seeds import seed_variants  # noqa: E402
 

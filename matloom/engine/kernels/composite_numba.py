@@ -1,7 +1,7 @@
 """numba kernel: fused channel arithmetic + over-rule compositing, bit-identical to numpy.
 
 One call composites a band of rows. Per row it runs a small register program (the channel
-expressions above the primitive fields, compiled by :mod:`matloom.engine.fused`) and then applies
+expressions above the primitive fields, compiled by :mod:`matloom.engine.schedules.banded`) and then applies
 exactly the float32 compositing of :mod:`matloom.engine.composite`, so no full-size temporary
 channel array is ever created.
 
@@ -418,7 +418,7 @@ def _finish(acc, touched, running, planes, colours, i, zeroed):  # type: ignore[
 
 class CompositeArgs(NamedTuple):
     """The arguments of :func:`composite_rows` but the row range (built by
-    :func:`matloom.engine.fused.kernel_args`): the register program, the candidate, the sRGB
+    :func:`matloom.engine.schedules.banded.kernel_args`): the register program, the candidate, the sRGB
     decode set-up and the outputs."""
 
     loads: np.ndarray

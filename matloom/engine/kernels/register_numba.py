@@ -1,6 +1,6 @@
 """numba register machine for the deferred channel arithmetic of the fused evaluation path.
 
-A compiled program (see :func:`matloom.engine.fused.compile_layers`) is a table of rows
+A compiled program (see :func:`matloom.engine.schedules.banded.compile_layers`) is a table of rows
 (op, dst, a, b, round_to_f32, const_mask) over a register file of float64 rows, one row per
 register, evaluated one image row at a time. Leaves (primitive fields) are loaded with
 broadcasting from (S|1, H|1, W|1) arrays; constants are read directly by the operations.

@@ -11,7 +11,7 @@ opcode's operands mean is read from its :class:`RegisterOp` entry, never from it
 Opcode numbers are the positions in :data:`_TABLE`: add a new opcode at the end (the numbers of
 the others never change; tests/engine/test_register_ops.py pins them) and give it a body in
 ``register_numba`` (its loop in ``_unary``/``_binary*``, or its own branch for a parameter block).
-The compiler (:mod:`matloom.engine.fused`) and the op table name opcodes through
+The compiler (:mod:`matloom.engine.schedules.banded`) and the op table name opcodes through
 :data:`REGISTER_OPS` or :data:`OP_BY_SYMBOL`. Importing this module imports neither numba nor
 the kernels.
 """

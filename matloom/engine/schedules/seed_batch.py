@@ -99,9 +99,9 @@ class SweepEvaluator(LazyEvaluator):
 
 def chunk_program(ev: SweepEvaluator, seed_maps: list[dict[int, int]], size: int) -> Any:
     """Evaluate one chunk of candidates and compile its layers for the compositing kernel: a
-    :class:`~matloom.engine.fused.FusedProgram` (raises ``fused.UnsupportedProgram`` when the
+    :class:`~matloom.engine.schedules.banded.FusedProgram` (raises ``fused.UnsupportedProgram`` when the
     kernel cannot take the program). Imports the numba kernels on first use."""
-    from matloom.engine import fused
+    from matloom.engine.schedules import banded as fused
 
     ev.begin_chunk(seed_maps)
     with np.errstate(all="ignore"):
