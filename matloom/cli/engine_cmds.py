@@ -9,6 +9,7 @@ import click
 
 from matloom.cli import params
 from matloom.cli.lang_cmds import _read
+from matloom.vocab.spec import LANGUAGE_VERSION
 
 
 def load_program(path: str, program_seed: int = 0):  # noqa: ANN201 - returns (Program, text)
@@ -200,13 +201,23 @@ def render_cmd(
 @click.option(
     "--count", type=params.COUNT, default=1, show_default=True, help="Number of programs."
 )
-def random_cmd(seed: int, layers: int | None, defines: int | None, count: int) -> None:
+@click.option(
+    "--language",
+    type=click.IntRange(1, LANGUAGE_VERSION),
+    default=LANGUAGE_VERSION,
+    show_default=True,
+    help="Language version to draw from (1: the reference's vocabulary, its programs exactly).",
+)
+def random_cmd(
+    seed: int, layers: int | None, defines: int | None, count: int, language: int
+) -> None:
     """Print random always-valid programs built from the registry (for fuzzing)."""
-    from matloom.lang.random_program import random_program
+    from matloom.lang.random_program import RandomConfig, random_program
 
+    config = RandomConfig(language=language)
     for k in range(count):
         if count > 1:
             click.echo(f"# program {k} (seed {seed + k})")
-        click.echo(random_program(seed + k, layers=layers, defines=defines))
+        click.echo(random_program(seed + k, layers=layers, defines=defines, config=config))
         if count > 1:
             click.echo("")

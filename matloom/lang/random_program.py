@@ -32,6 +32,7 @@ from matloom.lang import ast as A
 from matloom.lang.printer import format_program
 from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import CHANNELS, FUNCTIONS, FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
+from matloom.vocab.spec import LANGUAGE_VERSION
 
 SEED_RANGE = 2**31
 """Noise seeds are drawn from [0, 2**31), as in the reference."""
@@ -73,6 +74,9 @@ class RandomConfig:
     colour_times_255: bool = True
     #: Extra value ranges, keyed ``"Function.param"`` or ``"param"`` (e.g. rotation in degrees).
     param_ranges: tuple[tuple[str, float, float], ...] = (("Rotate.degrees", 0.0, 360.0),)
+    #: Language version whose vocabulary is drawn from (functions, parameters and channels with
+    #: ``since`` <= it); 1 reproduces the reference generator's programs seed for seed.
+    language: int = LANGUAGE_VERSION
 
     def __post_init__(self) -> None:
         checks = (
@@ -149,11 +153,12 @@ class _Generator:
     def __init__(self, rng: random.Random, config: RandomConfig) -> None:
         self.rng = rng
         self.cfg = config
-        fields = [s for s in FUNCTIONS.values() if s.returns is Returns.FIELD]
+        vocabulary = [s for s in FUNCTIONS.values() if s.since <= config.language]
+        fields = [s for s in vocabulary if s.returns is Returns.FIELD]
         self.terminals = [s for s in fields if not _takes_fields(s)]
         self.producers = [s for s in fields if _takes_fields(s)]
-        self.shapes = [s for s in FUNCTIONS.values() if s.returns is Returns.SHAPE]
-        self.segments = [s for s in FUNCTIONS.values() if s.returns is Returns.SEGMENT]
+        self.shapes = [s for s in vocabulary if s.returns is Returns.SHAPE]
+        self.segments = [s for s in vocabulary if s.returns is Returns.SEGMENT]
         self.refs: list[str] = []
 
     # ------------------------------------------------------------------ program
@@ -188,7 +193,7 @@ class _Generator:
             alpha = self.alpha()
         channels = []
         for name, ch in CHANNELS.items():
-            if name == "alpha":  # the Layer(...) argument, drawn above
+            if name == "alpha" or ch.since > self.cfg.language:  # alpha: the Layer(...) argument
                 continue
             if self.cfg.channel_prob < 1.0 and self.rng.random() >= self.cfg.channel_prob:
                 continue
@@ -253,6 +258,8 @@ class _Generator:
         freq = self._frequencies(spec)
         args: list[A.Arg] = []
         for p in spec.params:
+            if p.since > self.cfg.language:
+                continue
             node = freq.get(p.name) if p.is_frequency else self.argument(spec, p, depth)
             if node is not None:
                 args.append(A.Arg(p.name, node))

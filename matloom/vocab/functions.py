@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from matloom.vocab.functions_math import math_v2_specs
 from matloom.vocab.spec import FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 
 P = ParamSpec
@@ -471,6 +472,7 @@ FUNCTIONS: dict[str, FunctionSpec] = {
         *_pattern_specs(),
         *_transform_specs(),
         *_shape_specs(),
+        *math_v2_specs(),
     )
 }
 """Name -> spec for every callable of the language."""

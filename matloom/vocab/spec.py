@@ -85,6 +85,9 @@ class ParamSpec:
     #: Range used by parameter search, and whether to search it on a log scale.
     search: tuple[float, float] | None = None
     search_log: bool = False
+    #: Language version that introduced the parameter (``matloom random --language 1`` leaves
+    #: out everything newer, reproducing the reference generator's programs).
+    since: int = 1
     #: A parameter without which this one has no effect (the checker warns, W008; the printer
     #: drops it, as the reference's serialiser does).
     needs: str | None = None
@@ -136,6 +139,8 @@ class FunctionSpec:
     #: Extra trailing positional arguments (Path segments).
     variadic: ParamSpec | None = None
     min_variadic: int = 0
+    #: Language version that introduced the function (see ``ParamSpec.since``).
+    since: int = 1
 
     def param(self, name: str) -> ParamSpec | None:
         for p in self.params:
@@ -183,6 +188,8 @@ class ChannelSpec:
     blend: Blend = Blend.OVER
     #: Meaning of the exported map, written into ``material.json`` (default: ``doc``).
     map_doc: str = ""
+    #: Language version that introduced the channel (see ``ParamSpec.since``).
+    since: int = 1
 
     @property
     def arity(self) -> int:
@@ -218,3 +225,7 @@ def format_default(v: Any) -> str:
     if v == math.e:
         return "e"
     return _num(v)
+
+
+#: The current language version (``FunctionSpec.since`` and friends are at most this).
+LANGUAGE_VERSION = 2

@@ -21,6 +21,7 @@ from matloom.engine.ops.op import (
     not_constant,
     unbounded,
 )
+from matloom.engine.ops.table_math import MATH_V2_ENTRIES
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
 _FIELDS = "matloom.engine.ops.fields:"
@@ -241,7 +242,7 @@ _ENTRIES: tuple[Op, ...] = (
 )
 
 #: Every registry function's :class:`Op`, by function name.
-OPS: dict[str, Op] = {op.name: op for op in _ENTRIES}
+OPS: dict[str, Op] = {op.name: op for op in (*_ENTRIES, *MATH_V2_ENTRIES)}
 
 
 def operator_ops() -> dict[str, Op]:
