@@ -26,7 +26,7 @@ from matloom.engine.kernels import shapes
 from matloom.engine.kernels.mathops import count_zero
 from matloom.engine.ops import OPS, Kind, Op, operator_ops
 from matloom.lang import ast as A
-from matloom.lang.cost import FrameTable, transform_values
+from matloom.lang.cost import FrameTable, field_params, transform_values
 from matloom.lang.static import param_value
 from matloom.vocab import CONSTANTS, FUNCTIONS
 from matloom.vocab.spec import Kind as ParamKind
@@ -198,14 +198,61 @@ class Evaluator:
     def transform(self, call: A.Call, c: Coords) -> Coords:
         """Coordinates of ``call``'s operand. Their frame is the composed transform, so a Define
         used in equal frames reached by different paths is evaluated once (the first path's
-        value is shared; see :mod:`matloom.lang.cost`)."""
+        value is shared; see :mod:`matloom.lang.cost`). A transform with field parameters is a
+        domain warp (:meth:`warp`)."""
+        warped = field_params(call)
+        if warped:
+            return self.warp(call, c, warped)
         a, b = transform_values(call)
         new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
         return Frame(*new, self.frame_table.child(self._frame_id(c), call.func, (a, b)))
 
+    def warp(self, call: A.Call, c: Coords, warped: tuple[str, ...]) -> Coords:
+        """A domain warp: the field parameters evaluated at the samples' coordinates ``c``,
+        then the transform applied per sample in the coordinates' dtype (a constant given as a
+        field gives the very coordinates of the constant transform); a frame of its own."""
+        dtype = np.result_type(c[0], c[1])
+        values: list[Any] = []
+        for p in FUNCTIONS[call.func].params:
+            if not p.field:
+                continue
+            if p.name in warped:
+                values.append(np.asarray(self.concrete(self.eval(call.arg(p.name), c))))
+            else:
+                values.append(param_value(call, p.name))
+        a, b = warp_values(call.func, values)
+        a, b = (np.asarray(v).astype(dtype) if np.ndim(v) else v for v in (a, b))
+        with np.errstate(all="ignore"):
+            new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
+        return self.new_frame(*new)
+
+    def new_frame(self, x: Any, y: Any) -> Coords:
+        """Coordinates that no transform of the grid made (a frame equal to no other)."""
+        return Frame(x, y, self.frame_table.unique())
+
+    def concrete(self, value: Any) -> Any:
+        """The array of a value (dense values already are; see LazyEvaluator)."""
+        return value
+
+    def seed_of(self, call: A.Call) -> int:
+        """The seed ``call`` runs with (a seed batch may vary it)."""
+        seed = self.num(call, "seed")
+        if seed is None:
+            raise ValueError(f"{call.func} has no seed; canonicalise the program first")
+        return int(seed)
+
     def shape(self, node: A.Call) -> shapes.Shape:
         """The geometry of a shape (or path segment) node."""
         return OPS[node.func].numpy(self, node)  # type: ignore[no-any-return]
+
+
+def warp_values(func: str, values: list[Any]) -> tuple[Any, Any]:
+    """:func:`~matloom.lang.cost.transform_values` of a domain warp, from the field parameters'
+    values (arrays or floats, registry order): Rotate's (cos, sin) through numpy's radians."""
+    if func != "Rotate":
+        return values[0], values[1]
+    rad = np.radians(values[0])
+    return np.cos(rad), np.sin(rad)
 
 
 def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:

@@ -10,7 +10,7 @@ from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
 from matloom.lang.lexer import as_float
 from matloom.lang.parser import MAX_NESTING
-from matloom.lang.static import static_number, uses_coordinates
+from matloom.lang.static import is_static, static_number, uses_coordinates
 from matloom.vocab import FUNCTIONS, Kind, ParamSpec, Returns
 
 MAX_NODES = 20_000
@@ -369,6 +369,9 @@ class Checker:
                 span,
                 expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}",
             )
+            return
+        if p.field and not is_static(v):  # a field parameter: checked like an operand
+            self.expr(v)
             return
         raw = static_number(v)
         if raw is None:

@@ -47,6 +47,20 @@ def transform_values(call: A.Call) -> tuple[float, float]:
     return math.cos(rad), math.sin(rad)
 
 
+def field_params(call: A.Call) -> tuple[str, ...]:
+    """The parameters of ``call`` that accept fields and are written as non-constant
+    expressions (X()/Y() included): a transform with any is a domain warp, evaluated per
+    sample, whose frame equals no other."""
+    spec = FUNCTIONS.get(call.func)
+    if spec is None:
+        return ()
+    return tuple(
+        p.name
+        for p in spec.params
+        if p.field and (node := call.arg(p.name)) is not None and not is_static(node)
+    )
+
+
 def _matrix(func: str, u: float, v: float) -> Affine:
     if func == "Translate":
         return (1.0, 0.0, -u, 0.0, 1.0, -v)
@@ -158,14 +172,19 @@ class Cost:
 
 
 def _field_children(node: A.Node) -> tuple[A.Node, ...]:
-    """The sub-expressions the evaluator evaluates as fields (not static parameters)."""
+    """The sub-expressions the evaluator evaluates as fields (not static parameters; field
+    parameters written as non-constant expressions are fields)."""
     if not isinstance(node, A.Call):
         return A.children(node)
     spec = FUNCTIONS.get(node.func)
     if spec is None:
         return A.children(node)
-    kinds = {p.name: p.kind for p in spec.params}
-    return tuple(a.value for a in node.args if kinds.get(a.param) is Kind.EXPR)
+    fields = {p.name for p in spec.params if p.kind is Kind.EXPR} | set(field_params(node))
+    return tuple(a.value for a in node.args if a.param in fields)
+
+
+#: Instances a Tile evaluates its motif in (its cell and the 8 neighbours).
+TILE_INSTANCES = 9
 
 
 def _shape_nodes(node: A.Call) -> int:
@@ -211,7 +230,12 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
     if isinstance(node, A.Ref):
         return ("ref", node.name)
     if isinstance(node, A.Call) and node.func in TRANSFORMS:
-        return ("transform", node.func, _transform_values(node), node.arg("expr"))
+        warp = field_params(node)
+        values = None if warp else _transform_values(node)
+        params = tuple(node.arg(name) for name in warp)
+        return ("transform", node.func, values, node.arg("expr"), params, 1)
+    if isinstance(node, A.Call) and node.func == "Tile":
+        return ("transform", node.func, None, node.arg("expr"), (), TILE_INSTANCES)
     extra = _shape_nodes(node) if isinstance(node, A.Call) and node.func in _SHAPED else 0
     axis = isinstance(node, A.Call) and node.func in ("X", "Y")
     return ("field", extra, _field_children(node), not (axis or _constant(node, constants)))
@@ -255,12 +279,16 @@ class _Walk:
                     self.seen.add(key)
                     stack.append((self.defines[info[1]], frame, held))
             elif info[0] == "transform":
-                child = self.child_frame(info[1], info[2], frame)
-                turned = child != frame and self.table.is_rotated(child)
-                if turned:
-                    self.rotated.add(child)
-                if info[3] is not None:
-                    stack.append((info[3], child, held + turned))
+                for _ in range(info[5]):  # Tile: one frame per instance
+                    child = self.child_frame(info[1], info[2], frame)
+                    turned = child != frame and self.table.is_rotated(child)
+                    if turned:
+                        self.rotated.add(child)
+                    if info[3] is not None:
+                        stack.append((info[3], child, held + turned))
+                if info[4]:  # a warp's field parameters, in the parent frame (evaluated first)
+                    self.arrays += len(info[4])
+                    stack.extend((k, frame, held) for k in reversed(info[4]))
             else:
                 self.nodes += info[1]
                 self.arrays += info[3]

@@ -10,7 +10,7 @@ import math
 
 from matloom.lang import ast as A
 from matloom.lang.lexer import as_float
-from matloom.lang.static import static_number
+from matloom.lang.static import is_static, static_number
 from matloom.vocab import CONSTANTS, FUNCTIONS, Kind, ParamSpec, PrintStyle
 from matloom.vocab.spec import format_default
 
@@ -61,6 +61,8 @@ def _static_text(node: A.Node | None, p: ParamSpec) -> str:
     if isinstance(node, A.Str):
         return f'"{node.value}"'
     if isinstance(node, A.Lit):
+        return format_expr(node)
+    if p.field and not is_static(node):  # a field expression (X()/Y() included)
         return format_expr(node)
     v = _static_number(node)
     if v is None:  # not constant: invalid program, print as written
@@ -168,6 +170,9 @@ def _nondefault_keywords(call: A.Call) -> list[str]:
     out = []
     has_freq = spec.param("base_freq") is not None
     for p in spec.params:
+        if p.required:  # positionally, first (Tile's motif and cell size)
+            out.append(_arg_text(call, p))
+            continue
         if p.is_frequency:
             if p.name == "base_freq" and has_freq:
                 out.extend(_weave_freq(call, p))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from matloom.vocab.functions_math import math_v2_specs
+from matloom.vocab.instancing import instancing_specs
 from matloom.vocab.spec import FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 
 P = ParamSpec
@@ -325,31 +326,50 @@ def _transform_specs() -> list[FunctionSpec]:
         FunctionSpec(
             "Translate",
             "transform",
-            "move a field by (dx, dy)",
+            "move a field by (dx, dy); dx/dy may be fields (domain warping): Translate(f, dx, dy) at p is f(x - dx(p), y - dy(p))",
             "Translate(X(), 0.5, 0)",
             (
                 body,
-                P("dx", Kind.FLOAT, "offset along x", 0.0, search=(-100, 100)),
-                P("dy", Kind.FLOAT, "offset along y", 0.0, search=(-100, 100)),
+                P("dx", Kind.FLOAT, "offset along x", 0.0, search=(-100, 100), field=True),
+                P("dy", Kind.FLOAT, "offset along y", 0.0, search=(-100, 100), field=True),
             ),
         ),
         FunctionSpec(
             "Scale",
             "transform",
-            "scale a field about the origin (negative mirrors)",
+            "scale a field about the origin (negative mirrors); sx/sy may be fields, evaluated at each sample: f(x / sx(p), y / sy(p))",
             "Scale(Bricks(), 2, 1)",
             (
                 body,
-                P("sx", Kind.FLOAT, "factor along x", 1.0, nonzero=True, search=(0.1, 10)),
-                P("sy", Kind.FLOAT, "factor along y", 1.0, nonzero=True, search=(0.1, 10)),
+                P(
+                    "sx",
+                    Kind.FLOAT,
+                    "factor along x",
+                    1.0,
+                    nonzero=True,
+                    search=(0.1, 10),
+                    field=True,
+                ),
+                P(
+                    "sy",
+                    Kind.FLOAT,
+                    "factor along y",
+                    1.0,
+                    nonzero=True,
+                    search=(0.1, 10),
+                    field=True,
+                ),
             ),
         ),
         FunctionSpec(
             "Rotate",
             "transform",
-            "rotate a field counter-clockwise about the origin",
+            "rotate a field counter-clockwise about the origin; degrees may be a field, evaluated at each sample (a swirl)",
             "Rotate(Bricks(), 45)",
-            (body, P("degrees", Kind.FLOAT, "angle in degrees", 0.0, search=(-360, 360))),
+            (
+                body,
+                P("degrees", Kind.FLOAT, "angle in degrees", 0.0, search=(-360, 360), field=True),
+            ),
         ),
     ]
 
@@ -473,6 +493,7 @@ FUNCTIONS: dict[str, FunctionSpec] = {
         *_transform_specs(),
         *_shape_specs(),
         *math_v2_specs(),
+        *instancing_specs(),
     )
 }
 """Name -> spec for every callable of the language."""

@@ -88,6 +88,9 @@ class ParamSpec:
     #: Language version that introduced the parameter (``matloom random --language 1`` leaves
     #: out everything newer, reproducing the reference generator's programs).
     since: int = 1
+    #: Accepts a field expression (language 2): evaluated at each sample, like an operand; a
+    #: constant (no X()/Y(), noise or Define) is used as the number it is.
+    field: bool = False
     #: A parameter without which this one has no effect (the checker warns, W008; the printer
     #: drops it, as the reference's serialiser does).
     needs: str | None = None

@@ -79,7 +79,7 @@ CASES = [
     Case("stroke_zero_width", "Material(Layer(Stroke(Ellipse(0, 0, 1, 1), 0)))", "E050", 1, 44),
     Case("freq_none_without_axes", _r("fBm(base_freq=None, base_freq_x=2, seed=1)"),
          "E055", 1, 29, "base_freq_y"),
-    Case("field_in_numeric_slot", _r("Translate(X(), fBm(seed=1), 0)"), "E045", 1, 44),
+    Case("field_in_numeric_slot", _r("Log(X(), fBm(seed=1))"), "E045", 1, 38),
     Case("bool_parameter_string", _r('fBm(to_01="yes", seed=1)'), "E053", 1, 39),
     Case("bad_enum", _r('Worley(distance="cosine", seed=1)'), "E051", 1, 45, "euclidean"),
     Case("bad_enum_nearest", _r('Bricks(axis="rows")'), "E051", 1, 41, "`row`"),
@@ -264,3 +264,15 @@ def test_threshold_target_without_cutoff_warns_w008_and_is_dropped() -> None:
     both = "Material(Layer(1).roughness(Threshold(X(), below_at=0.1, below_to=0.2)))"
     assert matloom.check(both) == []
     assert "below_to=0.2" in matloom.format(matloom.parse(both))
+
+
+def test_transform_parameters_accept_fields() -> None:
+    """Language 2: Translate/Scale/Rotate take field parameters (domain warping), printed as
+    written; X()/Y() there are per-sample, so W004 does not apply."""
+    text = "Material(Layer(1).roughness(Rotate(Translate(X(), fBm(seed=1), Y() * 0.5), X())))"
+    assert matloom.check(text) == []
+    printed = matloom.format(matloom.parse(text))
+    assert "Translate(X(), fBm(seed=1), (Y() * 0.5))" in printed and "X()))" in printed
+    assert [d.code for d in matloom.check("Material(Layer(1).roughness(Log(X(), X() + 2)))")] == [
+        "W004"
+    ]

@@ -52,6 +52,9 @@ class Backend:
     fill: Kernel
     stroke: Kernel
     worley_seed_batch: Kernel
+    #: ``tile(x, y, params, dr, dc)``: Tile's instance frame of one neighbour cell
+    #: (local x, local y, keep); see :mod:`matloom.engine.kernels.tile`.
+    tile: Kernel
     #: Evaluate through the fused numba compositing path (identical results, less memory).
     fused: bool = False
     #: ``fbm`` at the texels of a boolean mask only (coverage culling, see engine.cull).
@@ -107,18 +110,20 @@ def _shared_kernels(name: str) -> dict[str, Any]:
 
 
 def _numpy_backend() -> Backend:
-    from matloom.engine.kernels import noise_numpy, patterns
+    from matloom.engine.kernels import noise_numpy, patterns, tile
 
     noise = noise_kernels(numpy_fbm_loops, noise_numpy.WORLEY_LOOPS)
-    return Backend("numpy", bricks=patterns.bricks, **_shared_kernels("numpy"), **noise)
+    shared = _shared_kernels("numpy")
+    return Backend("numpy", bricks=patterns.bricks, tile=tile.instance, **shared, **noise)
 
 
 def _numba_backend() -> Backend:
-    from matloom.engine.kernels import noise_numba, patterns_numba
+    from matloom.engine.kernels import noise_numba, patterns_numba, tile_numba
 
     noise = noise_kernels(lambda: noise_numba.FBM_LOOPS, noise_numba.WORLEY_LOOPS)
     shared = _shared_kernels("numba")
-    return Backend("numba", bricks=patterns_numba.bricks, fused=True, **shared, **noise)
+    kernels = dict(bricks=patterns_numba.bricks, tile=tile_numba.instance)
+    return Backend("numba", fused=True, **kernels, **shared, **noise)
 
 
 _FACTORIES: dict[str, Callable[[], Backend]] = {"numpy": _numpy_backend, "numba": _numba_backend}

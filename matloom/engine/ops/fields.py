@@ -60,6 +60,23 @@ def stroke(ev: Any, call: A.Call, c: Any) -> Any:
     )
 
 
+def tile(ev: Any, call: A.Call, c: Any) -> Any:
+    """Tile: the motif in each of the 9 neighbouring instances' frames, dropped instances as
+    0, the maximum over them (see :mod:`matloom.engine.kernels.tile`)."""
+    from matloom.engine.kernels.tile import NEIGHBOURS, TileParams
+
+    params = TileParams.of({**ev.params(call), "seed": ev.seed_of(call)})
+    motif = call.arg("expr")
+    out = None
+    for dr, dc in NEIGHBOURS:
+        lx, ly, keep = ev.backend.tile(c[0], c[1], params, dr, dc)
+        value = ev.concrete(ev.eval(motif, ev.new_frame(lx, ly)))
+        with np.errstate(invalid="ignore"):
+            value = np.where(keep, value, 0.0)
+            out = value if out is None else np.maximum(out, value)
+    return out
+
+
 def transformed(ev: Any, call: A.Call, c: Any) -> Any:
     """The operand evaluated in the transformed coordinates (see ``Evaluator.transform``)."""
     return ev.eval(call.arg("expr"), ev.transform(call, c))

@@ -233,6 +233,8 @@ _ENTRIES: tuple[Op, ...] = (
     _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b)),
     _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b)),
     _field("Rotate", "transformed", coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y)),
+    # instancing: the operand in 9 neighbouring instance frames
+    _field("Tile", "tile"),
     # geometry (arguments of Fill/Stroke; not fields)
     _geometry("Rect", "rect"),
     _geometry("Ellipse", "ellipse"),

@@ -18,6 +18,7 @@ from matloom.engine.cull import resolve
 from matloom.engine.interpret import layer_fields
 from matloom.engine.lazy import LazyEvaluator, defer_fbm
 from matloom.lang import ast as A
+from matloom.lang.cost import field_params
 
 
 def seeded_nodes(program: A.Program) -> set[int]:
@@ -68,10 +69,21 @@ class SweepEvaluator(LazyEvaluator):
         return self.persistent[key]
 
     def transform(self, call: A.Call, c: Any) -> Any:
+        if any(id(call.arg(name)) in self.seeded for name in field_params(call)):
+            raise _unsupported("a domain warp by a seeded field")
         key = (id(call), -1 - self._frame_id(c))
         if key not in self.persistent:
             self.persistent[key] = super().transform(call, c)
         return self.persistent[key]
+
+    def seed_of(self, call: A.Call) -> int:
+        """The one seed of ``call`` in this chunk (a primitive that cannot batch seeds, such as
+        Tile's instances, makes the chunk unsupported when its seed varies)."""
+        seed = super().seed_of(call)
+        seeds = {m.get(seed, seed) for m in self.seed_maps}
+        if len(seeds) > 1:
+            raise _unsupported(f"{call.func} with a varying seed")
+        return seeds.pop()
 
     def batch_args(self, call: A.Call) -> dict[str, Any]:
         """The noise kernel's keywords with the chunk's seeds instead of the seed."""
@@ -95,6 +107,13 @@ class SweepEvaluator(LazyEvaluator):
 
         # the batch kernel skips a masked pixel at no cost: mask unless every pixel is needed
         return defer_fbm(compute, c[0], c[1], kw, seeds=len(kw["seeds"]), full_share=1.0)
+
+
+def _unsupported(what: str) -> Exception:
+    """The fused path's UnsupportedProgram: the sweep previews such variants one by one."""
+    from matloom.engine.schedules import banded
+
+    return banded.UnsupportedProgram(f"seed batches cannot take {what}")
 
 
 def chunk_program(ev: SweepEvaluator, seed_maps: list[dict[int, int]], size: int) -> Any:

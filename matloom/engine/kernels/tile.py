@@ -1,0 +1,145 @@
+"""Per-instance geometry of ``Tile`` (motif instancing), numpy version.
+
+The plane is divided into cells of ``width`` x ``height``; row ``r = floor(y / height)`` is
+shifted right by ``r * offset * width`` (as Bricks shifts its courses). For a sample and one of
+the 9 neighbour offsets (dr, dc), the instance is the one of cell (r + dr, c + dc), where c is
+the sample's column in row r + dr. Each cell draws five uniform numbers from a splitmix64 hash
+of (seed, stream, row, column): its shift (streams 0, 1: up to ``jitter`` times the cell size
+per axis), its rotation (stream 2: within +-``rotate`` degrees), its scale (stream 3: in
+[scale_min, scale_max]) and whether it is kept (stream 4: with ``probability``).
+
+:func:`instance` returns the sample's coordinates in that instance's frame (origin at the
+instance centre, rotated and scaled with it) and the keep mask. The numba kernel
+(:mod:`.tile_numba`) computes the same numbers; the rotation's cosine and sine are taken with
+numpy on both backends, so the backends agree bit for bit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+#: The 9 (row, column) offsets of a sample's own cell and its neighbours.
+NEIGHBOURS: tuple[tuple[int, int], ...] = tuple((dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1))
+#: Cell indices beyond this magnitude are not hashed (the instance is dropped).
+MAX_CELL = 2.0**52
+_GOLDEN = np.uint64(0x9E3779B97F4A7C15)
+_M1 = np.uint64(0xBF58476D1CE4E5B9)
+_M2 = np.uint64(0x94D049BB133111EB)
+_STREAMS = 5
+
+
+@dataclass(frozen=True)
+class TileParams:
+    """Tile's static parameters (see the registry entry)."""
+
+    width: float
+    height: float
+    jitter: float = 0.0
+    rotate: float = 0.0
+    scale_min: float = 1.0
+    scale_max: float = 1.0
+    probability: float = 1.0
+    offset: float = 0.0
+    seed: int = 0
+
+    @classmethod
+    def of(cls, params: dict[str, Any]) -> TileParams:
+        return cls(**{k: params[k] for k in cls.__dataclass_fields__ if k in params})
+
+    @property
+    def rotates(self) -> bool:
+        return self.rotate != 0.0
+
+    def consts(self) -> np.ndarray:
+        """float64 constants of the kernels: w, h, offset * w, jitter * w, jitter * h,
+        scale_min, scale_max - scale_min, probability, rotate in radians."""
+        w, h = float(self.width), float(self.height)
+        return np.array(
+            [
+                w,
+                h,
+                float(self.offset) * w,
+                float(self.jitter) * w,
+                float(self.jitter) * h,
+                float(self.scale_min),
+                float(self.scale_max) - float(self.scale_min),
+                float(self.probability),
+                float(self.rotate) * (math.pi / 180.0),
+            ]
+        )
+
+
+def _mix(z: np.ndarray) -> np.ndarray:
+    """The splitmix64 finaliser (uint64, wrapping)."""
+    z = (z ^ (z >> np.uint64(30))) * _M1
+    z = (z ^ (z >> np.uint64(27))) * _M2
+    return z ^ (z >> np.uint64(31))
+
+
+def stream_keys(seed: int) -> np.ndarray:
+    """uint64 (5,): the hash key of each stream for ``seed``."""
+    base = (int(seed) * 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+    return np.array([(base + k) & 0xFFFFFFFFFFFFFFFF for k in range(_STREAMS)], dtype=np.uint64)
+
+
+def uniform(key: np.uint64, row: np.ndarray, col: np.ndarray) -> np.ndarray:
+    """A uniform [0, 1) float64 per (row, col) (int64 arrays) for one stream key."""
+    with np.errstate(over="ignore"):
+        z = _mix(np.uint64(key) + _GOLDEN)
+        z = _mix(z + row.astype(np.uint64))
+        z = _mix(z + col.astype(np.uint64))
+    return (z >> np.uint64(11)).astype(np.float64) * (1.0 / 9007199254740992.0)
+
+
+def instance_parts(
+    x: np.ndarray, y: np.ndarray, p: TileParams, dr: int, dc: int
+) -> tuple[np.ndarray, ...]:
+    """(dx, dy, scale, theta, keep) of neighbour (dr, dc) at every sample (full grids,
+    float64): the offset from the instance centre, its scale, its rotation in radians and
+    whether it is kept. Non-finite coordinates and cells past :data:`MAX_CELL` are dropped
+    (NaN offsets)."""
+    k = p.consts()
+    w, h, shift_w, jit_w, jit_h, smin, srange, prob, rot = (float(v) for v in k)
+    x64, y64 = np.broadcast_arrays(np.asarray(x, np.float64), np.asarray(y, np.float64))
+    with np.errstate(all="ignore"):
+        r = np.floor(y64 / h) + dr
+        shift = r * shift_w
+        c = np.floor((x64 - shift) / w) + dc
+        valid = (np.abs(r) < MAX_CELL) & (np.abs(c) < MAX_CELL)
+        ri = np.where(valid, r, 0.0).astype(np.int64)
+        ci = np.where(valid, c, 0.0).astype(np.int64)
+        keys = stream_keys(p.seed)
+        u = [uniform(keys[s], ri, ci) for s in range(_STREAMS)]
+        keep = valid & (u[4] < prob)
+        cx = (c + 0.5) * w + shift + (2.0 * u[0] - 1.0) * jit_w
+        cy = (r + 0.5) * h + (2.0 * u[1] - 1.0) * jit_h
+        dx = np.where(valid, x64 - cx, np.nan)
+        dy = np.where(valid, y64 - cy, np.nan)
+        scale = smin + srange * u[3]
+        theta = (2.0 * u[2] - 1.0) * rot
+    return dx, dy, scale, theta, keep
+
+
+def local_coords(
+    dx: np.ndarray, dy: np.ndarray, scale: np.ndarray, theta: np.ndarray, rotates: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """The instance-frame coordinates: the offset rotated by -theta, divided by the scale
+    (shared by both backends: numpy's cos/sin and element-wise arithmetic)."""
+    with np.errstate(all="ignore"):
+        if not rotates:
+            return dx / scale, dy / scale
+        cos, sin = np.cos(theta), np.sin(theta)
+        return (cos * dx + sin * dy) / scale, (cos * dy - sin * dx) / scale
+
+
+def instance(
+    x: np.ndarray, y: np.ndarray, p: TileParams, dr: int, dc: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(local x, local y, keep) of neighbour (dr, dc) at every sample (numpy backend)."""
+    dx, dy, scale, theta, keep = instance_parts(x, y, p, dr, dc)
+    lx, ly = local_coords(dx, dy, scale, theta, p.rotates)
+    return lx, ly, keep
