@@ -230,6 +230,12 @@ class Evaluator:
         """Coordinates that no transform of the grid made (a frame equal to no other)."""
         return Frame(x, y, self.frame_table.unique())
 
+    def motif_support(self, node: A.Node) -> Any:
+        """The box outside which ``node`` is exactly 0, or None (engine.ops.support)."""
+        from matloom.engine.ops.support import support
+
+        return support(self, node, OPS, OPERATORS)
+
     def concrete(self, value: Any) -> Any:
         """The array of a value (dense values already are; see LazyEvaluator)."""
         return value

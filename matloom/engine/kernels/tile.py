@@ -9,9 +9,10 @@ per axis), its rotation (stream 2: within +-``rotate`` degrees), its scale (stre
 [scale_min, scale_max]) and whether it is kept (stream 4: with ``probability``).
 
 :func:`instance` returns the sample's coordinates in that instance's frame (origin at the
-instance centre, rotated and scaled with it) and the keep mask. The numba kernel
-(:mod:`.tile_numba`) computes the same numbers; the rotation's cosine and sine are taken with
-numpy on both backends, so the backends agree bit for bit.
+instance centre, rotated and scaled with it) and which samples the instance can reach (kept,
+and inside the motif's support box when one is known). The numba kernel (:mod:`.tile_numba`)
+computes the same numbers in the same order; the rotation's cosine and sine come from
+:func:`cos_sin` (basic arithmetic only), so the backends agree bit for bit.
 """
 
 from __future__ import annotations
@@ -124,22 +125,55 @@ def instance_parts(
     return dx, dy, scale, theta, keep
 
 
+#: Taylor coefficients of sin (odd powers 3..17) for :func:`half_sin`.
+SIN_COEFFS: tuple[float, ...] = tuple((-1.0) ** k / math.factorial(2 * k + 1) for k in range(1, 9))
+
+
+def cos_sin(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(cos, sin) of angles in [-pi, pi] from additions, products and one square root only
+    (a Taylor sine of the half angle, error < 1e-13), so that numpy and numba agree bit for
+    bit whatever libm or SIMD library each uses."""
+    h = theta * 0.5
+    h2 = h * h
+    acc = np.full_like(h, SIN_COEFFS[-1])
+    for c in SIN_COEFFS[-2::-1]:
+        acc = acc * h2 + c
+    s = h * (acc * h2 + 1.0)
+    c_half = np.sqrt(np.maximum(1.0 - s * s, 0.0))
+    return 1.0 - 2.0 * (s * s), 2.0 * (s * c_half)
+
+
 def local_coords(
     dx: np.ndarray, dy: np.ndarray, scale: np.ndarray, theta: np.ndarray, rotates: bool
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The instance-frame coordinates: the offset rotated by -theta, divided by the scale
-    (shared by both backends: numpy's cos/sin and element-wise arithmetic)."""
+    """The instance-frame coordinates: the offset rotated by -theta, divided by the scale."""
     with np.errstate(all="ignore"):
         if not rotates:
             return dx / scale, dy / scale
-        cos, sin = np.cos(theta), np.sin(theta)
+        cos, sin = cos_sin(theta)
         return (cos * dx + sin * dy) / scale, (cos * dy - sin * dx) / scale
 
 
+def inside_box(
+    lx: np.ndarray, ly: np.ndarray, keep: np.ndarray, box: tuple[float, ...] | None
+) -> np.ndarray:
+    """Kept instances whose local coordinates lie in ``box`` (x0, y0, x1, y1; None: all)."""
+    if box is None:
+        return keep
+    x0, y0, x1, y1 = box
+    return keep & (lx >= x0) & (lx <= x1) & (ly >= y0) & (ly <= y1)
+
+
 def instance(
-    x: np.ndarray, y: np.ndarray, p: TileParams, dr: int, dc: int
+    x: np.ndarray,
+    y: np.ndarray,
+    p: TileParams,
+    dr: int,
+    dc: int,
+    box: tuple[float, ...] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(local x, local y, keep) of neighbour (dr, dc) at every sample (numpy backend)."""
+    """(local x, local y, inside) of neighbour (dr, dc) at every sample (numpy backend):
+    ``inside`` marks the kept instances whose local coordinates lie in ``box``."""
     dx, dy, scale, theta, keep = instance_parts(x, y, p, dr, dc)
     lx, ly = local_coords(dx, dy, scale, theta, p.rotates)
-    return lx, ly, keep
+    return lx, ly, inside_box(lx, ly, keep, box)

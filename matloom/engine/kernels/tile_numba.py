@@ -1,9 +1,8 @@
-"""numba ``Tile`` instances: the numbers of :func:`matloom.engine.kernels.tile.instance_parts`
-in one pass per texel (the hashing is what costs in numpy: five uint64 temporaries per stream).
+"""numba ``Tile`` instances: :func:`matloom.engine.kernels.tile.instance` in one pass per texel
+(the hashing is what costs in numpy: five uint64 temporaries per stream).
 
-Every operation of the numpy version is kept in the same order in float64 and uint64, so the
-results are bit-identical; the rotation's cosine and sine are then taken with numpy
-(:func:`matloom.engine.kernels.tile.local_coords`) on both backends.
+Every operation of the numpy version is kept in the same order in float64 and uint64 (the
+rotation's cosine and sine included, see ``tile.cos_sin``), so the results are bit-identical.
 """
 
 from __future__ import annotations
@@ -39,71 +38,127 @@ def _uniform(key: np.uint64, row: np.uint64, col: np.uint64) -> float:
     return np.float64(z >> _S11) * _INV53
 
 
+_C = tile.SIN_COEFFS
+
+
+@jit_kernel(parallel=False, inline=True)
+def _cos_sin(theta: float) -> tuple[float, float]:
+    """:func:`tile.cos_sin` of one angle (the same operations in the same order)."""
+    h = theta * 0.5
+    h2 = h * h
+    acc = _C[7]
+    acc = acc * h2 + _C[6]
+    acc = acc * h2 + _C[5]
+    acc = acc * h2 + _C[4]
+    acc = acc * h2 + _C[3]
+    acc = acc * h2 + _C[2]
+    acc = acc * h2 + _C[1]
+    acc = acc * h2 + _C[0]
+    s = h * (acc * h2 + 1.0)
+    rest = 1.0 - s * s
+    c_half = np.sqrt(rest if rest > 0.0 else 0.0)
+    return 1.0 - 2.0 * (s * s), 2.0 * (s * c_half)
+
+
 @jit_kernel()
-def _parts_kernel(
+def _instance_kernel(
     x: np.ndarray,
     y: np.ndarray,
     consts: np.ndarray,
     keys: np.ndarray,
     dr: float,
     dc: float,
-    dx: np.ndarray,
-    dy: np.ndarray,
-    scale: np.ndarray,
-    theta: np.ndarray,
-    keep: np.ndarray,
+    rotates: bool,
+    box: np.ndarray,
+    use_box: bool,
+    lx: np.ndarray,
+    ly: np.ndarray,
+    inside: np.ndarray,
     first: int,
     last: int,
 ) -> None:
-    """Rows ``first``..``last - 1`` of the (H, W) outputs; x, y are float64 (H, W) grids."""
+    """Rows ``first``..``last - 1`` of the (H, W) outputs. x and y are float64 and broadcast
+    to (H, W) (each of shape (H, W), (1, W) or (H, 1)). A cell's numbers are computed once per
+    run of texels in that cell (the same values as computing them per texel)."""
     w, h, shift_w, jit_w, jit_h = consts[0], consts[1], consts[2], consts[3], consts[4]
     smin, srange, prob, rot = consts[5], consts[6], consts[7], consts[8]
+    x0, y0, x1, y1 = box[0], box[1], box[2], box[3]
     limit = tile.MAX_CELL
+    width = lx.shape[1]
+    x_rows, x_cols = x.shape[0] > 1, x.shape[1] > 1
+    y_rows, y_cols = y.shape[0] > 1, y.shape[1] > 1
     for i in range(first, last):
-        for j in range(x.shape[1]):
-            xv = x[i, j]
-            yv = y[i, j]
+        have = False
+        prev_r = 0.0
+        prev_c = 0.0
+        cx = cy = scale = cos = sin = 0.0
+        valid = kept = False
+        for j in range(width):
+            xv = x[i if x_rows else 0, j if x_cols else 0]
+            yv = y[i if y_rows else 0, j if y_cols else 0]
             r = np.floor(yv / h) + dr
             shift = r * shift_w
             c = np.floor((xv - shift) / w) + dc
-            valid = abs(r) < limit and abs(c) < limit
-            if valid:
-                ri = np.uint64(np.int64(r))
-                ci = np.uint64(np.int64(c))
-            else:
-                ri = np.uint64(0)
-                ci = np.uint64(0)
-            u0 = _uniform(keys[0], ri, ci)
-            u1 = _uniform(keys[1], ri, ci)
-            u2 = _uniform(keys[2], ri, ci)
-            u3 = _uniform(keys[3], ri, ci)
-            u4 = _uniform(keys[4], ri, ci)
-            keep[i, j] = valid and u4 < prob
-            if valid:
+            if not (have and r == prev_r and c == prev_c):
+                have = r == r and c == c  # a NaN cell is recomputed (and dropped) every time
+                prev_r = r
+                prev_c = c
+                valid = abs(r) < limit and abs(c) < limit
+                if valid:
+                    ri = np.uint64(np.int64(r))
+                    ci = np.uint64(np.int64(c))
+                else:
+                    ri = np.uint64(0)
+                    ci = np.uint64(0)
+                u0 = _uniform(keys[0], ri, ci)
+                u1 = _uniform(keys[1], ri, ci)
+                u2 = _uniform(keys[2], ri, ci)
+                u3 = _uniform(keys[3], ri, ci)
+                u4 = _uniform(keys[4], ri, ci)
+                kept = valid and u4 < prob
                 cx = (c + 0.5) * w + shift + (2.0 * u0 - 1.0) * jit_w
                 cy = (r + 0.5) * h + (2.0 * u1 - 1.0) * jit_h
-                dx[i, j] = xv - cx
-                dy[i, j] = yv - cy
+                scale = smin + srange * u3
+                if rotates:
+                    cos, sin = _cos_sin((2.0 * u2 - 1.0) * rot)
+            if valid:
+                dx = xv - cx
+                dy = yv - cy
             else:
-                dx[i, j] = np.nan
-                dy[i, j] = np.nan
-            scale[i, j] = smin + srange * u3
-            theta[i, j] = (2.0 * u2 - 1.0) * rot
+                dx = np.nan
+                dy = np.nan
+            if rotates:
+                ux = (cos * dx + sin * dy) / scale
+                uy = (cos * dy - sin * dx) / scale
+            else:
+                ux = dx / scale
+                uy = dy / scale
+            lx[i, j] = ux
+            ly[i, j] = uy
+            hit = kept
+            if use_box:
+                hit = hit and ux >= x0 and ux <= x1 and uy >= y0 and uy <= y1
+            inside[i, j] = hit
 
 
 def instance(
-    x: np.ndarray, y: np.ndarray, p: tile.TileParams, dr: int, dc: int
+    x: np.ndarray,
+    y: np.ndarray,
+    p: tile.TileParams,
+    dr: int,
+    dc: int,
+    box: tuple[float, ...] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(local x, local y, keep) of neighbour (dr, dc): :func:`tile.instance` on numba."""
-    x64, y64 = np.broadcast_arrays(np.asarray(x, np.float64), np.asarray(y, np.float64))
-    if x64.ndim != 2:
-        return tile.instance(x, y, p, dr, dc)
-    x64, y64 = np.ascontiguousarray(x64), np.ascontiguousarray(y64)
-    shape = x64.shape
-    dx, dy, scale, theta = (np.empty(shape) for _ in range(4))
-    keep = np.empty(shape, dtype=np.bool_)
-    args = (x64, y64, p.consts(), tile.stream_keys(p.seed), float(dr), float(dc))
-    outs = (dx, dy, scale, theta, keep)
-    parallel_rows(shape[0], shape[1], lambda a, b: _parts_kernel(*args, *outs, a, b))
-    lx, ly = tile.local_coords(dx, dy, scale, theta, p.rotates)
-    return lx, ly, keep
+    """(local x, local y, inside) of neighbour (dr, dc): :func:`tile.instance` on numba."""
+    xa, ya = np.asarray(x, np.float64), np.asarray(y, np.float64)
+    shape = np.broadcast_shapes(xa.shape, ya.shape)
+    if len(shape) != 2 or xa.ndim != 2 or ya.ndim != 2:
+        return tile.instance(x, y, p, dr, dc, box)
+    xa, ya = np.ascontiguousarray(xa), np.ascontiguousarray(ya)
+    lx, ly = np.empty(shape), np.empty(shape)
+    inside = np.empty(shape, dtype=np.bool_)
+    limits = np.zeros(4) if box is None else np.array(box, dtype=np.float64)
+    args = (xa, ya, p.consts(), tile.stream_keys(p.seed), float(dr), float(dc), p.rotates)
+    args = (*args, limits, box is not None, lx, ly, inside)
+    parallel_rows(shape[0], shape[1], lambda a, b: _instance_kernel(*args, a, b))
+    return lx, ly, inside

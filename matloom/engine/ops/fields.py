@@ -61,20 +61,42 @@ def stroke(ev: Any, call: A.Call, c: Any) -> Any:
 
 
 def tile(ev: Any, call: A.Call, c: Any) -> Any:
-    """Tile: the motif in each of the 9 neighbouring instances' frames, dropped instances as
-    0, the maximum over them (see :mod:`matloom.engine.kernels.tile`)."""
+    """Tile: the maximum over the 9 neighbouring instances of the motif evaluated in each
+    instance's frame, dropped instances giving 0 (see :mod:`matloom.engine.kernels.tile`).
+
+    Where the motif's support is known (:mod:`matloom.engine.ops.support`: it is exactly 0
+    outside a box), each instance evaluates the motif only at the samples whose local
+    coordinates fall in the box, and every other instance contributes its exact 0: the same
+    values as evaluating all 9 everywhere, for about the cost of the motif's own area."""
     from matloom.engine.kernels.tile import NEIGHBOURS, TileParams
 
     params = TileParams.of({**ev.params(call), "seed": ev.seed_of(call)})
     motif = call.arg("expr")
-    out = None
+    box = ev.motif_support(motif)
+    shape = np.broadcast_shapes(np.shape(c[0]), np.shape(c[1]))
+    if box is None:
+        out = None
+        for dr, dc in NEIGHBOURS:
+            lx, ly, keep = ev.backend.tile(c[0], c[1], params, dr, dc)
+            value = ev.concrete(ev.eval(motif, ev.new_frame(lx, ly)))
+            with np.errstate(invalid="ignore"):
+                value = np.where(keep, value, 0.0)
+                out = value if out is None else np.maximum(out, value)
+        return out
+    best = np.full(shape, -np.inf)
+    flat = best.reshape(-1)
+    missed = np.zeros(shape, dtype=np.bool_)  # some instance contributes its exact 0
     for dr, dc in NEIGHBOURS:
-        lx, ly, keep = ev.backend.tile(c[0], c[1], params, dr, dc)
-        value = ev.concrete(ev.eval(motif, ev.new_frame(lx, ly)))
-        with np.errstate(invalid="ignore"):
-            value = np.where(keep, value, 0.0)
-            out = value if out is None else np.maximum(out, value)
-    return out
+        lx, ly, inside = ev.backend.tile(c[0], c[1], params, dr, dc, box)
+        missed |= ~inside
+        idx = np.flatnonzero(inside)
+        if idx.size == 0:
+            continue
+        points = ev.new_frame(lx.reshape(-1)[idx][None, :], ly.reshape(-1)[idx][None, :])
+        value = np.broadcast_to(ev.concrete(ev.eval(motif, points)), (1, idx.size))[0]
+        flat[idx] = np.maximum(flat[idx], value)
+    with np.errstate(invalid="ignore"):
+        return np.where(missed, np.maximum(best, 0.0), best)
 
 
 def transformed(ev: Any, call: A.Call, c: Any) -> Any:

@@ -25,6 +25,9 @@ from matloom.engine.ops.table_math import MATH_V2_ENTRIES
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
 _FIELDS = "matloom.engine.ops.fields:"
+_SUPPORT = "matloom.engine.ops.support:"
+_UNION = Ref(_SUPPORT + "union")
+_MOVED = Ref(_SUPPORT + "transformed")
 
 
 # ------------------------------------------------------------------ static (constant) rules
@@ -155,8 +158,22 @@ def _math(
     return Op(name, Kind.ELEMENTWISE, Ref(numpy), static, bounds, fast, **extra)
 
 
-def _field(name: str, rule: str, coords: Callable[..., Any] | None = None) -> Op:
-    return Op(name, Kind.FIELD, Ref(_FIELDS + rule), not_constant, unbounded, NUMPY, coords=coords)
+def _field(
+    name: str,
+    rule: str,
+    coords: Callable[..., Any] | None = None,
+    support: Callable[..., Any] | None = None,
+) -> Op:
+    return Op(
+        name,
+        Kind.FIELD,
+        Ref(_FIELDS + rule),
+        not_constant,
+        unbounded,
+        NUMPY,
+        coords=coords,
+        support=support,
+    )
 
 
 def _coordinate_field(name: str, rule: str) -> Op:
@@ -173,9 +190,16 @@ _ENTRIES: tuple[Op, ...] = (
     _coordinate_field("Y", "y"),
     Op("Constant", Kind.FIELD, Ref(_FIELDS + "constant"), _constant, unbounded, NUMPY),
     # element-wise math: numpy implementation, static rule, bounds rule, opcode or NUMPY
-    _math("Add", _MATHOPS + "add", _binary(lambda a, b: a + b), _add_bounds, "add"),
-    _math("Sub", _MATHOPS + "sub", _binary(lambda a, b: a - b), _sub_bounds, "sub"),
-    _math("Mul", _MATHOPS + "mul", _binary(lambda a, b: a * b), _mul_bounds, "mul"),
+    _math("Add", _MATHOPS + "add", _binary(lambda a, b: a + b), _add_bounds, "add", support=_UNION),
+    _math("Sub", _MATHOPS + "sub", _binary(lambda a, b: a - b), _sub_bounds, "sub", support=_UNION),
+    _math(
+        "Mul",
+        _MATHOPS + "mul",
+        _binary(lambda a, b: a * b),
+        _mul_bounds,
+        "mul",
+        support=Ref(_SUPPORT + "product"),
+    ),
     _math(
         "Div",
         _MATHOPS + "safe_div",
@@ -183,6 +207,7 @@ _ENTRIES: tuple[Op, ...] = (
         _div_bounds,
         "div",
         divisor=1,
+        support=Ref(_SUPPORT + "quotient"),
     ),
     _math("Pow", _MATHOPS + "pow_", _binary(_pow), unbounded, NUMPY),
     _math(
@@ -191,6 +216,7 @@ _ENTRIES: tuple[Op, ...] = (
         lambda v, s: min(v) if len(v) == 2 else None,
         _min_bounds,
         "min",
+        support=_UNION,
     ),
     _math(
         "Max",
@@ -198,6 +224,7 @@ _ENTRIES: tuple[Op, ...] = (
         lambda v, s: max(v) if len(v) == 2 else None,
         _max_bounds,
         "max",
+        support=_UNION,
     ),
     _math("Abs", _MATHOPS + "abs_", _unary(abs), _abs_bounds, "abs"),
     _math(
@@ -227,12 +254,17 @@ _ENTRIES: tuple[Op, ...] = (
     _field("Worley", "worley"),
     _field("Bricks", "bricks"),
     _field("Weave", "weave"),
-    _field("Fill", "fill"),
-    _field("Stroke", "stroke"),
+    _field("Fill", "fill", support=Ref(_SUPPORT + "fill")),
+    _field("Stroke", "stroke", support=Ref(_SUPPORT + "stroke")),
     # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
-    _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b)),
-    _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b)),
-    _field("Rotate", "transformed", coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y)),
+    _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b), support=_MOVED),
+    _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b), support=_MOVED),
+    _field(
+        "Rotate",
+        "transformed",
+        coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y),
+        support=_MOVED,
+    ),
     # instancing: the operand in 9 neighbouring instance frames
     _field("Tile", "tile"),
     # geometry (arguments of Fill/Stroke; not fields)
