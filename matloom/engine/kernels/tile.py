@@ -125,22 +125,29 @@ def instance_parts(
     return dx, dy, scale, theta, keep
 
 
-#: Taylor coefficients of sin (odd powers 3..17) for :func:`half_sin`.
+#: Taylor coefficients of sin (odd powers 3..17) and cos (even powers 2..18) for
+#: :func:`cos_sin` (half angles in [-pi/2, pi/2]: errors below 1e-14).
 SIN_COEFFS: tuple[float, ...] = tuple((-1.0) ** k / math.factorial(2 * k + 1) for k in range(1, 9))
+COS_COEFFS: tuple[float, ...] = tuple((-1.0) ** k / math.factorial(2 * k) for k in range(1, 10))
+
+
+def _series(h2: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
+    """1 + c1 h2 + c2 h2^2 + ... by Horner's rule (in this order in both backends)."""
+    acc = np.full_like(h2, coeffs[-1])
+    for c in coeffs[-2::-1]:
+        acc = acc * h2 + c
+    return acc * h2 + 1.0
 
 
 def cos_sin(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(cos, sin) of angles in [-pi, pi] from additions, products and one square root only
-    (a Taylor sine of the half angle, error < 1e-13), so that numpy and numba agree bit for
-    bit whatever libm or SIMD library each uses."""
+    """(cos, sin) of angles in [-pi, pi] from additions and products only (Taylor series of
+    the half angle, then the double-angle formulas), so that numpy and numba agree bit for bit
+    whatever libm or SIMD library each uses."""
     h = theta * 0.5
     h2 = h * h
-    acc = np.full_like(h, SIN_COEFFS[-1])
-    for c in SIN_COEFFS[-2::-1]:
-        acc = acc * h2 + c
-    s = h * (acc * h2 + 1.0)
-    c_half = np.sqrt(np.maximum(1.0 - s * s, 0.0))
-    return 1.0 - 2.0 * (s * s), 2.0 * (s * c_half)
+    s = h * _series(h2, SIN_COEFFS)
+    c = _series(h2, COS_COEFFS)
+    return (c - s) * (c + s), 2.0 * (s * c)
 
 
 def local_coords(

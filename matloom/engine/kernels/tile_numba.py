@@ -38,7 +38,8 @@ def _uniform(key: np.uint64, row: np.uint64, col: np.uint64) -> float:
     return np.float64(z >> _S11) * _INV53
 
 
-_C = tile.SIN_COEFFS
+_S = tile.SIN_COEFFS
+_K = tile.COS_COEFFS
 
 
 @jit_kernel(parallel=False, inline=True)
@@ -46,18 +47,15 @@ def _cos_sin(theta: float) -> tuple[float, float]:
     """:func:`tile.cos_sin` of one angle (the same operations in the same order)."""
     h = theta * 0.5
     h2 = h * h
-    acc = _C[7]
-    acc = acc * h2 + _C[6]
-    acc = acc * h2 + _C[5]
-    acc = acc * h2 + _C[4]
-    acc = acc * h2 + _C[3]
-    acc = acc * h2 + _C[2]
-    acc = acc * h2 + _C[1]
-    acc = acc * h2 + _C[0]
+    acc = _S[7]
+    for k in range(6, -1, -1):
+        acc = acc * h2 + _S[k]
     s = h * (acc * h2 + 1.0)
-    rest = 1.0 - s * s
-    c_half = np.sqrt(rest if rest > 0.0 else 0.0)
-    return 1.0 - 2.0 * (s * s), 2.0 * (s * c_half)
+    acc = _K[8]
+    for k in range(7, -1, -1):
+        acc = acc * h2 + _K[k]
+    c = acc * h2 + 1.0
+    return (c - s) * (c + s), 2.0 * (s * c)
 
 
 @jit_kernel()
