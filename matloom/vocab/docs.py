@@ -25,7 +25,9 @@ def _param_line(p) -> str:  # noqa: ANN001
     cons = p.constraint_text()
     extra = f"; {cons}" if cons else ""
     seed = " (noise seed)" if p.is_seed else ""
-    return f"  - `{p.name}` ({kind}, {default}{extra}){seed}: {p.doc}"
+    field = " (accepts a field: evaluated at each sample)" if p.field else ""
+    since = f" (language {p.since})" if p.since > 1 else ""
+    return f"  - `{p.name}` ({kind}, {default}{extra}){seed}{field}{since}: {p.doc}"
 
 
 def render_language_reference() -> str:
@@ -52,8 +54,17 @@ def render_language_reference() -> str:
     for c in CHANNELS.values():
         args = ", ".join(c.arg_names)
         default = ", ".join(format_default(v) for v in c.defaults)
-        out.append(f"| `.{c.name}` | {args} | {default} | {c.units} | {c.doc} |")
+        since = f" (language {c.since})" if c.since > 1 else ""
+        out.append(f"| `.{c.name}` | {args} | {default} | {c.units} | {c.doc}{since} |")
     out += [
+        "",
+        "Language 2 added functions, parameters and a channel (marked below); every language-1 "
+        "program means what it meant. `matloom random --language 1` draws from language 1 "
+        "only.",
+        "",
+        "Numeric parameters are constants (constant arithmetic and `pi`, `e` allowed; `X()`/`Y()` "
+        "there count as 0, with warning W004) except the parameters marked as accepting a field: "
+        "those take any expression, evaluated at each sample (domain warping).",
         "",
         "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
         "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.",
@@ -67,7 +78,8 @@ def render_language_reference() -> str:
         for f in specs:
             out.append(f"### `{f.signature()}`")
             out.append("")
-            out.append(f.doc + ".")
+            since = f" (Language {f.since}.)" if f.since > 1 else ""
+            out.append(f.doc + "." + since)
             out.append("")
             for p in f.params:
                 if p.kind is Kind.EXPR and p.name == "expr":

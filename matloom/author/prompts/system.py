@@ -57,7 +57,8 @@ def _param_line(p: ParamSpec) -> str:
     default = "required" if p.required else f"default {format_default(p.default)}"
     constraint = p.constraint_text()
     extra = f"; {constraint}" if constraint else ""
-    return f"  - `{p.name}` ({default}{extra}): {p.doc}"
+    field = "; may be a field expression, evaluated per sample" if p.field else ""
+    return f"  - `{p.name}` ({default}{extra}{field}): {p.doc}"
 
 
 def function_entry(spec: FunctionSpec, *, with_params: bool = True) -> str:
@@ -208,9 +209,19 @@ high-frequency one for fine grain, each reused wherever its scale is needed.
 - Anisotropic striation: `fBm`/`Worley` with `base_freq_x` different from `base_freq_y` elongates \
 features along an axis, e.g. `fBm(octaves=4, base_freq_x=18, base_freq_y=2, to_01=True)` over a \
 2x2 View gives bark-like vertical fibres (brushed metal, wood grain).
-- Coordinate-domain warping: noise takes no coordinate input, so add a noise to a coordinate \
-term before a `Sin`/`Cos` band, e.g. `Sin((X() + warp * 1.5) * 6)`, to turn banding into \
-turbulent stratification, and drive height from the same warped field.
+- Domain warping: transform parameters take fields, so `Translate(f, warp * 0.3, 0)` bends any \
+field (noise, bricks, shapes) along a noise; `Rotate(f, swirl * 40)` swirls it. Warp grain along \
+a board or vein along a leaf by warping the pattern, and drive height from the same warped field.
+- Per-cell variation: `Bricks(..., output="cell_value", seed=N)` gives one random value per \
+brick or board, `Worley(..., output="cell_value")` one per stone or plate, `Hash(Floor(X() * k), \
+Floor(Y() * k), seed=N)` one per grid cell; use it for tone, height or a per-cell offset \
+(`Translate(grain, cell * 7, 0)` shifts grain per board). `Worley(output="edge")` is the true \
+distance to the cell border, for cracks and grout of constant width.
+- Instancing: `Tile(motif, w, h, jitter=..., rotate=..., scale_min=..., probability=..., \
+seed=N)` scatters copies of a motif drawn around (0, 0) (flowers, studs, rivets, glyphs) instead \
+of writing each placement by hand.
+- Angles and repeats: `Atan2(Y() - cy, X() - cx)` gives the polar angle for rosettes and radial \
+brushing; `Mod`/`Fract` repeat a coordinate (herringbone, stripes) without sine tricks.
 - Micro-gloss grain: add a high-frequency, low-amplitude `fBm` to roughness only, for skin, bark \
 or stone microstructure.
 - Substrate-matrix-first: a continuous substrate in a bottom `Layer(1)`, then discrete features \
