@@ -65,6 +65,8 @@ def _static_text(node: A.Node | None, p: ParamSpec) -> str:
     if p.field and not is_static(node):  # a field expression (X()/Y() included)
         return format_expr(node)
     v = _static_number(node)
+    if p.field and v is not None and not math.isfinite(v):  # e.g. Sqrt(-1): keep it parseable
+        return format_expr(node)
     if v is None:  # not constant: invalid program, print as written
         return format_expr(node)
     if p.kind is Kind.BOOL:
@@ -161,6 +163,8 @@ def _written_keywords(call: A.Call) -> list[str]:
             continue
         if p.name == "base_freq" and both_axes:
             continue
+        if p.since > 1 and _value(call, p.name) == p.default:
+            continue  # the reference's serialiser has no newer keywords: they print when set
         out.append(f"{p.name}={_arg_text(call, p)}")
     return out
 
@@ -178,9 +182,15 @@ def _nondefault_keywords(call: A.Call) -> list[str]:
                 out.extend(_weave_freq(call, p))
             continue
         v = _value(call, p.name)
-        if v != p.default:
+        if v != p.default and not _unused(call, p):
             out.append(f"{p.name}={_arg_text(call, p)}")
     return out
+
+
+def _unused(call: A.Call, p: ParamSpec) -> bool:
+    """A parameter used only for some values of another (``used_when``) that has none of them
+    (e.g. Bricks' seed without output="cell_value"): it has no effect and is not printed."""
+    return p.used_when is not None and _value(call, p.used_when[0]) not in p.used_when[1]
 
 
 def _weave_freq(call: A.Call, p: ParamSpec) -> list[str]:

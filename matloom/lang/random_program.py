@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from matloom.lang import ast as A
 from matloom.lang.printer import format_program
-from matloom.lang.static import static_number, uses_coordinates
+from matloom.lang.static import is_static, static_number, uses_coordinates
 from matloom.vocab import CHANNELS, FUNCTIONS, FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 from matloom.vocab.spec import LANGUAGE_VERSION
 
@@ -77,6 +77,8 @@ class RandomConfig:
     #: Language version whose vocabulary is drawn from (functions, parameters and channels with
     #: ``since`` <= it); 1 reproduces the reference generator's programs seed for seed.
     language: int = LANGUAGE_VERSION
+    #: Language 2: probability of a field expression for a parameter that accepts one.
+    field_param_prob: float = 0.25
 
     def __post_init__(self) -> None:
         checks = (
@@ -280,6 +282,10 @@ class _Generator:
             return self.call(self.rng.choice(self.shapes), 0)
         if p.is_seed:
             return A.Num(self.rng.randrange(SEED_RANGE))
+        if p.field and self.cfg.language >= 2 and self.rng.random() < self.cfg.field_param_prob:
+            field = self.expr(depth - 1)
+            if not is_static(field):  # a constant expression must be a valid number instead
+                return field
         optional = _has_off_default(p) and spec.family not in _ALWAYS_DRAWN_FAMILIES
         if optional and self.rng.random() >= self.cfg.optional_prob:
             return None

@@ -62,8 +62,14 @@ def _normal_call(call: A.Call) -> A.Node:  # noqa: C901 - one rule per documente
     if style is PrintStyle.CONSTANT:
         value = call.arg("value")
         return _literal(static_number(value)) if value is not None else A.Num(0)
-    if style is PrintStyle.NONDEFAULT_KEYWORDS:
-        return _drop_defaults(call, spec, {p.name for p in spec.params})
+    if style is PrintStyle.NONDEFAULT_KEYWORDS:  # required parameters (Tile's) positionally
+        dropped = _drop_defaults(call, spec, {p.name for p in spec.params if not p.required})
+        args = tuple(
+            replace(a, keyword=False) if spec.param(a.param).required else a  # type: ignore[union-attr]
+            for a in dropped.args
+        )
+        order = {p.name: k for k, p in enumerate(spec.params)}
+        return replace(dropped, args=tuple(sorted(args, key=lambda a: order[a.param])))
     if style is PrintStyle.SHAPE_OP:
         return _drop_defaults(call, spec, {p.name for p in spec.params if not p.required})
     if style is PrintStyle.THRESHOLD:
