@@ -56,7 +56,7 @@ def demo_cmd(out_dir: str, size: int) -> None:
         write_manifest(result, staging)
     lines.append(f"paper tile program ({size}x{size}, {time.perf_counter() - t0:.2f} s):")
     lines.append(f"  program  {dest / 'material.mat'}")
-    lines.append(f"  maps     {dest}/ (13 maps + material.json)")
+    lines.append(f"  maps     {dest}/ ({len(result.manifest['maps'])} maps + material.json)")
     lines.append(f"  preview  {dest / 'preview.png'}")
     lines += _generate_offline(root, size)
     lines.insert(4, _timings(program, size, first_run, compiling))

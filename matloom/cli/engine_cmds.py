@@ -121,7 +121,8 @@ def render_cmd(
     program_seed: int,
     as_json: bool,
 ) -> None:
-    """Evaluate FILE and export its maps (13 maps + material.json) into a folder."""
+    """Evaluate FILE and export its maps (one per channel, normal, AO) and material.json into a
+    folder."""
     import json
 
     from matloom.engine.evaluate import EvalStats, evaluate

@@ -7,7 +7,7 @@ float32 maps plus the normal and AO derived from the composited height.
 Reference rules reproduced here (reference-engine.md section 3):
 
 * Clamps: alpha and the seven 0..1 channels to [0, 1]; ior below at 1; emissive strength below
-  at 0; colours (0..255 sRGB) are divided by 255, clamped to [0, 1] and decoded to linear per
+  at 0; anisotropy_angle (degrees) none, so layers blend the angle linearly; colours (0..255 sRGB) are divided by 255, clamped to [0, 1] and decoded to linear per
   layer. Height is unclamped. NaN passes through every clamp. Colours are decoded, and the
   emissive colour x strength product formed, in float64 (the reference's expression grids are
   float64) and then cast to float32; every other channel is cast to float32 first.

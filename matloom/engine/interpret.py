@@ -240,6 +240,10 @@ class Evaluator:
         """The array of a value (dense values already are; see LazyEvaluator)."""
         return value
 
+    def per_seed(self, call: A.Call, compute: Any) -> Any:
+        """``compute(seed)`` with ``call``'s seed (a seed batch stacks it over its seeds)."""
+        return compute(self.num(call, "seed"))
+
     def seed_of(self, call: A.Call) -> int:
         """The seed ``call`` runs with (a seed batch may vary it)."""
         seed = self.num(call, "seed")

@@ -14,6 +14,18 @@ ARRAY_FIELDS: tuple[str, ...] = LAYOUT.map_fields
 #: The blended scalar channels clamped to [0, 1] (metallic .. anisotropy).
 SCALAR_CHANNELS: tuple[str, ...] = tuple(c.field for c in LAYOUT.unit_scalars)
 
+#: Array fields that arrays written for language 1 (the reference's parity fixtures) lack:
+#: the maps of newer channels (``anisotropy_angle``).
+NEWER_FIELDS: tuple[str, ...] = LAYOUT.fields_newer_than(1)
+
+#: Of those, the ones :meth:`MaterialMaps.from_arrays` may fill in: a program that cannot
+#: write the channel composites it to exactly 0 everywhere.
+_ZERO_WHEN_ABSENT: frozenset[str] = frozenset(
+    name
+    for name in NEWER_FIELDS
+    if (channel := LAYOUT.channel_of_field(name)) is not None and channel.default_map_is_zero
+)
+
 
 @dataclass(frozen=True)
 class View:
@@ -65,8 +77,24 @@ class _Maps:
     def from_arrays(
         cls, arrays: dict[str, np.ndarray], view: View | None = None, n_layers: int = 1
     ) -> MaterialMaps:
-        """Build from a mapping with the fixture names (e.g. a parity ``.npz``)."""
-        kwargs = {name: np.asarray(arrays[name], dtype=np.float32) for name in ARRAY_FIELDS}
+        """Build from a mapping with the fixture names (e.g. a parity ``.npz``).
+
+        A map of a channel newer than language 1 (:data:`NEWER_FIELDS`, e.g.
+        ``anisotropy_angle``) may be missing: arrays made before the channel existed hold what
+        such a program composites to, exactly 0 everywhere. Any other missing map raises
+        KeyError.
+        """
+        kwargs = {
+            name: np.asarray(arrays[name], dtype=np.float32)
+            for name in ARRAY_FIELDS
+            if name in arrays or name not in _ZERO_WHEN_ABSENT
+        }
+        if any(name not in kwargs for name in ARRAY_FIELDS):
+            shape = np.shape(kwargs[LAYOUT.coverage.field])
+            for name in ARRAY_FIELDS:
+                if name not in kwargs:
+                    components = LAYOUT.components(name)
+                    kwargs[name] = np.zeros(shape + ((3,) if components == 3 else ()), np.float32)
         return cls(**kwargs, view=view or View(), n_layers=n_layers)
 
     def nonfinite_counts(self) -> dict[str, int]:

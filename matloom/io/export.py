@@ -1,13 +1,20 @@
 """Write a material's maps to a folder, with the reference's file names and encodings.
 
-The 13 maps (in this order, see :data:`MAP_NAMES`) and their files:
+The 14 maps (in this order, see :data:`MAP_NAMES`; one per channel of the registry, from
+:mod:`matloom.vocab.layout`, then normal and AO) and their files:
 
 * ``basecolor.png``: 8-bit RGBA; RGB = linear -> sRGB of ``basecolor_linear``, A = coverage;
 * ``metallic``, ``roughness``, ``sheen``, ``coat``, ``transmission``, ``subsurface``,
   ``anisotropy``, ``ao`` ``.png``: 8-bit grey;
+* ``anisotropy_angle.png``: 8-bit grey of (angle mod 180) / 180 (the direction is axial), plus
+  ``anisotropy_angle.exr`` with the blended degrees (float32, unreduced);
 * ``normal.png``: 8-bit RGB, n * 0.5 + 0.5, OpenGL convention (+Y up);
 * ``ior.exr``, ``height.exr`` (one float32 channel) and ``emissive.exr`` (float32 linear RGB,
   unclipped).
+
+Every map is written on every render, whether or not the program writes its channel (a
+channel no layer writes gives its default, e.g. a constant 0 angle): the folder's file list
+depends only on the options, never on the program, and ``--maps`` picks a subset.
 
 With ``float_format="png16"`` the height is also written as ``height16.png`` (16-bit grey,
 normalised to its finite min/max, which ``material.json`` records). A ``material.json``
@@ -73,7 +80,8 @@ def planned_files(
     maps_subset: Sequence[str] | None, float_format: str, preview: bool = False
 ) -> list[str]:
     """The file names a render with these options writes (to check the folder up front)."""
-    names = [spec.file_name for spec in select_maps(maps_subset)] + [MANIFEST_NAME, "material.mat"]
+    names = [name for spec in select_maps(maps_subset) for name in spec.file_names]
+    names += [MANIFEST_NAME, "material.mat"]
     if float_format == "png16" and (maps_subset is None or "height" in maps_subset):
         names.append(HEIGHT_PNG16_NAME)
     if preview:
@@ -85,9 +93,9 @@ def planned_files(
 class ExportResult:
     """What :func:`export_maps` wrote.
 
-    ``files`` maps each written map name (plus ``"height16"`` and ``"manifest"``) to its final
-    path; ``nonfinite_counts`` holds, per map name, how many source values were NaN or +-inf
-    (only maps with at least one).
+    ``files`` maps each written map name (plus ``"<name>_float"`` for a map's float copy,
+    ``"height16"`` and ``"manifest"``) to its final path; ``nonfinite_counts`` holds, per map
+    name, how many source values were NaN or +-inf (only maps with at least one).
     """
 
     out_dir: Path
@@ -148,8 +156,16 @@ def _srgb(linear: np.ndarray) -> np.ndarray:
         return linear_to_srgb(np.asarray(linear, dtype=np.float32))
 
 
-def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> Path:
-    """Encode one map into ``folder`` with its spec's writer; returns the file path."""
+def periodic_unit(values: np.ndarray, period: float) -> np.ndarray:
+    """(values mod period) / period in [0, 1], computed in float64 (a negative value wraps to
+    the top of the range; NaN and +-inf give NaN, which the 8-bit writer stores as 0)."""
+    with np.errstate(invalid="ignore"):
+        return np.mod(np.asarray(values, dtype=np.float64), period) / period
+
+
+def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> list[Path]:
+    """Encode one map into ``folder`` with its spec's writer (and its float copy, if any);
+    returns the file paths, the main file first."""
     path = folder / spec.file_name
     sources = [getattr(maps, name) for name in spec.sources]
     if spec.writer == "srgb8-alpha":  # colour as sRGB, the second source (coverage) as alpha
@@ -163,9 +179,14 @@ def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> Path:
         exr_io.write_exr(path, sources[0])
     elif spec.writer == "grey8":
         png_io.write_grey8(path, sources[0])
+    elif spec.writer == "periodic8" and spec.period:
+        png_io.write_grey8(path, periodic_unit(sources[0], spec.period))
     else:
         raise ValueError(f"map {spec.name!r}: unknown writer {spec.writer!r}")
-    return path
+    if not spec.float_file:
+        return [path]
+    exr_io.write_exr(folder / spec.float_file, np.asarray(sources[0], dtype=np.float32))
+    return [path, folder / spec.float_file]
 
 
 def _write_height_png16(height: np.ndarray, folder: Path) -> dict[str, Any]:
@@ -272,7 +293,9 @@ def write_maps(
     files: dict[str, Path] = {}
     for spec in selected:
         written = _write_map(maps, spec, folder)
-        files[spec.name] = final / written.name
+        files[spec.name] = final / written[0].name
+        for extra in written[1:]:
+            files[f"{spec.name}_float"] = final / extra.name
         entries[spec.name] = {**spec.describe(), **_map_stats(maps, spec)}
     manifest = _manifest(maps, selected, entries, program_text, version)
     if float_format == "png16" and "height" in entries:
@@ -321,7 +344,7 @@ def export_maps(
     """Write ``maps`` into the folder ``out_dir`` through a staged, locked install.
 
     ``float_format``: "exr" (default) or "png16" (adds height16.png; ior/emissive stay EXR).
-    ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all 13, in that order);
+    ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all, in that order);
     an unknown name raises ValueError before anything is written. ``program_text`` is hashed
     (SHA-256) into the manifest; ``extra_meta`` is stored under the manifest key "extra".
     MatLoom's files from a previous export into ``out_dir`` are replaced; any other file there

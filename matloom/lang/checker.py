@@ -10,7 +10,8 @@ from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
 from matloom.lang.lexer import as_float
 from matloom.lang.parser import MAX_NESTING
-from matloom.lang.static import is_static, static_number, uses_coordinates
+from matloom.lang.seeds import uses_seed
+from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import FUNCTIONS, Kind, ParamSpec, Returns
 
 MAX_NODES = 20_000
@@ -19,7 +20,6 @@ MAX_NODES = 20_000
 MAX_OCTAVES = 16
 """Maximum fBm octaves (documented limit; cost grows linearly with octaves)."""
 
-_NOISE = ("fBm", "Worley")
 
 _MAX_COORD = 3.4028234663852886e38
 """Largest float32: the sample grid is float32 (as in the reference), so a View corner, width
@@ -260,7 +260,7 @@ class Checker:
             for a in node.args:
                 self.expr(a.value)
             return
-        if spec.name in _NOISE and node.arg("seed") is None:
+        if uses_seed(node) and node.arg("seed") is None:
             self.warn(
                 "W003",
                 f"{spec.name}(...) has no seed; one will be drawn at canonicalisation",
@@ -370,7 +370,7 @@ class Checker:
                 expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}",
             )
             return
-        if p.field and not is_static(v):  # a field parameter: checked like an operand
+        if p.field and static_number(v) is None:  # a field parameter: checked like an operand
             self.expr(v)
             return
         raw = static_number(v)
@@ -390,7 +390,11 @@ class Checker:
                 "W004",
                 f"{func}: {p.name} uses X()/Y(); it is evaluated once at (0, 0)",
                 span,
-                hint="numeric parameters are constants, not fields",
+                hint=(
+                    "to vary it per sample, Define the expression and pass the Define's name"
+                    if p.field
+                    else "numeric parameters are constants, not fields"
+                ),
             )
         if isinstance(value, float) and not math.isfinite(value):
             self.diag(

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from matloom.lang import ast as A
-from matloom.lang.static import is_static, param_value
+from matloom.lang.static import is_static, param_value, static_number
 from matloom.vocab import FUNCTIONS, Kind
 
 MAX_EXPANDED_NODES = 200_000
@@ -48,16 +48,17 @@ def transform_values(call: A.Call) -> tuple[float, float]:
 
 
 def field_params(call: A.Call) -> tuple[str, ...]:
-    """The parameters of ``call`` that accept fields and are written as non-constant
-    expressions (X()/Y() included): a transform with any is a domain warp, evaluated per
-    sample, whose frame equals no other."""
+    """The parameters of ``call`` that accept fields and are written as fields (noise,
+    patterns, Define references, ...): a transform with any is a domain warp, evaluated per
+    sample, whose frame equals no other. X()/Y() alone keep their language-1 meaning (evaluated
+    once at the origin, warning W004), so every language-1 program means what it meant."""
     spec = FUNCTIONS.get(call.func)
     if spec is None:
         return ()
     return tuple(
         p.name
         for p in spec.params
-        if p.field and (node := call.arg(p.name)) is not None and not is_static(node)
+        if p.field and (node := call.arg(p.name)) is not None and static_number(node) is None
     )
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from matloom.lang import ast as A
+from matloom.lang.seeds import uses_seed
 from matloom.vocab.layout import LAYOUT
 
 #: The coverage channel: its expressions enter every blended and max-blended output.
@@ -44,13 +45,14 @@ def _expr_params(
 ) -> set[ParamRef]:
     out: set[ParamRef] = set()
     seed_nums: set[int] = set()
+    unused: set[int] = set()  # seeds of calls that ignore them (Bricks without cell values)
     for n in A.walk(node):
         if isinstance(n, A.Call):
             s = n.arg("seed")
             if isinstance(s, A.Num):
-                seed_nums.add(id(s))
+                (seed_nums if uses_seed(n) else unused).add(id(s))
     for n in A.walk(node):
-        if isinstance(n, A.Num):
+        if isinstance(n, A.Num) and id(n) not in unused:
             out.add(ParamRef(n.span.line, n.span.col, n.value, id(n) in seed_nums, where))
         elif isinstance(n, A.Ref) and n.name in defines:
             out |= defines[n.name]

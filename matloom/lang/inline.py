@@ -2,16 +2,23 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 from matloom.lang import ast as A
 from matloom.lang.checker import MAX_NODES
+from matloom.lang.cost import field_params
 from matloom.lang.diagnostics import Diagnostic, ProgramError
 from matloom.lang.rewrite import map_expr, map_program
+from matloom.lang.static import static_number
 
 
 def inline_defines(program: A.Program) -> A.Program:
     """Program with no Defines; every reference replaced by the (recursively inlined) expression.
+
+    Except: a Define that makes a field parameter a per-sample field of X()/Y() only (e.g.
+    ``Define(swirl, X() * 20)`` in ``Rotate(f, swirl)``) stays, since written inline such an
+    expression is evaluated once at the origin (see ``ParamSpec.field``).
 
     Explicit noise seeds are kept verbatim, so the inlined program evaluates to the same maps.
     Comments of the removed Defines move to the program's leading comments (printed just before
@@ -36,9 +43,39 @@ def inline_defines(program: A.Program) -> A.Program:
 
     for d in program.defines:
         resolved[d.name] = map_expr(d.expr, sub)
-    moved = tuple(replace(c, slot="leading") for d in program.defines for c in d.comments)
+    pinned = _pinned_defines(program, sub)
+    kept_defines = tuple(
+        replace(d, expr=resolved[d.name]) for d in program.defines if d.name in pinned
+    )
+    moved = tuple(
+        replace(c, slot="leading")
+        for d in program.defines
+        if d.name not in pinned
+        for c in d.comments
+    )
     kept = replace(program, defines=(), comments=moved + program.comments)
-    return map_program(kept, sub)
+
+    def sub_unpinned(node: A.Node) -> A.Node:
+        return node if isinstance(node, A.Ref) and node.name in pinned else sub(node)
+
+    return replace(map_program(kept, sub_unpinned), defines=kept_defines)
+
+
+def _pinned_defines(program: A.Program, sub: Callable[[A.Node], A.Node]) -> set[str]:
+    """Defines that must stay: referenced in a field parameter (Translate's dx, ...) that
+    inlining would turn into an expression of X()/Y() and constants only, which means its value
+    at the origin there (language 1), not a per-sample field."""
+    pinned: set[str] = set()
+    for _, expr in A.program_expressions(program):
+        for node in A.walk(expr):
+            if not isinstance(node, A.Call):
+                continue
+            for name in field_params(node):
+                value = node.arg(name)
+                assert value is not None
+                if static_number(map_expr(value, sub)) is not None:
+                    pinned |= {n.name for n in A.walk(value) if isinstance(n, A.Ref)}
+    return pinned
 
 
 def inlined_size(program: A.Program) -> int:

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from matloom.lang import ast as A
 from matloom.lang.printer import format_program
-from matloom.lang.static import is_static, static_number, uses_coordinates
+from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import CHANNELS, FUNCTIONS, FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 from matloom.vocab.spec import LANGUAGE_VERSION
 
@@ -284,7 +284,7 @@ class _Generator:
             return A.Num(self.rng.randrange(SEED_RANGE))
         if p.field and self.cfg.language >= 2 and self.rng.random() < self.cfg.field_param_prob:
             field = self.expr(depth - 1)
-            if not is_static(field):  # a constant expression must be a valid number instead
+            if static_number(field) is None:  # else it is a constant: a valid number instead
                 return field
         optional = _has_off_default(p) and spec.family not in _ALWAYS_DRAWN_FAMILIES
         if optional and self.rng.random() >= self.cfg.optional_prob:

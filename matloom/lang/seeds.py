@@ -35,8 +35,25 @@ def has_seedless_noise(program: A.Program) -> bool:
 
 
 def _is_noise(call: A.Call) -> bool:
+    return uses_seed(call)
+
+
+def uses_seed(call: A.Call) -> bool:
+    """Whether ``call``'s value depends on a seed: a function with a seed parameter, unless
+    that seed is used only for some values of another parameter (``ParamSpec.used_when``,
+    e.g. Bricks' output="cell_value") and the call has none of them."""
     spec = FUNCTIONS.get(call.func)
-    return spec is not None and spec.is_noise
+    seed = next((p for p in spec.params if p.is_seed), None) if spec is not None else None
+    if seed is None:
+        return False
+    if seed.used_when is None:
+        return True
+    name, values = seed.used_when
+    node = call.arg(name)
+    if node is None:
+        p = spec.param(name)  # type: ignore[union-attr]
+        return p is not None and p.default in values
+    return isinstance(node, A.Str | A.Lit) and node.value in values
 
 
 def canonicalize_seeds(program: A.Program, program_seed: int = 0) -> A.Program:

@@ -35,8 +35,7 @@ def static_number(node: A.Node) -> float | int | None:
 def param_value(call: A.Call, name: str) -> Any:
     """Value of a numeric/enum/bool parameter of ``call`` as the evaluator uses it: its default
     when not written, a rounded int for integer parameters, else a float (or the literal).
-    Raises ValueError when the parameter is not a constant (for a parameter that accepts
-    fields, X()/Y() make it a field too)."""
+    Raises ValueError when the parameter is not a constant."""
     node = call.arg(name)
     p = FUNCTIONS[call.func].param(name)
     assert p is not None
@@ -44,7 +43,7 @@ def param_value(call: A.Call, name: str) -> Any:
         return p.default
     if isinstance(node, A.Str | A.Lit):
         return node.value
-    v = _eval(node, strict=True) if p.field else static_number(node)
+    v = static_number(node)
     if v is None:
         raise ValueError(f"{call.func}: {name} is not a constant")
     return int(round(v)) if p.kind.value == "int" else float(v)

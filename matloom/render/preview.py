@@ -9,7 +9,8 @@ prompt, so it has two implementations with the same results:
 * ``numba`` (used when numba is loaded or asked for; kernels in
   :mod:`matloom.engine.kernels.shade_numba`): per-texel kernels, no full-size temporaries. The
   three pow-like steps are vectorised numpy calls between the kernels (numpy's SIMD ``pow`` is
-  several times faster than a scalar libm call in a loop).
+  several times faster than a scalar libm call in a loop), and so is the anisotropy rotation
+  (only when some angle is not 0; it is the numpy path's own function, so both agree).
 * ``numpy`` (fallback without numba, or ``MATLOOM_BACKEND=numpy``): the formulas on whole arrays.
 
 Precision: the maps are float32 (the reference blends them in float64, a ~1e-7 relative
@@ -18,6 +19,14 @@ takes v^(1/2.4) of the albedo and of the soft-knee emissive in float32, which mo
 2 million values by one level against the numpy path in a random stress test
 (``benchmarks/preview.py``). Both reproduce all 30 reference previews of the parity fixtures
 byte for byte.
+
+Anisotropy: the reference widens the Blinn-Phong lobe by 1 / (1 + 4 anisotropy), its stretch
+direction being the tangent +x. ``anisotropy_angle`` (degrees counter-clockwise from +x) rotates
+that tangent: the exponent is then multiplied by :func:`anisotropy_direction_factor`, the ratio
+of the Ashikhmin-Shirley exponents with the rotated and the unrotated tangent. It is exactly 1
+where the angle is 0 (so every preview without the channel is unchanged, byte for byte) and
+where the anisotropy is 0; otherwise the highlight dims or brightens as the stretch turns
+across or along the half vector's in-plane direction. Angles are axial (180 = 0).
 
 Non-finite inputs never raise. They follow the reference's arithmetic (NaN propagates through
 clamps and ``pow`` as in numpy, so e.g. 1^NaN = 1; non-finite normal components are replaced by
@@ -42,6 +51,9 @@ from matloom.vocab.layout import LAYOUT
 
 #: Composited maps only other maps are derived from (height -> normal, AO).
 _RELIEF_SOURCES = frozenset(LAYOUT[d.source].field for d in LAYOUT.derived)
+#: The anisotropy amount and direction maps (see the module docstring).
+_ANISOTROPY = LAYOUT["anisotropy"].field
+_ANISOTROPY_ANGLE = LAYOUT["anisotropy_angle"].field
 
 #: The reference's fixed light direction, normalize(0.5, 0.5, 1), as exact float64 components.
 _REFERENCE_LIGHT: tuple[float, float, float] = tuple(
@@ -117,6 +129,31 @@ def _soft_knee_power(emissive: np.ndarray) -> np.ndarray:
         return _srgb_power(ratio, out=ratio)
 
 
+def anisotropy_direction_factor(
+    angle_deg: np.ndarray, anisotropy: np.ndarray, half: np.ndarray
+) -> np.ndarray:
+    """Per texel, the factor that turns the reference's exponent (stretch along +x) into the
+    exponent with the stretch along ``angle_deg`` (degrees counter-clockwise from +x).
+
+    With the tangent t = (cos angle, sin angle), the in-plane half vector h = (H_x, H_y) and
+    k = 1 / (1 + 4 a) (``anisotropy`` a, already clamped to [0, 1]), the Ashikhmin-Shirley
+    exponent is proportional to k (h.t)^2 + (h.b)^2 = |h|^2 - (1 - k) (h.t)^2; the factor is
+    its value at the angle over its value at 0. It is exactly 1 where the angle is 0, where
+    a = 0 and when h = 0 (a head-on half vector has no direction to compare with). NaN
+    angles give NaN, as every other NaN map does. float64, shared by both shaders.
+    """
+    hx, hy = float(half[0]), float(half[1])
+    in_plane = hx * hx + hy * hy
+    with np.errstate(all="ignore"):
+        theta = np.radians(np.asarray(angle_deg, dtype=np.float64))
+        along = hx * np.cos(theta) + hy * np.sin(theta)
+        quadrupled = 4.0 * np.asarray(anisotropy, dtype=np.float64)
+        stretch = quadrupled / (1.0 + quadrupled)  # 1 - k
+        at_zero = in_plane - stretch * (hx * hx)
+        factor = (in_plane - stretch * (along * along)) / at_zero
+    return np.where((angle_deg == 0) | (at_zero == 0), 1.0, factor)
+
+
 #: The maps the shading reads: every map of the layout but the height (the shading reads the
 #: normal and AO derived from it), with their component counts (1: (H, W), 3: (H, W, 3)).
 _INPUTS: dict[str, int] = {
@@ -150,7 +187,11 @@ def _shade_numba(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarr
     spec = np.empty((rows, cols), dtype=np.float64)
     from matloom.engine.kernels.shade_numba import _shade_kernel, _specular_base_kernel
 
-    _specular_base_kernel(m["normal"], m["roughness"], m["anisotropy"], half, n_dot_h, spec)
+    _specular_base_kernel(m["normal"], m["roughness"], m[_ANISOTROPY], half, n_dot_h, spec)
+    angle = m[_ANISOTROPY_ANGLE]
+    if angle.any():  # NaN counts: it propagates as in the numpy path
+        anisotropy = np.clip(m[_ANISOTROPY].astype(np.float64), 0.0, 1.0)
+        spec *= anisotropy_direction_factor(angle, anisotropy, half)
     with np.errstate(invalid="ignore", over="ignore"):
         np.power(n_dot_h, spec, out=spec)  # spec = (N.H)^shininess, float64
     emissive = m["emissive_linear"]
@@ -197,8 +238,11 @@ def _shade_numpy(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarr
         metal, sheen = clipped["metallic"], clipped["sheen"]
         ss, trans, cover = clipped["subsurface"], clipped["transmission"], clipped["alpha"]
         shininess = ((1.0 - clipped["roughness"]) ** 2 * 100.0 + 2.0) / (
-            1.0 + 4.0 * clipped["anisotropy"]
+            1.0 + 4.0 * clipped[_ANISOTROPY]
         )
+        angle = m[_ANISOTROPY_ANGLE]
+        if angle.any():
+            shininess *= anisotropy_direction_factor(angle, clipped[_ANISOTROPY], half)
         albedo = linear_to_srgb(m["basecolor_linear"].astype(np.float64))
         f0_dielectric = ((1.0 - eta) / (1.0 + eta)) ** 2 * (1.0 - metal)
         f0 = f0_dielectric[..., None] + albedo * metal[..., None]

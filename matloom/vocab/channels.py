@@ -113,10 +113,27 @@ CHANNELS: dict[str, ChannelSpec] = {
             ("value",),
             (0.0,),
             "0..1",
-            "anisotropic highlight stretch along x (brushed metal)",
+            "anisotropic highlight stretch along x, or along .anisotropy_angle (brushed metal)",
             ".anisotropy(0.6)",
-            map_doc="anisotropy magnitude 0..1 (direction: tangent/X)",
+            map_doc="anisotropy magnitude 0..1 (direction: tangent/X rotated by anisotropy_angle)",
             search=(0, 1),
+        ),
+        C(
+            "anisotropy_angle",
+            ("degrees",),
+            (0.0,),
+            "degrees counter-clockwise from +x (unclamped; 180 is the same direction as 0)",
+            "direction of the anisotropic highlight's stretch; layers blend the angle linearly",
+            ".anisotropy_angle(45)",
+            map_doc=(
+                "direction of the anisotropic stretch, degrees counter-clockwise from +x "
+                "(tangent/X) toward +y (up); axial, so angle and angle + 180 are the same; "
+                "layers blend the angle linearly (value_range: the blended degrees)"
+            ),
+            clamp_lo=None,
+            clamp_hi=None,
+            search=(0, 180),
+            since=2,
         ),
         C(
             "emissive",

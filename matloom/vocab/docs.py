@@ -63,8 +63,12 @@ def render_language_reference() -> str:
         "only.",
         "",
         "Numeric parameters are constants (constant arithmetic and `pi`, `e` allowed; `X()`/`Y()` "
-        "there count as 0, with warning W004) except the parameters marked as accepting a field: "
-        "those take any expression, evaluated at each sample (domain warping).",
+        "there are evaluated once at the origin, with warning W004) except the parameters marked "
+        "as accepting a field: those take any field (noise, patterns, Define references), "
+        "evaluated at each sample (domain warping). An expression of `X()`/`Y()` and constants "
+        "only keeps its language-1 meaning there too; to warp by the coordinates themselves, "
+        "Define the expression and pass the Define's name: `Define(swirl, X() * 20)` then "
+        "`Rotate(f, swirl)`.",
         "",
         "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
         "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.",

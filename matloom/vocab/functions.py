@@ -177,7 +177,9 @@ def _noise_specs() -> list[FunctionSpec]:
     worley = FunctionSpec(
         "Worley",
         "noise",
-        "cellular (Voronoi) noise: distance to the nearest feature points, one per unit cell",
+        "cellular (Voronoi) noise: one random feature point per unit cell (after scaling x, y "
+        "by the frequencies); gives distances to the nearest feature points, a random value "
+        "per cell or the distance to the cell borders (see output)",
         'Worley(distance="euclidean", combination="F2-F1", base_freq=6, to_01=True, seed=3)',
         (
             P(
@@ -199,6 +201,22 @@ def _noise_specs() -> list[FunctionSpec]:
             _freq("base_freq_y", "per-axis frequency override along y", None, False),
             _to01(),
             _seed(),
+            P(
+                "output",
+                Kind.ENUM,
+                '"distance": the combination of feature-point distances in cell units (raw F1 '
+                "below sqrt(2) Euclidean, 2 Manhattan, 1 Chebyshev; F2 below sqrt(5), 3 and 2; "
+                "to_01=True divides by a fixed norm per metric and combination and clips to "
+                '[0, 1]); "cell_value": a uniform random value in [0, 1), constant over each '
+                "cell (the cell of the nearest feature point under distance) and set by seed; "
+                '"edge": the Euclidean distance, in coordinate units, from the sample to the '
+                "nearest border of its cell, the cells taken as Euclidean whatever distance is "
+                "(0 on a border, below sqrt(2) / min(|freq_x|, |freq_y|)). combination and "
+                'to_01 apply to "distance" only',
+                "distance",
+                choices=("distance", "cell_value", "edge"),
+                since=2,
+            ),
         ),
         print_style=PrintStyle.WRITTEN_KEYWORDS,
     )
@@ -212,7 +230,9 @@ def _pattern_specs() -> list[FunctionSpec]:
     bricks = FunctionSpec(
         "Bricks",
         "pattern",
-        "brick/tile mask: 1 on bricks, 0 in mortar; rows start at the origin",
+        "brick/tile pattern: a mask (1 on bricks, 0 in mortar), a random value per brick, the "
+        "position inside the brick or the distance to its border (see output); rows start at "
+        "the origin",
         "Bricks(brick_width=0.5, brick_height=0.25, mortar=0.02)",
         (
             P(
@@ -249,13 +269,41 @@ def _pattern_specs() -> list[FunctionSpec]:
                 choices=("row", "column"),
             ),
             feather,
+            P(
+                "output",
+                Kind.ENUM,
+                '"mask": 1 on bricks, 0 in mortar (feather softens the edge; the other outputs '
+                'ignore feather); "cell_value": a uniform random value in [0, 1) per brick, '
+                'constant over the brick and the half mortar around it, set by seed; "u" / '
+                '"v": the position inside the brick\'s cell (brick_width x brick_height: the '
+                "brick and half the mortar on each side) along x / y, from 0 at its left / "
+                'bottom side to 1 at its right / top side; "edge": the distance, in coordinate '
+                "units, from the sample to the brick's border (the nearest of its four sides), "
+                "0 in the mortar",
+                "mask",
+                choices=("mask", "cell_value", "u", "v", "edge"),
+                since=2,
+            ),
+            P(
+                "seed",
+                Kind.INT,
+                'random seed of output="cell_value" (integer >= 0; made explicit by '
+                "canonicalisation when omitted); the other outputs ignore it and get none",
+                default=None,
+                nullable=True,
+                lo=0,
+                is_seed=True,
+                since=2,
+                used_when=("output", ("cell_value",)),
+            ),
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
     )
     weave = FunctionSpec(
         "Weave",
         "pattern",
-        "woven thread mask: 1 on whichever thread is on top, 0 in the gaps",
+        "woven threads: a mask (1 on whichever thread is on top, 0 in the gaps), the warp or "
+        "weft part of it, or the position along / across the thread on top (see output)",
         "Weave(over=2, under=1, base_freq=16, warp_width=0.8, feather=0.1)",
         (
             P("over", Kind.INT, "cells the warp passes over", 1, lo=1, search=(1, 4)),
@@ -275,6 +323,22 @@ def _pattern_specs() -> list[FunctionSpec]:
                 search=(0.05, 1.0),
             ),
             feather,
+            P(
+                "output",
+                Kind.ENUM,
+                '"mask": 1 on whichever thread is on top, 0 in the gaps; "warp" / "weft": the '
+                "mask where the warp (vertical) / weft (horizontal) thread is on top, 0 elsewhere "
+                '(warp + weft = mask); "along": the position along the visible float of the '
+                "thread on top (its run of consecutive cells), from 0 at its start (bottom end "
+                "of a warp float, left end of a weft float) to 1 at its end; a float that never "
+                "ends (a warp column always on top, e.g. shift=0) restarts in every cell; "
+                '"across": the position across the thread on top, from 0 at its left (warp) / '
+                "bottom (weft) edge to 1 at its other edge, 0 or 1 in the gaps beside it. "
+                "along and across ignore feather",
+                "mask",
+                choices=("mask", "warp", "weft", "along", "across"),
+                since=2,
+            ),
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
     )
@@ -282,7 +346,10 @@ def _pattern_specs() -> list[FunctionSpec]:
         "Threshold",
         "mask",
         "clamp or binarise a field: values >= above_at become above_to, values <= below_at become "
-        "below_to, with an optional smooth ramp of transition_width inside the band",
+        "below_to; values in between pass through unchanged, except inside the transition ramps "
+        "(with transition_width w > 0: in [above_at - w, above_at] the value blends smoothly "
+        "into above_to, in [below_at, below_at + w] from below_to). Binarise with below_at = "
+        "above_at = t: below_to at and under t, above_to above",
         "Threshold(fBm(to_01=True, seed=1), below_at=0.5, below_to=0, above_at=0.5, above_to=1)",
         (
             _expr("expr", "input field"),

@@ -15,10 +15,11 @@ below reproduce the engine's historical orders, so the numba kernels keep their 
 
 * kernel input slots (per layer): coverage, colours, [0, 1] scalars, other scalars,
   colour+strength (r, g, b, strength), max -- today 0 alpha, 1-3 basecolor, 4-10 metallic ..
-  anisotropy, 11 ior, 12-15 emissive, 16 height (17 slots);
+  anisotropy, 11 ior, 12 anisotropy_angle, 13-16 emissive, 17 height (18 slots);
 * output planes (the kernel's accumulator rows and the sweep's planar buffer): coverage, [0, 1]
-  scalars, other scalars, max, colours, colour+strength -- 0 alpha, 1-7, 8 ior, 9 height, 10-12
-  basecolor, 13-15 emissive (16 planes; the first 10 are the 2-D maps);
+  scalars, other scalars, max, colours, colour+strength -- 0 alpha, 1-7, 8 ior, 9
+  anisotropy_angle, 10 height, 11-13 basecolor, 14-16 emissive (17 planes; the first 11 are the
+  2-D maps);
 * ``MaterialMaps`` fields and export rows: colours, coverage, [0, 1] scalars, other scalars,
   colour+strength, max, then the maps derived from the relief channel (normal, ao).
 
@@ -83,6 +84,8 @@ FIELD_ORDER = (
 RELIEF_SOURCE = "height"
 #: Colour space of every map that is not a colour.
 NON_COLOUR = "linear (non-color)"
+#: Encoding of a map's float copy (:attr:`ExportRule.float_copy`).
+FLOAT_COPY_ENCODING = "exr-float32"
 
 
 @dataclass(frozen=True)
@@ -90,7 +93,10 @@ class MapSpec:
     """How one exported map is encoded and which ``MaterialMaps`` arrays it is made from.
 
     ``writer`` names the encoder in :mod:`matloom.io.export` (``grey8``, ``exr``, ``srgb8``,
-    ``srgb8-alpha``, ``normal8``); it is not part of the manifest.
+    ``srgb8-alpha``, ``normal8``, ``periodic8``); it is not part of the manifest. ``period``
+    is the period of a ``periodic8`` map (its file holds (value mod period) / period);
+    ``decode`` (manifest field when set) says how to read the samples back; ``float_file``
+    names a float32 EXR holding the source's raw values, written next to ``file_name``.
     """
 
     name: str
@@ -100,28 +106,47 @@ class MapSpec:
     sources: tuple[str, ...]
     meaning: str
     writer: str = "grey8"
+    period: float | None = None
+    decode: str = ""
+    float_file: str | None = None
+
+    @property
+    def file_names(self) -> tuple[str, ...]:
+        """Every file the map is written to (the float copy last)."""
+        return (self.file_name,) + ((self.float_file,) if self.float_file else ())
 
     def describe(self) -> dict[str, Any]:
         """The manifest fields that do not depend on the data."""
-        return {
+        out: dict[str, Any] = {
             "file": self.file_name,
             "encoding": self.encoding,
             "colour_space": self.colour_space,
             "meaning": self.meaning,
         }
+        if self.decode:
+            out["decode"] = self.decode
+        if self.float_file:
+            out["float_file"] = self.float_file
+            out["float_encoding"] = FLOAT_COPY_ENCODING
+        return out
 
 
 @dataclass(frozen=True)
 class ExportRule:
     """Non-default export of a channel: the fields given replace those of its kind's default;
     ``with_coverage`` appends the coverage map to the sources (written as the PNG's alpha);
-    ``skip`` exports no map of its own."""
+    ``skip`` exports no map of its own; ``period`` makes it a ``periodic8`` grey PNG of
+    (value mod period) / period (an angle); ``float_copy`` also writes the raw values as a
+    float32 EXR (``<name>.exr``); ``decode`` is recorded in the manifest."""
 
     encoding: str | None = None
     colour_space: str | None = None
     writer: str | None = None
     with_coverage: bool = False
     skip: bool = False
+    period: float | None = None
+    float_copy: bool = False
+    decode: str | None = None
 
 
 #: Export rules beyond the defaults of :func:`_default_export` (by channel name).
@@ -132,6 +157,16 @@ EXPORT_RULES: dict[str, ExportRule] = {
         colour_space="sRGB (RGB); alpha is linear coverage",
         writer="srgb8-alpha",
         with_coverage=True,
+    ),
+    # An axial direction in degrees: the PNG holds (angle mod 180) / 180, the EXR the degrees.
+    "anisotropy_angle": ExportRule(
+        encoding="png8-grey",
+        period=180.0,
+        float_copy=True,
+        decode=(
+            "angle_degrees = value / 255 * 180 (axial: the angle mod 180, 255 = 180 = 0); "
+            "float_file holds the blended degrees unreduced"
+        ),
     ),
 }
 
@@ -180,6 +215,17 @@ class ChannelLayout:
     def components(self) -> int:
         """Components of the composited map: 1 (H, W) or 3 (H, W, 3)."""
         return len(self.planes)
+
+    @property
+    def since(self) -> int:
+        """Language version that introduced the channel."""
+        return self.spec.since
+
+    @property
+    def default_map_is_zero(self) -> bool:
+        """True when a material whose layers never write the channel has an all-zero map
+        (every default argument is 0; max-blended maps are 0 where no layer counts)."""
+        return all(d == 0 for d in self.spec.defaults)
 
 
 @dataclass(frozen=True)
@@ -313,6 +359,18 @@ class Layout:
         """Fields of the 2-D output planes 0 .. ``n_map_planes - 1`` in plane order."""
         return tuple(c.field for c in self.in_group(*PLANE_ORDER) if c.components == 1)
 
+    def channel_of_field(self, map_field: str) -> ChannelLayout | None:
+        """The channel whose composited map is ``map_field`` (None for a derived map)."""
+        for c in self.channels:
+            if c.field == map_field:
+                return c
+        return None
+
+    def fields_newer_than(self, language: int) -> tuple[str, ...]:
+        """``MaterialMaps`` array fields of the channels newer than ``language`` (maps that
+        arrays written for that language version, e.g. the parity fixtures, do not hold)."""
+        return tuple(c.field for c in self.in_group(*FIELD_ORDER) if c.since > language)
+
     def components(self, map_field: str) -> int:
         """1 for an (H, W) map, 3 for an (H, W, 3) one."""
         for c in self.channels:
@@ -390,6 +448,11 @@ def _export(
     encoding = rule.encoding or spec.encoding
     extension = ".exr" if encoding.startswith("exr") else ".png"
     sources = spec.sources + ((coverage.field,) if rule.with_coverage else ())
+    if rule.period is not None and (channel.components != 1 or extension != ".png"):
+        raise ValueError(f"channel {channel.name!r}: a periodic map is a scalar 8-bit PNG")
+    if rule.float_copy and extension == ".exr":
+        raise ValueError(f"channel {channel.name!r}: its map is already a float EXR")
+    writer = rule.writer or ("periodic8" if rule.period is not None else spec.writer)
     return MapSpec(
         spec.name,
         f"{spec.name}{extension}",
@@ -397,7 +460,10 @@ def _export(
         rule.colour_space or spec.colour_space,
         sources,
         spec.meaning,
-        rule.writer or spec.writer,
+        writer,
+        period=rule.period,
+        decode=rule.decode or "",
+        float_file=f"{spec.name}.exr" if rule.float_copy else None,
     )
 
 

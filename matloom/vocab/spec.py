@@ -88,12 +88,18 @@ class ParamSpec:
     #: Language version that introduced the parameter (``matloom random --language 1`` leaves
     #: out everything newer, reproducing the reference generator's programs).
     since: int = 1
-    #: Accepts a field expression (language 2): evaluated at each sample, like an operand; a
-    #: constant (no X()/Y(), noise or Define) is used as the number it is.
+    #: Accepts a field expression (language 2): noise, patterns, Define references, ... are
+    #: evaluated at each sample, like an operand. A constant is used as the number it is, and so
+    #: is an expression of X()/Y() and constants only (evaluated once at the origin, warning
+    #: W004: its language-1 meaning); pass it through a Define to vary it per sample.
     field: bool = False
     #: A parameter without which this one has no effect (the checker warns, W008; the printer
     #: drops it, as the reference's serialiser does).
     needs: str | None = None
+    #: A seed used only for some values of another parameter, as (parameter, values): e.g.
+    #: Bricks' ``("output", ("cell_value",))``. For other values the seed has no effect, and
+    #: canonicalisation draws none (``matloom.lang.seeds.uses_seed``). None: always used.
+    used_when: tuple[str, tuple[str, ...]] | None = None
 
     @property
     def required(self) -> bool:

@@ -74,7 +74,10 @@ def test_compiled_kernel_constants_follow_the_layout() -> None:
     written = [0, *K.SCALAR_PLANES, *K.MAX_PLANES, *K.COLOUR_PLANES]
     assert sorted(written) == list(range(K.N_PLANES))
     assert max(0, *K.SCALAR_PLANES, *K.MAX_PLANES) == K.N_MAP_PLANES - 1
-    assert K.SCALAR_LO[-1] == 1.0 and K.SCALAR_HI[-1] == np.inf  # ior: below at 1
+    ior = K.SCALAR_SLOTS.index(LAYOUT.slot("ior"))
+    assert K.SCALAR_LO[ior] == 1.0 and K.SCALAR_HI[ior] == np.inf  # ior: below at 1
+    angle = K.SCALAR_SLOTS.index(LAYOUT.slot("anisotropy_angle"))
+    assert K.SCALAR_LO[angle] == -np.inf and K.SCALAR_HI[angle] == np.inf  # unclamped
 
 
 H, W = 5, 7

@@ -21,7 +21,7 @@ from matloom.engine import relief  # noqa: E402
 from matloom.engine.backends import get_backend  # noqa: E402
 from matloom.engine.evaluate import evaluate  # noqa: E402
 from matloom.engine.kernels import composite_numba, relief_numba  # noqa: E402
-from matloom.engine.maps import ARRAY_FIELDS  # noqa: E402
+from matloom.engine.maps import ARRAY_FIELDS, NEWER_FIELDS  # noqa: E402
 from matloom.engine.schedules import banded as fused  # noqa: E402
 from matloom.lang.random_program import random_program  # noqa: E402
 from matloom.render.sweep import run_sweep  # noqa: E402
@@ -60,7 +60,12 @@ def test_fused_path_matches_reference_fixture(name: str) -> None:
     """Direct check against the reference arrays at 64x64 (README tolerances)."""
     ref = np.load(DATA / f"{name}_64x64.npz")
     ours = evaluate(_source(name), 64, 64, backend="numba")
-    for key in ARRAY_FIELDS:
+    assert set(ref.files) <= set(ARRAY_FIELDS), f"{name}: unknown arrays in the fixture"
+    # The fixtures predate the language-2 channels: they hold every other map.
+    assert set(ARRAY_FIELDS) - set(ref.files) == set(NEWER_FIELDS)
+    for key in NEWER_FIELDS:  # no language-1 program writes them: their default, 0
+        assert np.all(getattr(ours, key) == 0), f"{name}.{key}"
+    for key in ref.files:
         a, r = getattr(ours, key).astype(np.float64), ref[key].astype(np.float64)
         np.testing.assert_array_equal(np.isnan(a), np.isnan(r), err_msg=f"{name}.{key}")
         fin = np.isfinite(a) & np.isfinite(r)

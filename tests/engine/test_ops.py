@@ -85,7 +85,7 @@ def _atan2_op() -> Op:
         return math.atan2(values[0], values[1]) if len(values) == 2 else None
 
     return Op(
-        "Atan2",
+        "Angle",
         Kind.ELEMENTWISE,
         np.arctan2,
         static,
@@ -96,22 +96,23 @@ def _atan2_op() -> Op:
 
 @pytest.fixture
 def atan2(monkeypatch: pytest.MonkeyPatch) -> None:
-    """``Atan2(y, x)`` registered with one registry entry and one op entry, nothing else."""
+    """``Angle(y, x)`` (an atan2 under a name the language does not have) registered with one
+    registry entry and one op entry, nothing else."""
     spec = FunctionSpec(
-        "Atan2",
+        "Angle",
         "math",
         "angle of (x, y)",
-        "Atan2(Y(), X())",
+        "Angle(Y(), X())",
         (ParamSpec("y", ParamKind.EXPR, "y"), ParamSpec("x", ParamKind.EXPR, "x")),
     )
-    monkeypatch.setitem(FUNCTIONS, "Atan2", spec)
-    monkeypatch.setitem(OPS, "Atan2", _atan2_op())
+    monkeypatch.setitem(FUNCTIONS, "Angle", spec)
+    monkeypatch.setitem(OPS, "Angle", _atan2_op())
 
 
 PROGRAM = """Material(
   Layer(1)
-    .height(Atan2(Y() - 0.5, X() - 0.5) * fBm(seed=3, to_01=True))
-    .roughness(Atan2(1, 1) + 0.1)
+    .height(Angle(Y() - 0.5, X() - 0.5) * fBm(seed=3, to_01=True))
+    .roughness(Angle(1, 1) + 0.1)
 )"""
 
 
@@ -139,7 +140,7 @@ def test_new_function_in_culling() -> None:
 
     x = np.linspace(-1, 1, 8)[None, :]
     dense = interpret.Evaluator(matloom.parse(PROGRAM), x, x.T, _numpy_backend())
-    expr = matloom.parse("Material(Layer(1).height(Atan2(Y(), X())))").layers[0].channels[0]
+    expr = matloom.parse("Material(Layer(1).height(Angle(Y(), X())))").layers[0].channels[0]
     angle = dense.field(expr.args[0])
     deferred = DeferredField(lambda m: np.zeros((8, 8)), (8, 8), 0.0, 1.0, True)
     assert channel_bounds(make_lazy("*", angle, deferred), {}) is not None  # a bounded leaf

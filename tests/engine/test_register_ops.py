@@ -8,6 +8,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+from matloom.engine.kernels import mathops
 from matloom.engine.kernels.register_ops import (
     ARITY,
     CONSTS,
@@ -33,6 +34,10 @@ PINNED = {
     "sqrt": 11,
     "threshold": 12,
     "axpb": 13,
+    "atan2": 14,
+    "fract": 15,
+    "mod": 16,
+    "exp": 17,
 }
 
 
@@ -50,6 +55,7 @@ def test_operand_decoding_comes_from_the_table() -> None:
         assert is_load(op.code) == (op.arity == 0)
     assert REGISTER_OPS["threshold"].consts == 6 and REGISTER_OPS["axpb"].consts == 2
     emitted = {"+", "-", "*", "/", "min", "max", "abs", "floor", "ceil", "sqrt", "threshold"}
+    emitted |= {"atan2", "fract", "mod", "exp"}  # language 2
     assert set(OP_BY_SYMBOL) == emitted
     assert all(REGISTER_OPS[name].code == code for name, code in _numba_constants().items())
 
@@ -83,6 +89,11 @@ NUMPY: dict[str, Callable[..., np.ndarray]] = {
     "floor": np.floor,
     "ceil": np.ceil,
     "sqrt": np.sqrt,
+    # language 2: their numpy versions (float64, bit-identical on every CPU)
+    "atan2": mathops.atan2,
+    "fract": mathops.fract,
+    "mod": mathops.mod,
+    "exp": mathops.exp_,
 }
 
 

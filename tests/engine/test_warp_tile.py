@@ -18,8 +18,14 @@ from matloom.lang.cost import expanded_cost
 BACKENDS = available_backends()
 
 
+#: Defines of the coordinates: passed to a field parameter they vary per sample (X()/Y() written
+#: there directly keep their language-1 meaning: evaluated once at the origin).
+_COORDS = "Define(_x, X())\nDefine(_y, Y())\n"
+
+
 def _height(expr: str, n: int = 48, backend: str = "numpy", view: str = "View(0, 0, 4, 4)"):
-    return evaluate(f"{view}\nMaterial(Layer(1).height({expr}))", n, n, backend=backend).height
+    program = f"{view}\n{_COORDS}Material(Layer(1).height({expr}))"
+    return evaluate(program, n, n, backend=backend).height
 
 
 def _axes(n: int = 48, view: tuple[float, ...] = (0, 0, 4, 4)):
@@ -33,12 +39,12 @@ def _axes(n: int = 48, view: tuple[float, ...] = (0, 0, 4, 4)):
     ("warped", "constant"),
     [
         (
-            "Translate(fBm(seed=1), X() * 0 + 0.3, Y() * 0 - 1.7)",
+            "Translate(fBm(seed=1), _x * 0 + 0.3, _y * 0 - 1.7)",
             "Translate(fBm(seed=1), 0.3, -1.7)",
         ),
-        ("Scale(Worley(seed=2), X() * 0 + 2, 0.5)", "Scale(Worley(seed=2), 2, 0.5)"),
-        ("Rotate(Bricks(), X() * 0 + 30)", "Rotate(Bricks(), 30)"),
-        ("Rotate(fBm(seed=3), Y() * 0 + 151)", "Rotate(fBm(seed=3), 151)"),
+        ("Scale(Worley(seed=2), _x * 0 + 2, 0.5)", "Scale(Worley(seed=2), 2, 0.5)"),
+        ("Rotate(Bricks(), _x * 0 + 30)", "Rotate(Bricks(), 30)"),
+        ("Rotate(fBm(seed=3), _y * 0 + 151)", "Rotate(fBm(seed=3), 151)"),
     ],
 )
 def test_constant_field_parameters_equal_constant_transforms(warped, constant, backend):
@@ -50,12 +56,12 @@ def test_constant_field_parameters_equal_constant_transforms(warped, constant, b
 def test_warps_are_pointwise(backend):
     """Translate(f, dx, dy)(p) = f(x - dx(p), y - dy(p)), and likewise for Scale and Rotate."""
     x, y = _axes()
-    got = _height("Translate(X() + Y() * 10, Y() * 0.5, X() * 0.25)", backend=backend)
+    got = _height("Translate(X() + Y() * 10, _y * 0.5, _x * 0.25)", backend=backend)
     want = (x - (y * 0.5).astype(np.float32)) + (y - (x * 0.25).astype(np.float32)) * 10
     np.testing.assert_allclose(got, want, rtol=1e-5, atol=1e-5)
-    got = _height("Scale(X() * Y(), X() + 1, 2)", backend=backend)
+    got = _height("Scale(X() * Y(), _x + 1, 2)", backend=backend)
     np.testing.assert_allclose(got, (x / (x + 1)) * (y / 2), rtol=1e-5, atol=1e-6)
-    got = _height("Rotate(X(), X() * 20)", backend=backend)
+    got = _height("Rotate(X(), _x * 20)", backend=backend)
     rad = np.radians(x * 20)
     np.testing.assert_allclose(got, np.cos(rad) * x + np.sin(rad) * y, rtol=1e-5, atol=1e-5)
 
@@ -65,6 +71,17 @@ def test_warps_agree_between_backends():
         pytest.skip("needs the numba extra (the numba backend is not installed)")
     expr = "Rotate(Translate(fBm(seed=1), fBm(seed=2, base_freq=0.5), 0), Worley(seed=3) * 40)"
     assert np.array_equal(_height(expr, backend="numpy"), _height(expr, backend="numba"))
+
+
+def test_coordinates_alone_keep_their_language_1_meaning():
+    """X()/Y() written directly in a field parameter are evaluated once at the origin (W004),
+    as in language 1 and the reference: Translate(X(), X() + 0.25, 0) is X() - 0.25."""
+    x, _ = _axes()
+    direct = "Material(Layer(1).height(Translate(X(), X() + 0.25, 0)))"
+    assert [d.code for d in matloom.check(direct)] == ["W004"]
+    got = evaluate("View(0, 0, 4, 4)\n" + direct, 48, 48, backend="numpy").height
+    np.testing.assert_array_equal(got, np.broadcast_to((x - 0.25).astype(np.float32), got.shape))
+    assert "X() + 0.25" not in matloom.format(matloom.parse(direct))  # printed as the number
 
 
 def test_warp_parameters_check_print_and_cost():

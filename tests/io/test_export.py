@@ -74,7 +74,9 @@ def test_export_writes_all_maps_and_manifest(tmp_path: Path) -> None:
     result = export_maps(maps, tmp_path / "out", program_text="Material(Layer())")
     names = sorted(p.name for p in (tmp_path / "out").iterdir() if not p.name.startswith("."))
     expected = sorted(
-        [f"{n}.png" for n in REFERENCE_PNGS] + ["ior.exr", "emissive.exr", "height.exr"]
+        [f"{n}.png" for n in REFERENCE_PNGS]
+        + ["ior.exr", "emissive.exr", "height.exr"]
+        + ["anisotropy_angle.png", "anisotropy_angle.exr"]  # written on every render
     )
     assert names == sorted(expected + ["material.json"])
     manifest = json.loads(result.manifest_path.read_text())
@@ -83,7 +85,7 @@ def test_export_writes_all_maps_and_manifest(tmp_path: Path) -> None:
     for name, digest in manifest["files"].items():
         assert hashlib.sha256((tmp_path / "out" / name).read_bytes()).hexdigest() == digest
     assert [m["name"] for m in manifest["maps"]] == list(MAP_NAMES)
-    assert len(MAP_NAMES) == 13
+    assert len(MAP_NAMES) == 14
     assert manifest["width"] == 64 and manifest["height"] == 64
     assert manifest["program_sha256"] == hashlib.sha256(b"Material(Layer())").hexdigest()
     by_name = {m["name"]: m for m in manifest["maps"]}
@@ -91,7 +93,7 @@ def test_export_writes_all_maps_and_manifest(tmp_path: Path) -> None:
     assert height_range["min"] == pytest.approx(float(maps.height.min()))
     assert height_range["max"] == pytest.approx(float(maps.height.max()))
     assert by_name["basecolor"]["colour_space"].startswith("sRGB")
-    assert set(result.files) == set(MAP_NAMES) | {"manifest"}
+    assert set(result.files) == set(MAP_NAMES) | {"manifest", "anisotropy_angle_float"}
 
 
 def test_float_maps_round_trip_exactly(tmp_path: Path) -> None:

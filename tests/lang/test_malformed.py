@@ -268,11 +268,14 @@ def test_threshold_target_without_cutoff_warns_w008_and_is_dropped() -> None:
 
 def test_transform_parameters_accept_fields() -> None:
     """Language 2: Translate/Scale/Rotate take field parameters (domain warping), printed as
-    written; X()/Y() there are per-sample, so W004 does not apply."""
-    text = "Material(Layer(1).roughness(Rotate(Translate(X(), fBm(seed=1), Y() * 0.5), X())))"
+    written (X()/Y() alone keep their language-1 meaning there: W004)."""
+    text = (
+        "Define(y, Y())\n"
+        "Material(Layer(1).roughness(Rotate(Translate(X(), fBm(seed=1), y * 0.5), y)))"
+    )
     assert matloom.check(text) == []
     printed = matloom.format(matloom.parse(text))
-    assert "Translate(X(), fBm(seed=1), (Y() * 0.5))" in printed and "X()))" in printed
+    assert "Translate(X(), fBm(seed=1), (y * 0.5)), y)" in printed
     assert [d.code for d in matloom.check("Material(Layer(1).roughness(Log(X(), X() + 2)))")] == [
         "W004"
     ]

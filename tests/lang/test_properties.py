@@ -8,6 +8,9 @@ parsed text after applying exactly those documented rules (:func:`printer_normal
 * Bricks/Weave and the options of Fill/Stroke are printed only when they differ from the default;
 * ``Rect`` prints its radius clamped to half the smaller side, and omits a zero radius;
 * ``Log`` omits a base equal to e; Threshold omits ``*_to`` equal to ``*_at`` and a zero width;
+* fBm/Worley keywords newer than language 1 (Worley's ``output``) print only when not default,
+  and a seed used only for some values of another parameter (``used_when``: Bricks' seed
+  without ``output="cell_value"``) is not printed without them;
 * positional-style calls print every optional number (so an omitted one re-parses as written).
 """
 
@@ -54,11 +57,28 @@ def _static(node: A.Node) -> object:
     return static_number(node)
 
 
+def _drop_unused(call: A.Call, spec: FunctionSpec) -> A.Call:
+    """Without arguments whose ``used_when`` condition does not hold."""
+
+    def unused(p: ParamSpec | None) -> bool:
+        if p is None or p.used_when is None:
+            return False
+        name, values = p.used_when
+        node = call.arg(name)
+        value = spec.param(name).default if node is None else _static(node)  # type: ignore[union-attr]
+        return value not in values
+
+    return replace(call, args=tuple(a for a in call.args if not unused(spec.param(a.param))))
+
+
 def _normal_call(call: A.Call) -> A.Node:  # noqa: C901 - one rule per documented print style
     spec = FUNCTIONS.get(call.func)
     if spec is None:
         return call
+    call = _drop_unused(call, spec)
     style = spec.print_style
+    if style is PrintStyle.WRITTEN_KEYWORDS:
+        return _drop_defaults(call, spec, {p.name for p in spec.params if p.since > 1})
     if style is PrintStyle.CONSTANT:
         value = call.arg("value")
         return _literal(static_number(value)) if value is not None else A.Num(0)
@@ -155,12 +175,15 @@ def test_generated_program_properties(seed: int) -> None:
     assert matloom.parse(printed) == first
     # 3. the generator's own AST survives printing up to the documented normalisations
     assert first == printer_normal_form(random_program_ast(seed))
-    # 4. the inliner: no Define and no Ref left, every use replaced by the resolved expression,
-    #    and the inlined text re-parses to the same tree
+    # 4. the inliner: no Define and no Ref left (except Defines of X()/Y() only that a field
+    #    parameter needs per sample), every use replaced by the resolved expression, and the
+    #    inlined text re-parses to the same tree
     inlined = inline_defines(first)
-    assert inlined.defines == ()
-    assert not _has_ref(inlined)
-    assert inlined == substitute_defines(first)
+    kept = {d.name for d in inlined.defines}
+    assert all(static_number(d.expr) is not None for d in inlined.defines), kept
+    if not kept:
+        assert not _has_ref(inlined)
+        assert inlined == substitute_defines(first)
     reparsed, diags = parse_source(format_program(inlined))
     assert [d for d in diags if d.is_error] == []
     assert reparsed == inlined
@@ -274,3 +297,22 @@ def test_invalid_counts_are_refused(bad: dict[str, int]) -> None:
 def test_invalid_config_is_refused() -> None:
     with pytest.raises(ValueError, match="min_layers"):
         RandomConfig(min_layers=0)
+
+
+def test_inliner_keeps_defines_that_field_parameters_need_per_sample() -> None:
+    """Written inline, X() in a field parameter means its value at the origin; the Define that
+    makes it per-sample stays, so the inlined program evaluates to the same maps."""
+    import numpy as np
+
+    text = (
+        "Define(swirl, X() * 40)\nDefine(unused_inline, Y() * 2)\n"
+        "Material(Layer(1).height(Rotate(Bricks(), swirl) + Translate(X(), unused_inline + "
+        "fBm(seed=1), 0)))"
+    )
+    inlined = inline_defines(matloom.parse(text))
+    assert [d.name for d in inlined.defines] == ["swirl"]
+    out = format_program(inlined)
+    assert "Translate(X(), ((Y() * 2) + fBm(seed=1)), 0)" in out
+    a = matloom.evaluate(text, 32, 32, backend="numpy").height
+    b = matloom.evaluate(out, 32, 32, backend="numpy").height
+    assert np.array_equal(a, b)

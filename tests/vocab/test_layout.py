@@ -7,10 +7,11 @@ import dataclasses
 import pytest
 
 from matloom.vocab import CHANNELS, ChannelSpec
-from matloom.vocab.layout import LAYOUT, Group, build_layout
+from matloom.vocab.layout import EXPORT_RULES, LAYOUT, ExportRule, Group, build_layout
 from matloom.vocab.spec import Blend, ValueKind
 
-# The engine's historical tables, written out once here to prove the derivation keeps them.
+# The engine's tables, written out once here to prove the derivation keeps them (the language-2
+# channel anisotropy_angle took the next "other scalar" slot and plane after ior).
 SLOTS = {
     "alpha": (0,),
     "basecolor": (1, 2, 3),
@@ -22,8 +23,9 @@ SLOTS = {
     "subsurface": (9,),
     "anisotropy": (10,),
     "ior": (11,),
-    "emissive": (12, 13, 14, 15),
-    "height": (16,),
+    "anisotropy_angle": (12,),
+    "emissive": (13, 14, 15, 16),
+    "height": (17,),
 }
 PLANES = {
     "alpha": (0,),
@@ -35,9 +37,10 @@ PLANES = {
     "subsurface": (6,),
     "anisotropy": (7,),
     "ior": (8,),
-    "height": (9,),
-    "basecolor": (10, 11, 12),
-    "emissive": (13, 14, 15),
+    "anisotropy_angle": (9,),
+    "height": (10,),
+    "basecolor": (11, 12, 13),
+    "emissive": (14, 15, 16),
 }
 UNIT = ("metallic", "roughness", "sheen", "coat", "transmission", "subsurface", "anisotropy")
 MAP_FIELDS = (
@@ -45,6 +48,7 @@ MAP_FIELDS = (
     "alpha",
     *UNIT,
     "ior",
+    "anisotropy_angle",
     "emissive_linear",
     "height",
     "normal",
@@ -86,9 +90,19 @@ EXPORT_ROWS = [
         "png8-grey",
         LINEAR,
         ("anisotropy",),
-        "anisotropy magnitude 0..1 (direction: tangent/X)",
+        "anisotropy magnitude 0..1 (direction: tangent/X rotated by anisotropy_angle)",
     ),
     ("ior", "ior.exr", "exr-float32", LINEAR, ("ior",), "index of refraction"),
+    (
+        "anisotropy_angle",
+        "anisotropy_angle.png",
+        "png8-grey",
+        LINEAR,
+        ("anisotropy_angle",),
+        "direction of the anisotropic stretch, degrees counter-clockwise from +x (tangent/X) "
+        "toward +y (up); axial, so angle and angle + 180 are the same; layers blend the angle "
+        "linearly (value_range: the blended degrees)",
+    ),
     (
         "emissive",
         "emissive.exr",
@@ -125,6 +139,7 @@ BLENDED = (
     "ior",
     "subsurface",
     "anisotropy",
+    "anisotropy_angle",
     "emissive",
 )
 
@@ -139,9 +154,9 @@ def _rows(layout: object) -> list[tuple[object, ...]]:
 def test_layout_keeps_the_engine_tables() -> None:
     assert {c.name: c.slots for c in LAYOUT.channels} == SLOTS
     assert {c.name: c.planes for c in LAYOUT.channels} == PLANES
-    assert (LAYOUT.n_slots, LAYOUT.n_planes, LAYOUT.n_map_planes) == (17, 16, 10)
+    assert (LAYOUT.n_slots, LAYOUT.n_planes, LAYOUT.n_map_planes) == (18, 17, 11)
     assert LAYOUT.map_fields == MAP_FIELDS
-    assert LAYOUT.plane_fields == ("alpha", *UNIT, "ior", "height")
+    assert LAYOUT.plane_fields == ("alpha", *UNIT, "ior", "anisotropy_angle", "height")
     assert tuple(c.name for c in LAYOUT.unit_scalars) == UNIT
     assert _rows(LAYOUT) == EXPORT_ROWS
     assert LAYOUT.blended == BLENDED
@@ -179,13 +194,13 @@ def test_a_new_scalar_channel_needs_only_its_registry_entry() -> None:
     assert new.group is Group.UNIT and new.field == "gloss" and new.default == 0.25
     # the next [0, 1] slot and plane; the later ones move up by one
     assert new.slots == (11,) and new.planes == (8,)
-    assert layout["ior"].slots == (12,) and layout["emissive"].slots == (13, 14, 15, 16)
-    assert layout["height"].slots == (17,) and layout.n_slots == 18
-    assert layout["ior"].planes == (9,) and layout["height"].planes == (10,)
-    assert layout["basecolor"].planes == (11, 12, 13) and layout.n_planes == 17
-    assert layout.n_map_planes == 11 and "gloss" in layout.plane_fields
+    assert layout["ior"].slots == (12,) and layout["emissive"].slots == (14, 15, 16, 17)
+    assert layout["height"].slots == (18,) and layout.n_slots == 19
+    assert layout["ior"].planes == (9,) and layout["height"].planes == (11,)
+    assert layout["basecolor"].planes == (12, 13, 14) and layout.n_planes == 18
+    assert layout.n_map_planes == 12 and "gloss" in layout.plane_fields
     assert layout.map_fields == (*MAP_FIELDS[:9], "gloss", *MAP_FIELDS[9:])
-    assert tuple(c.name for c in layout.scalars) == (*UNIT, "gloss", "ior")
+    assert tuple(c.name for c in layout.scalars) == (*UNIT, "gloss", "ior", "anisotropy_angle")
     rows = _rows(layout)
     assert rows[8] == ("gloss", "gloss.png", "png8-grey", LINEAR, ("gloss",), "gloss 0..1")
     assert rows[:8] + rows[9:] == EXPORT_ROWS  # nothing else changes
@@ -207,9 +222,9 @@ def test_new_channels_of_other_kinds_get_their_kinds_defaults() -> None:
     # colours come after basecolor, other scalars after ior (registry order within a group)
     assert layout["tint"].group is Group.COLOUR and layout["tint"].field == "tint_linear"
     assert layout["tint"].slots == (4, 5, 6) and layout["metallic"].slots == (7,)
-    assert layout["depth"].group is Group.SCALAR and layout["depth"].slots == (15,)
-    assert layout["depth"].planes == (9,) and layout["height"].planes == (10,)
-    assert layout["tint"].planes == (14, 15, 16) and layout["emissive"].planes == (17, 18, 19)
+    assert layout["depth"].group is Group.SCALAR and layout["depth"].slots == (16,)
+    assert layout["depth"].planes == (10,) and layout["height"].planes == (11,)
+    assert layout["tint"].planes == (15, 16, 17) and layout["emissive"].planes == (18, 19, 20)
     by_name = {m.name: m for m in layout.maps}
     assert (by_name["depth"].file_name, by_name["depth"].encoding) == ("depth.exr", "exr-float32")
     assert by_name["depth"].meaning == "unclamped depth"  # map_doc defaults to the doc
@@ -231,3 +246,42 @@ def test_max_channels_are_unclamped_scalars() -> None:
     with pytest.raises(ValueError, match="unclamped"):
         build_layout(_extended(clamped))
     assert CHANNELS["height"].blend is Blend.MAX
+
+
+def test_periodic_export_rule_with_a_float_copy() -> None:
+    """anisotropy_angle: an 8-bit PNG of (angle mod 180) / 180 plus the degrees as EXR."""
+    by_name = {m.name: m for m in LAYOUT.maps}
+    angle = by_name["anisotropy_angle"]
+    assert (angle.writer, angle.period, angle.float_file) == (
+        "periodic8",
+        180.0,
+        "anisotropy_angle.exr",
+    )
+    assert angle.file_names == ("anisotropy_angle.png", "anisotropy_angle.exr")
+    described = angle.describe()
+    assert described["float_file"] == "anisotropy_angle.exr"
+    assert described["float_encoding"] == "exr-float32" and "180" in described["decode"]
+    assert "decode" not in by_name["roughness"].describe()
+    assert by_name["roughness"].file_names == ("roughness.png",)
+    # the same rule on a new channel of a registry copy
+    spin = ChannelSpec(
+        "spin", ("degrees",), (0.0,), "degrees", "spin", ".spin(1)", clamp_lo=None, clamp_hi=None
+    )
+    rules = {
+        **EXPORT_RULES,
+        "spin": ExportRule(encoding="png8-grey", period=360.0, float_copy=True),
+    }
+    new = {m.name: m for m in build_layout(_extended(spin), rules).maps}["spin"]
+    assert (new.file_name, new.writer, new.period, new.float_file) == (
+        "spin.png",
+        "periodic8",
+        360.0,
+        "spin.exr",
+    )
+
+
+def test_export_rules_the_exporter_cannot_write_are_refused() -> None:
+    with pytest.raises(ValueError, match="periodic"):
+        build_layout(CHANNELS, {**EXPORT_RULES, "emissive": ExportRule(period=1.0)})
+    with pytest.raises(ValueError, match="already a float EXR"):
+        build_layout(CHANNELS, {**EXPORT_RULES, "ior": ExportRule(float_copy=True)})

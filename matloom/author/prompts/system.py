@@ -57,7 +57,9 @@ def _param_line(p: ParamSpec) -> str:
     default = "required" if p.required else f"default {format_default(p.default)}"
     constraint = p.constraint_text()
     extra = f"; {constraint}" if constraint else ""
-    field = "; may be a field expression, evaluated per sample" if p.field else ""
+    field = (
+        "; may be a field (noise, pattern, Define name), evaluated per sample" if p.field else ""
+    )
     return f"  - `{p.name}` ({default}{extra}{field}): {p.doc}"
 
 
@@ -212,9 +214,16 @@ features along an axis, e.g. `fBm(octaves=4, base_freq_x=18, base_freq_y=2, to_0
 - Domain warping: transform parameters take fields, so `Translate(f, warp * 0.3, 0)` bends any \
 field (noise, bricks, shapes) along a noise; `Rotate(f, swirl * 40)` swirls it. Warp grain along \
 a board or vein along a leaf by warping the pattern, and drive height from the same warped field.
+- Micro-gloss grain: add a high-frequency, low-amplitude `fBm` to roughness only, for skin, bark \
+or stone microstructure.
+- Substrate-matrix-first: a continuous substrate in a bottom `Layer(1)`, then discrete features \
+as upper layers whose thresholded masks (thresholded `Worley` for islands, thresholded `fBm` \
+for blobs) let the substrate show through."""
+
+IDIOMS = """# Cells, instances and angles (use these instead of sine-hash tricks)
 - Per-cell variation: `Bricks(..., output="cell_value", seed=N)` gives one random value per \
-brick or board, `Worley(..., output="cell_value")` one per stone or plate, `Hash(Floor(X() * k), \
-Floor(Y() * k), seed=N)` one per grid cell; use it for tone, height or a per-cell offset \
+brick or board, `Worley(..., output="cell_value")` one per stone or plate, `Hash(X() * k, Y() * k, \
+seed=N)` one per cell of a k-per-unit grid; use it for tone, height or a per-cell offset \
 (`Translate(grain, cell * 7, 0)` shifts grain per board). `Worley(output="edge")` is the true \
 distance to the cell border, for cracks and grout of constant width.
 - Instancing: `Tile(motif, w, h, jitter=..., rotate=..., scale_min=..., probability=..., \
@@ -222,11 +231,7 @@ seed=N)` scatters copies of a motif drawn around (0, 0) (flowers, studs, rivets,
 of writing each placement by hand.
 - Angles and repeats: `Atan2(Y() - cy, X() - cx)` gives the polar angle for rosettes and radial \
 brushing; `Mod`/`Fract` repeat a coordinate (herringbone, stripes) without sine tricks.
-- Micro-gloss grain: add a high-frequency, low-amplitude `fBm` to roughness only, for skin, bark \
-or stone microstructure.
-- Substrate-matrix-first: a continuous substrate in a bottom `Layer(1)`, then discrete features \
-as upper layers whose thresholded masks (thresholded `Worley` for islands, thresholded `fBm` \
-for blobs) let the substrate show through."""
+"""
 
 EXAMPLES_PREAMBLE = (
     "# Examples\n"
@@ -266,7 +271,7 @@ def system_prompt(*, playbook: bool = True, few_shot: bool = True) -> str:
     """The full generator system prompt (the API and the CLI both default to everything on)."""
     parts = [ROLE, dsl_reference()]
     if playbook:
-        parts.append(PLAYBOOK)
+        parts += [PLAYBOOK, IDIOMS]
     if few_shot:
         parts.append(examples_section())
     parts.append(OUTPUT_FORMAT)

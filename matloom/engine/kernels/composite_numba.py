@@ -184,8 +184,8 @@ def _coverage(regs, chan_reg, alphas, weights, running, weight_nan):  # type: ig
 
 @_jit()
 def _add_scalar(acc, w, src, mode, lo, hi):  # type: ignore[no-untyped-def]
-    """acc += w * converted channel (float32, clamped to [lo, hi]: [0, 1], or below at 1 for
-    ior with hi = inf); NaN passes the clamp."""
+    """acc += w * converted channel (float32, clamped to [lo, hi]: [0, 1], below at 1 for ior
+    with hi = inf, or not at all with [-inf, inf]); NaN passes the clamp."""
     if mode == READY or mode == ZERO:
         for j in range(acc.size):
             acc[j] += w[j] * np.float32(src[j])
@@ -301,9 +301,9 @@ def _accumulate(
     work,
 ):  # type: ignore[no-untyped-def]
     """Bottom-up: add every layer's weighted channels to the row accumulators ``acc``
-    (N_PLANES, W), one row per output plane (1..8 the 7 scalars and ior, 9 the height max,
-    10..12 basecolor, 13..15 emissive). ``touched[p]`` is set for every accumulator row that
-    received a value (others stay 0).
+    (N_PLANES, W), one row per output plane (SCALAR_PLANES the over-blended scalars, MAX_PLANES
+    the height max, COLOUR_PLANES the colour components; see :mod:`matloom.vocab.layout`).
+    ``touched[p]`` is set for every accumulator row that received a value (others stay 0).
     Colours of a layer visible on under half of the row are decoded only where it is visible
     (``idx``/``work`` scratch), unless a colour could be NaN/inf where it is hidden."""
     for layer in range(chan_reg.shape[0]):
@@ -453,14 +453,15 @@ def composite_rows(args, first, last):  # type: ignore[no-untyped-def]
 
     Outputs (fully overwritten on those rows, except that with ``zeroed`` -- the caller
     zero-filled them -- channels no layer writes are left alone): ``planes`` (N_MAP_PLANES, H, W)
-    float32 = alpha, the 7 scalars, ior, height; ``colours`` = basecolor and emissive (H, W, 3);
+    float32 = the 2-D maps in plane order (alpha, the scalars, height); ``colours`` = one
+    (H, W, 3) array per colour channel (basecolor, emissive);
     ``flags`` (band rows, W) uint8 is set to 1 at uncertain texels (never cleared). Serial and
     ``nogil``: callers run row ranges on threads (numba's parallel loops cannot take tuples
     of arrays).
 
     Preview mode (``margin`` < 0): the sRGB decode uses the linear table and nothing is flagged;
-    with (N_PLANES, H, W) ``planes`` the colours are written as planes 10..12 (basecolor) and
-    13..15 (emissive) instead of interleaved (``colours`` is then not written).
+    with (N_PLANES, H, W) ``planes`` the colours are written as their planes (COLOUR_PLANES)
+    instead of interleaved (``colours`` is then not written).
     """
     # Unpacked once: reading a tuple field in the row loop would count references per row.
     loads, code, consts, n_regs = args.loads, args.code, args.consts, args.n_regs

@@ -48,6 +48,9 @@ __all__ = [
     "fbm_seed_batch",
     "worley",
     "worley_seed_batch",
+    "WORLEY_OUTPUTS",
+    "WORLEY_CELL_SALT",
+    "WORLEY_EDGE_SEARCH",
 ]
 
 
@@ -223,6 +226,20 @@ def _stack(
 
 # --- Worley ------------------------------------------------------------------------------------
 
+#: Worley's ``output`` names -> codes: 0 the combination of distances (the reference's Worley),
+#: 1 a random value per cell, 2 the Euclidean distance to the nearest cell border.
+WORLEY_OUTPUTS: dict[str, int] = {"distance": 0, "cell_value": 1, "edge": 2}
+#: ``which`` of the cell hash for the cell values (0 and 1 place the feature points).
+WORLEY_CELL_SALT = 2
+#: Half-width of the cell block around the nearest feature point's cell whose points' bisectors
+#: bound the distance to the border ("edge"): a border point z of the nearest point P1's cell
+#: is at distance < sqrt(2) (in cells) from both P1 and the neighbour sharing it (every point is
+#: within sqrt(2) of its own cell's feature point), so the neighbour lies within 2 sqrt(2) < 3
+#: of P1 along each axis: its cell is at most 3 cells from P1's. The minimum over the 7 x 7
+#: block's bisectors is the exact distance to the border (a bisector of a non-neighbour is
+#: never closer than the cell's border).
+WORLEY_EDGE_SEARCH = 3
+
 
 @dataclass
 class WorleyPlan:
@@ -230,6 +247,14 @@ class WorleyPlan:
 
     ``u = x * freq_x`` and ``v = y * freq_y`` are computed in float64 (unlike fBm, float32 axes
     are widened first -- the fixtures confirm this), on the axes or the flat grids.
+
+    ``output`` (:data:`WORLEY_OUTPUTS`) 1 and 2 ignore combination, norm and to_01. Both find
+    the nearest feature point over the 5 x 5 block by the metric's key (squared for Euclidean),
+    strict ``<`` in the reference's order: under the call's metric for cell values (the value
+    is ``h(cell, seed, WORLEY_CELL_SALT)``), Euclidean for the border distance, which is the
+    minimum over the :data:`WORLEY_EDGE_SEARCH` block around the nearest cell of each bisector's
+    distance in x/y units: ``(|q - Pk|^2 - |q - P1|^2) / 2 / |((Pk - P1)_u fx, (Pk - P1)_v fy)|``
+    (a bisector with a zero denominator is skipped). Non-finite coordinates give NaN.
     """
 
     metric: int
@@ -242,6 +267,8 @@ class WorleyPlan:
     #: Separable layouts: the scaled axes u (W,), v (H,).
     u_axis: np.ndarray | None = None
     v_axis: np.ndarray | None = None
+    #: What the loops compute (:data:`WORLEY_OUTPUTS`).
+    output: int = 0
 
     @property
     def shape2d(self) -> tuple[int, int]:
@@ -273,11 +300,15 @@ def plan_worley(
     freq_x: float,
     freq_y: float,
     to_01: bool,
+    output: str = "distance",
 ) -> WorleyPlan:
     """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y."""
     metric, combo, norm = worley_codes(distance, combination)
+    if output not in WORLEY_OUTPUTS:
+        raise ValueError(f"unknown Worley output {output!r}; expected {list(WORLEY_OUTPUTS)}")
     lay = coord_layout(x, y)
     plan = WorleyPlan(metric, combo, float(norm), bool(to_01), freq_x, freq_y, lay)
+    plan.output = WORLEY_OUTPUTS[output]
     if lay.separable:
         plan.u_axis = lay.x_axis.astype(np.float64) * freq_x
         plan.v_axis = lay.y_axis.astype(np.float64) * freq_y
@@ -307,11 +338,11 @@ def worley(
     x: np.ndarray, y: np.ndarray, *, loops: WorleyLoops, seed: int, **params: Any
 ) -> np.ndarray:
     """Worley (cellular) noise on the broadcast of x and y (float64 result), on ``loops``;
-    ``params`` are :func:`plan_worley`'s (distance, combination, freq_x, freq_y, to_01).
+    ``params`` are :func:`plan_worley`'s (distance, combination, freq_x, freq_y, to_01, output).
 
     One feature point per cell at (c + h(c, seed, 0), c' + h(c, seed, 1)); F1/F2 over the
     5 x 5 cell block around (floor u, floor v); combined, normalised and clamped as the
-    reference does.
+    reference does (output="distance"; the other outputs: see :class:`WorleyPlan`).
     """
     return run_worley(plan_worley(x, y, **params), loops, seed)
 

@@ -11,6 +11,11 @@ cell) share the 25 candidate points, so the search loops over cells outside and 
 which vectorises.  Candidates are visited in the reference's order (dx outer, dy inner) with its
 strict-``<`` F1/F2 update written as selects; Euclidean candidates are compared squared and
 rooted once (sqrt is correctly rounded and monotone, so F1/F2 are bit-identical).
+
+The cell values and border distances (``plan.output`` 1 and 2, see ``noise.WorleyPlan``) run
+the kernels of :mod:`.noise_numba_cells` (which also holds the hash and the feature table) on
+the same coordinates and table; for the border distances the table reaches
+:data:`~matloom.engine.kernels.noise.WORLEY_EDGE_SEARCH` more cells.
 """
 
 from __future__ import annotations
@@ -18,56 +23,24 @@ from __future__ import annotations
 import numpy as np
 from numba import prange
 
-from matloom.engine.kernels.noise import WorleyLoops, WorleyPlan
-from matloom.engine.kernels.noise_numba_core import jit_kernel
-from matloom.engine.kernels.opensimplex import (
-    WORLEY_HASH_CX,
-    WORLEY_HASH_CY,
-    WORLEY_MIX1,
-    WORLEY_MIX2,
-    worley_seed_term,
+from matloom.engine.kernels.noise import WORLEY_EDGE_SEARCH, WorleyLoops, WorleyPlan
+from matloom.engine.kernels.noise_numba_cells import (
+    cells_batch_kernel,
+    cells_kernel,
+    fill_table,
+    metric_key,
+    worley_hash,
 )
+from matloom.engine.kernels.noise_numba_core import jit_kernel
+from matloom.engine.kernels.opensimplex import worley_seed_term
 from matloom.engine.kernels.threads import parallel_rows
 
-__all__ = ["WORLEY_LOOPS", "worley_cell_box"]
+__all__ = ["WORLEY_LOOPS", "worley_cell_box", "worley_hash", "fill_table"]
 
 #: Largest feature-point table (cells) built per call; beyond it cells are hashed per pixel.
 _MAX_TABLE_CELLS = 1 << 22
 #: Shortest run of pixels sharing a centre cell that takes the vectorised path.
 _MIN_RUN = 4
-
-
-@jit_kernel(parallel=False, inline=True)
-def worley_hash(cx: int, cy: int, seed_term: int, which: int) -> float:
-    """The reference's cell hash in [0, 1): wrapping int64 arithmetic, *arithmetic* shifts."""
-    t = cx * WORLEY_HASH_CX + cy * WORLEY_HASH_CY + seed_term + which
-    t ^= t >> 33
-    t *= WORLEY_MIX1
-    t ^= t >> 33
-    t *= WORLEY_MIX2
-    t ^= t >> 33
-    return (t & 0xFFFFFFFF) / 4294967296.0
-
-
-@jit_kernel(parallel=False)
-def fill_table(cx0: int, cy0: int, seed_term: int, tx: np.ndarray, ty: np.ndarray) -> None:
-    """Feature points of cells (cx0 + c, cy0 + r) into tx[r, c], ty[r, c] (float64)."""
-    for r in range(tx.shape[0]):
-        cy = cy0 + r
-        for c in range(tx.shape[1]):
-            cx = cx0 + c
-            tx[r, c] = cx + worley_hash(cx, cy, seed_term, 0)
-            ty[r, c] = cy + worley_hash(cx, cy, seed_term, 1)
-
-
-@jit_kernel(parallel=False, inline=True)
-def metric_key(dx: float, dy: float, metric: int) -> float:
-    """Squared Euclidean (0), Manhattan (1) or Chebyshev (2) length (see ``final_length``)."""
-    if metric == 0:
-        return dx * dx + dy * dy
-    if metric == 1:
-        return abs(dx) + abs(dy)
-    return max(abs(dx), abs(dy))
 
 
 @jit_kernel(parallel=False, inline=True)
@@ -278,8 +251,11 @@ def _batch_kernel(
         _batch_seed(s, coords, params, seed_terms, box, out)
 
 
-def worley_cell_box(u: np.ndarray, v: np.ndarray, n_pixels: int) -> tuple[int, int, int, int]:
-    """(cx0, cy0, nx, ny): the cells a 5 x 5 search around finite (u, v) can touch.
+def worley_cell_box(
+    u: np.ndarray, v: np.ndarray, n_pixels: int, reach: int = 2
+) -> tuple[int, int, int, int]:
+    """(cx0, cy0, nx, ny): the cells a search ``reach`` cells around finite (u, v) can touch
+    (2: the 5 x 5 block).
 
     Returns nx = ny = 0 when that box exceeds the table budget (then cells are hashed).
     """
@@ -287,10 +263,10 @@ def worley_cell_box(u: np.ndarray, v: np.ndarray, n_pixels: int) -> tuple[int, i
     fv = v[np.isfinite(v)]
     if fu.size == 0 or fv.size == 0:
         return 0, 0, 1, 1
-    lo_u, hi_u = np.floor(fu.min()) - 2, np.floor(fu.max()) + 2
-    lo_v, hi_v = np.floor(fv.min()) - 2, np.floor(fv.max()) + 2
+    lo_u, hi_u = np.floor(fu.min()) - reach, np.floor(fu.max()) + reach
+    lo_v, hi_v = np.floor(fv.min()) - reach, np.floor(fv.max()) + reach
     nx, ny = hi_u - lo_u + 1, hi_v - lo_v + 1
-    limit = min(_MAX_TABLE_CELLS, 25 * n_pixels + 4096)
+    limit = min(_MAX_TABLE_CELLS, (2 * reach + 1) ** 2 * n_pixels + 4096)
     if max(abs(lo_u), abs(hi_u), abs(lo_v), abs(hi_v)) > 2.0**52 or nx * ny > limit:
         return 0, 0, 0, 0
     return int(lo_u), int(lo_v), int(nx), int(ny)
@@ -308,25 +284,38 @@ def _prepare(plan: WorleyPlan) -> tuple[tuple, tuple[int, int, int, int]]:
     separable): the plan's float64 u/v (axes or flat grids) and each one's table index."""
     u, v = plan.scaled()
     height, width = plan.shape2d
-    box = worley_cell_box(u, v, height * width)
+    reach = 2 + (WORLEY_EDGE_SEARCH if plan.output == 2 else 0)
+    box = worley_cell_box(u, v, height * width, reach)
     coords = (u, v, _cell_index(u, box[0]), _cell_index(v, box[1]), plan.layout.separable)
     return coords, box
+
+
+def _params(plan: WorleyPlan, box: tuple[int, int, int, int]) -> tuple:
+    """The row kernels' params for the plan and its cell box (nx = 0: no table): the distance
+    loops' (``_worley_row``), or ``noise_numba_cells.cells_row``'s for the other outputs."""
+    cx0, cy0, nx, _ = box
+    if plan.output == 0:
+        return (plan.metric, plan.combo, plan.norm, plan.to_01, nx > 0)
+    freqs = (float(plan.freq_x), float(plan.freq_y))
+    return (plan.output, plan.metric, *freqs, nx > 0, np.int64(cx0), np.int64(cy0))
 
 
 def _dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
     """Worley noise into ``out`` (H, W): feature table (when small enough), then row ranges
     on threads."""
     seed_term = worley_seed_term(seed)
-    coords, (cx0, cy0, nx, ny) = _prepare(plan)
+    coords, box = _prepare(plan)
+    cx0, cy0, nx, ny = box
     tx = np.empty((max(ny, 1), max(nx, 1)), dtype=np.float64)
     ty = np.empty_like(tx)
     if nx > 0:
         fill_table(np.int64(cx0), np.int64(cy0), seed_term, tx, ty)
-    params = (plan.metric, plan.combo, plan.norm, plan.to_01, nx > 0)
+    params = _params(plan, box)
+    kernel = _worley_kernel if plan.output == 0 else cells_kernel
     parallel_rows(
         out.shape[0],
         out.shape[1],
-        lambda a, b: _worley_kernel(coords, params, seed_term, tx, ty, out, a, b),
+        lambda a, b: kernel(coords, params, seed_term, tx, ty, out, a, b),
     )
 
 
@@ -338,14 +327,17 @@ def _seed_batch(plan: WorleyPlan, seeds: list[int]) -> np.ndarray | None:
     rebuilt.  Parallel over seeds.
     """
     height, width = plan.shape2d
-    coords, (cx0, cy0, nx, ny) = _prepare(plan)
+    coords, box = _prepare(plan)
+    cx0, cy0, nx, ny = box
     if nx == 0 or height * width == 0:
         return None
     seed_terms = np.array([worley_seed_term(s) for s in seeds], dtype=np.int64)
     out = np.empty((len(seeds), height, width), dtype=np.float32)
-    params = (plan.metric, plan.combo, plan.norm, plan.to_01, True)
+    params = _params(plan, box)
     box = (np.int64(cx0), np.int64(cy0), nx, ny)
-    _batch_kernel(coords, params, seed_terms, box, out)
+    (_batch_kernel if plan.output == 0 else cells_batch_kernel)(
+        coords, params, seed_terms, box, out
+    )
     return out
 
 

@@ -16,7 +16,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from matloom.engine.kernels.noise import FbmLoops, FbmPlan, WorleyLoops, WorleyPlan
+from matloom.engine.kernels.noise import (
+    WORLEY_CELL_SALT,
+    WORLEY_EDGE_SEARCH,
+    FbmLoops,
+    FbmPlan,
+    WorleyLoops,
+    WorleyPlan,
+)
 from matloom.engine.kernels.opensimplex import (
     FBM_SCALE,
     GRADIENTS2,
@@ -236,23 +243,101 @@ def _worley_points(
     return f1, f2
 
 
+def _metric_key(dx: np.ndarray, dy: np.ndarray, metric: int) -> np.ndarray:
+    """Squared Euclidean (0), Manhattan (1) or Chebyshev (2) length: the numba loops' key."""
+    if metric == 0:
+        return dx * dx + dy * dy
+    return _metric(dx, dy, metric)
+
+
+def _point(cx: np.ndarray, cy: np.ndarray, seed_term: np.int64) -> tuple[np.ndarray, np.ndarray]:
+    """The feature point of cell (cx, cy)."""
+    return cx + worley_hash(cx, cy, seed_term, 0), cy + worley_hash(cx, cy, seed_term, 1)
+
+
+def _nearest(
+    u: np.ndarray, v: np.ndarray, seed_term: np.int64, metric: int
+) -> tuple[np.ndarray, ...]:
+    """(key, cx, cy, px, py): the nearest feature point over the 5 x 5 block by the metric's
+    key (strict ``<``, the reference's order), its cell and position (finite u, v only)."""
+    cu = np.floor(u).astype(np.int64)
+    cv = np.floor(v).astype(np.int64)
+    best = np.full(u.shape, np.inf)
+    bx, by = cu.copy(), cv.copy()
+    px, py = np.zeros(u.shape), np.zeros(u.shape)
+    for off_x in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+        cx = cu + off_x
+        for off_y in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+            cy = cv + off_y
+            hx, hy = _point(cx, cy, seed_term)
+            key = _metric_key(u - hx, v - hy, metric)
+            closer = key < best
+            best = np.where(closer, key, best)
+            bx, by = np.where(closer, cx, bx), np.where(closer, cy, by)
+            px, py = np.where(closer, hx, px), np.where(closer, hy, py)
+    return best, bx, by, px, py
+
+
+def _edge(
+    u: np.ndarray, v: np.ndarray, seed_term: np.int64, freq_x: float, freq_y: float
+) -> np.ndarray:
+    """Distance in x/y units to the nearest border of the Euclidean cell (see WorleyPlan)."""
+    key1, bx, by, p1x, p1y = _nearest(u, v, seed_term, 0)
+    edge = np.full(u.shape, np.inf)
+    reach = range(-WORLEY_EDGE_SEARCH, WORLEY_EDGE_SEARCH + 1)
+    for off_x in reach:
+        for off_y in reach:
+            if off_x == 0 and off_y == 0:
+                continue
+            pkx, pky = _point(bx + off_x, by + off_y, seed_term)
+            du, dv = u - pkx, v - pky
+            num = ((du * du + dv * dv) - key1) * 0.5
+            su, sv = (pkx - p1x) * freq_x, (pky - p1y) * freq_y
+            den = np.sqrt(su * su + sv * sv)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                d = np.where(den > 0, num / den, np.inf)
+            edge = np.where(d < edge, d, edge)
+    return edge
+
+
+def _cells(u: np.ndarray, v: np.ndarray, seed_term: np.int64, plan: WorleyPlan) -> np.ndarray:
+    """Cell values (output 1) or border distances (output 2) at flat u, v; NaN where either
+    is not finite."""
+    out = np.full(u.shape, np.nan)
+    finite = np.isfinite(u) & np.isfinite(v)
+    uf, vf = u[finite], v[finite]
+    if plan.output == 1:
+        _, bx, by, _, _ = _nearest(uf, vf, seed_term, plan.metric)
+        out[finite] = worley_hash(bx, by, seed_term, WORLEY_CELL_SALT)
+    else:
+        out[finite] = _edge(uf, vf, seed_term, plan.freq_x, plan.freq_y)
+    return out
+
+
+def _worley_values(
+    u: np.ndarray, v: np.ndarray, seed_term: np.int64, plan: WorleyPlan
+) -> np.ndarray:
+    """The plan's output at flat float64 u, v."""
+    if plan.output != 0:
+        return _cells(u, v, seed_term, plan)
+    f1, f2 = _worley_points(u, v, seed_term, plan.metric)
+    return _combine(f1, f2, plan.combo, plan.norm, plan.to_01)
+
+
 def _worley_dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
     """Worley noise into ``out`` (H, W): separable axes in row blocks, flat grids in chunks
     of ``_CHUNK`` texels."""
     seed_term = worley_seed_term(seed)
-    metric, combo, norm, to_01 = plan.metric, plan.combo, plan.norm, plan.to_01
     if plan.layout.separable:
         u_axis, v_axis = plan.scaled()
         for rows in _row_blocks(*out.shape):
             u, v = np.broadcast_arrays(u_axis[None, :], v_axis[rows, None])
-            f1, f2 = _worley_points(u.ravel(), v.ravel(), seed_term, metric)
-            out[rows] = _combine(f1, f2, combo, norm, to_01).reshape(u.shape)
+            out[rows] = _worley_values(u.ravel(), v.ravel(), seed_term, plan).reshape(u.shape)
         return
     flat = out.reshape(-1)
     for start in range(0, flat.size, _CHUNK):
         u, v = plan.scaled(start, start + _CHUNK)
-        f1, f2 = _worley_points(u, v, seed_term, metric)
-        flat[start : start + _CHUNK] = _combine(f1, f2, combo, norm, to_01)
+        flat[start : start + _CHUNK] = _worley_values(u, v, seed_term, plan)
 
 
 #: The numpy Worley loops.

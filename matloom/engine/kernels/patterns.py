@@ -5,13 +5,27 @@ Both kernels work on coordinate arrays ``x`` and ``y`` that broadcast to the out
 ``Rotate``). Parameters stay Python floats so every intermediate is computed in the coordinate
 dtype, exactly as the reference's numpy code does under numpy 2's weak-scalar promotion
 (NEP 50). The result is always a materialised float64 array of the broadcast shape.
+
+Besides the masks, ``output`` selects per-brick values (cell value, position, distance to the
+border; :func:`bricks`) or per-thread ones (warp/weft parts of the mask, position along and
+across the thread; :func:`weave`, with the float search in :mod:`.patterns_weave`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from matloom.engine.kernels.noise_numpy import worley_hash
+from matloom.engine.kernels.opensimplex import worley_seed_term
+
 BRICK_AXES: tuple[str, ...] = ("row", "column")
+#: Bricks' ``output`` values; the numba kernels take their index.
+BRICK_OUTPUTS: tuple[str, ...] = ("mask", "cell_value", "u", "v", "edge")
+#: ``which`` of the (Worley) cell hash for the bricks' cell values.
+BRICK_CELL_SALT = 3
+#: Brick indices are clamped to +-2**62 before they are hashed (both backends).
+CELL_INDEX_LIMIT = float(2**62)
+WEAVE_OUTPUTS: tuple[str, ...] = ("mask", "warp", "weft", "along", "across")
 
 
 def smooth_coverage(s: np.ndarray, feather: float) -> np.ndarray:
@@ -63,6 +77,8 @@ def bricks(
     mortar: float,
     axis: str,
     feather: float,
+    output: str = "mask",
+    seed: int | None = None,
 ) -> np.ndarray:
     """Running-bond brick mask: 1 on brick, 0 in mortar (spec §2.5).
 
@@ -70,14 +86,82 @@ def bricks(
     ``offset * brick_width`` per row; ``axis="column"`` shifts each column up by
     ``offset * brick_height``. The inset distance is the min of the four axis distances
     to the mortar lines (not a true SDF); the half mortar ``mortar / 2`` is taken from each side.
+
+    The other outputs (:func:`check_bricks`): ``u = lx / bw`` and ``v = ly / bh`` with (lx, ly)
+    the position in the brick's cell (the floor-mods of the mask); ``edge`` the inset where it
+    is >= 0, else 0 (inside a rectangle the min of the four side distances is the exact distance
+    to its border); ``cell_value`` the Worley cell hash (salt :data:`BRICK_CELL_SALT`) of the
+    brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN.
     """
-    if axis not in BRICK_AXES:
-        raise ValueError(f"axis must be one of {BRICK_AXES}, got {axis!r}")
+    check_bricks(axis, output, seed)
     bw, bh = float(brick_width), float(brick_height)
     x, y = np.asarray(x), np.asarray(y)
     with np.errstate(all="ignore"):  # non-finite coordinates give NaN quietly
-        inset = _brick_inset(x, y, bw, bh, offset, mortar / 2, axis)
-        return _full_float64(smooth_coverage(inset, feather), _grid_shape(x, y))
+        if output == "mask":
+            inset = _brick_inset(x, y, bw, bh, offset, mortar / 2, axis)
+            return _full_float64(smooth_coverage(inset, feather), _grid_shape(x, y))
+        value = _brick_output(x, y, bw, bh, offset, mortar / 2, axis, output, seed)
+        return _full_float64(value, _grid_shape(x, y))
+
+
+def check_bricks(axis: str, output: str, seed: int | None) -> None:
+    """Raise ValueError for an unknown axis or output, or cell values without a seed."""
+    if axis not in BRICK_AXES:
+        raise ValueError(f"axis must be one of {BRICK_AXES}, got {axis!r}")
+    if output not in BRICK_OUTPUTS:
+        raise ValueError(f"output must be one of {BRICK_OUTPUTS}, got {output!r}")
+    if output == "cell_value" and seed is None:
+        raise ValueError('Bricks(output="cell_value") has no seed; canonicalise the program first')
+
+
+def _brick_output(
+    x: np.ndarray,
+    y: np.ndarray,
+    bw: float,
+    bh: float,
+    offset: float,
+    half_mortar: float,
+    axis: str,
+    output: str,
+    seed: int | None,
+) -> np.ndarray:
+    """Bricks' cell value, u, v or edge (see :func:`bricks`) in the coordinate dtype (the cell
+    value in float64)."""
+    if output == "edge":
+        inset = _brick_inset(x, y, bw, bh, offset, half_mortar, axis)
+        return np.where(inset < 0, 0.0, inset)
+    col, row, lx, ly = _brick_cell(x, y, bw, bh, offset, axis)
+    if output == "u":
+        return lx / bw
+    if output == "v":
+        return ly / bh
+    nan = np.isnan(col) | np.isnan(row)
+    value = worley_hash(
+        _cell_int(col), _cell_int(row), worley_seed_term(int(seed or 0)), BRICK_CELL_SALT
+    )
+    return np.where(nan, np.nan, value)
+
+
+def _cell_int(c: np.ndarray) -> np.ndarray:
+    """Brick indices as int64: clamped to +-2**62, NaN as 0."""
+    c = np.clip(c, -CELL_INDEX_LIMIT, CELL_INDEX_LIMIT)
+    return np.where(np.isnan(c), 0, c).astype(np.int64)
+
+
+def _brick_cell(
+    x: np.ndarray, y: np.ndarray, bw: float, bh: float, offset: float, axis: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(column, row, lx, ly): the brick's indices and the position in its cell, with the
+    floor-mods of :func:`_brick_inset` written out (the same operations)."""
+    if axis == "row":
+        row = np.floor(y / bh)
+        a = x - row * offset * bw
+        col = np.floor(a / bw)
+        return col, row, a - col * bw, floor_mod(y, bh)
+    col = np.floor(x / bw)
+    b = y - col * offset * bh
+    row = np.floor(b / bh)
+    return col, row, floor_mod(x, bw), b - row * bh
 
 
 def _brick_inset(
@@ -109,6 +193,7 @@ def weave(
     freq_y: float,
     warp_width: float,
     feather: float,
+    output: str = "mask",
 ) -> np.ndarray:
     """Woven thread mask: 1 on whichever thread is on top, 0 in the gaps (spec §2.6).
 
@@ -116,21 +201,48 @@ def weave(
     in the cell) is on top where ``(col - row * shift) mod (over + under) < over``; otherwise
     the weft (a horizontal band). Band half-width is ``warp_width / 2`` in cell units and the
     feather is in cell-fraction units. Warp and weft both give 1.
+
+    ``output="warp"``/``"weft"``: the mask where that thread is on top, else 0; ``"across"``:
+    ``clip(((u - col) - 0.5 + warp_width / 2) / warp_width, 0, 1)`` for the warp (v and row
+    for the weft); ``"along"``: see :func:`.patterns_weave.along`.
     """
+    if output not in WEAVE_OUTPUTS:
+        raise ValueError(f"output must be one of {WEAVE_OUTPUTS}, got {output!r}")
     x, y = np.asarray(x), np.asarray(y)
+    shape = _grid_shape(x, y)
     with np.errstate(all="ignore"):  # non-finite coordinates give NaN quietly
-        inset = _weave_inset(x * freq_x, y * freq_y, over, under, shift, warp_width / 2)
-        return _full_float64(smooth_coverage(inset, feather), _grid_shape(x, y))
+        u, v = x * freq_x, y * freq_y
+        cells = weave_cells(u, v, over, under, shift)
+        if output in ("mask", "warp", "weft"):
+            inset = _weave_inset(u, v, cells, warp_width / 2)
+            coverage = smooth_coverage(inset, feather)
+            if output != "mask":
+                coverage = np.where(cells[3] == (output == "warp"), coverage, 0.0)
+            return _full_float64(coverage, shape)
+        col, row, _, warp_on_top = cells
+        if output == "across":
+            a = np.where(warp_on_top, u - col, v - row)
+            return _full_float64(np.clip((a - 0.5 + warp_width / 2) / warp_width, 0.0, 1.0), shape)
+        from matloom.engine.kernels.patterns_weave import along
+
+        return _full_float64(along(u, v, cells, int(over), int(under), int(shift)), shape)
 
 
-def _weave_inset(
-    u: np.ndarray, v: np.ndarray, over: int, under: int, shift: int, half: float
-) -> np.ndarray:
-    """Signed inset into the thread on top at cell coordinates (u, v)."""
+def weave_cells(
+    u: np.ndarray, v: np.ndarray, over: int, under: int, shift: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(col, row, w, warp_on_top) at cell coordinates (u, v): the cell, its place in the draft
+    ``w = (col - row * shift) mod (over + under)`` and whether the warp is on top."""
     col = np.floor(u)
     row = np.floor(v)
     repeat = int(over) + int(under)
-    warp_on_top = np.mod(col - row * int(shift), repeat) < int(over)
+    w = np.mod(col - row * int(shift), repeat)
+    return col, row, w, w < int(over)
+
+
+def _weave_inset(u: np.ndarray, v: np.ndarray, cells: tuple, half: float) -> np.ndarray:
+    """Signed inset into the thread on top at cell coordinates (u, v)."""
+    col, row, _, warp_on_top = cells
     warp_inset = half - np.abs((u - col) - 0.5)
     weft_inset = half - np.abs((v - row) - 0.5)
     return np.where(warp_on_top, warp_inset, weft_inset)

@@ -6,6 +6,9 @@ parameters are converted to that dtype first, as numpy 2's weak-scalar promotion
 Python-float sums ``bw - mortar / 2`` stay float64 sums converted afterwards, as in numpy).
 ``np.minimum`` and ``np.clip`` propagate NaN, so the helpers here do too. Inputs the kernel does
 not take (other ranks, mixed or non-float dtypes) go to the numpy version.
+
+The other outputs (cell value, u, v, edge) run :func:`_bricks_out_kernel`, with the operations
+of ``patterns._brick_output`` (bit-identical).
 """
 
 from __future__ import annotations
@@ -13,8 +16,12 @@ from __future__ import annotations
 import numpy as np
 
 from matloom.engine.kernels import patterns
+from matloom.engine.kernels.noise_numba_cells import worley_hash
 from matloom.engine.kernels.noise_numba_core import jit_kernel
+from matloom.engine.kernels.opensimplex import worley_seed_term
 from matloom.engine.kernels.threads import parallel_rows
+
+_CELL_SALT = patterns.BRICK_CELL_SALT
 
 
 @jit_kernel(parallel=False, inline=True)
@@ -85,6 +92,61 @@ def _bricks_kernel(
             out_row[j] = _coverage(inset, ramp, hard)
 
 
+@jit_kernel(parallel=False, inline=True)
+def _cell_int(c: float, limit: float) -> int:
+    """A brick index as int64, clamped to +-limit (``patterns._cell_int``; not NaN)."""
+    c = -limit if c < -limit else (limit if c > limit else c)
+    return np.int64(c)
+
+
+@jit_kernel()
+def _bricks_out_kernel(
+    x: np.ndarray,
+    y: np.ndarray,
+    consts: np.ndarray,
+    by_row: bool,
+    output: int,
+    seed_term: int,
+    out: np.ndarray,
+    first: int,
+    last: int,
+) -> None:
+    """Output ``output`` (index in ``patterns.BRICK_OUTPUTS``: 1 cell value, 2 u, 3 v, 4 edge)
+    of rows ``first``..``last - 1``; consts as :func:`_bricks_kernel`'s, then the index limit
+    2**62."""
+    bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
+    zero, bw_in, bh_in, limit = consts[6], consts[10], consts[11], consts[12]
+    for i in range(first, last):
+        x_row, y_row, out_row = x[i], y[i], out[i]
+        for j in range(out_row.size):
+            xv, yv = x_row[j], y_row[j]
+            if by_row:
+                row = np.floor(yv / bh)
+                a = xv - row * offset * bw
+                col = np.floor(a / bw)
+                lx = a - col * bw
+                ly = _floor_mod(yv, bh)
+            else:
+                col = np.floor(xv / bw)
+                b = yv - col * offset * bh
+                row = np.floor(b / bh)
+                lx = _floor_mod(xv, bw)
+                ly = b - row * bh
+            if output == 1:
+                if col != col or row != row:
+                    out_row[j] = np.nan
+                else:
+                    ci, ri = _cell_int(col, limit), _cell_int(row, limit)
+                    out_row[j] = worley_hash(ci, ri, seed_term, _CELL_SALT)
+            elif output == 2:
+                out_row[j] = lx / bw
+            elif output == 3:
+                out_row[j] = ly / bh
+            else:
+                inset = _nan_min(_nan_min(lx - half, bw_in - lx), _nan_min(ly - half, bh_in - ly))
+                out_row[j] = zero if inset < zero else inset
+
+
 @jit_kernel()
 def _bricks_rows_kernel(
     x_axis: np.ndarray,
@@ -122,8 +184,11 @@ def bricks(
     mortar: float,
     axis: str,
     feather: float,
+    output: str = "mask",
+    seed: int | None = None,
 ) -> np.ndarray:
-    """Running-bond brick mask, as :func:`patterns.bricks` (same arguments, same numbers)."""
+    """Running-bond brick mask (or another output), as :func:`patterns.bricks` (same arguments,
+    same numbers)."""
     kwargs = dict(
         brick_width=brick_width,
         brick_height=brick_height,
@@ -131,7 +196,10 @@ def bricks(
         mortar=mortar,
         axis=axis,
         feather=feather,
+        output=output,
+        seed=seed,
     )
+    patterns.check_bricks(axis, output, seed)
     x, y = np.asarray(x), np.asarray(y)
     dtype = x.dtype
     if (
@@ -144,10 +212,21 @@ def bricks(
         return patterns.bricks(x, y, **kwargs)
     bw, bh, half, feather = float(brick_width), float(brick_height), mortar / 2, float(feather)
     values = [bw, bh, offset, half, feather / 2, feather, 0, 1, 2, 3, bw - half, bh - half]
+    values.append(patterns.CELL_INDEX_LIMIT)
     with np.errstate(all="ignore"):  # huge Python floats become inf in float32, as in numpy
         consts = np.array(values, dtype=np.float64).astype(dtype)
     shape = np.broadcast_shapes(x.shape, y.shape)
     out = np.empty(shape, dtype=np.float64)
+    if output != "mask":
+        code = patterns.BRICK_OUTPUTS.index(output)
+        seed_term = worley_seed_term(int(seed or 0))
+        xb, yb, by_row = np.broadcast_to(x, shape), np.broadcast_to(y, shape), axis == "row"
+        parallel_rows(
+            shape[0],
+            shape[1],
+            lambda a, b: _bricks_out_kernel(xb, yb, consts, by_row, code, seed_term, out, a, b),
+        )
+        return out
     if axis == "row" and x.shape == (1, shape[1]) and y.shape == (shape[0], 1):
         x_axis, y_axis, hard = x[0], y[:, 0], feather == 0
         parallel_rows(

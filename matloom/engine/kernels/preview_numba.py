@@ -1,7 +1,7 @@
 """numba kernel for sweep previews: normals + cavity AO + fixed-light shading in one pass.
 
 Input is the planar (N_PLANES, H, W) output of the compositing kernel in preview mode (alpha,
-the 7 scalars, ior, height, basecolor r g b, emissive r g b; plane indices from
+the scalars, height, basecolor r g b, emissive r g b; plane indices from
 :mod:`matloom.vocab.layout`); output is the uint8 RGB preview. The
 relief follows :mod:`matloom.engine.relief` (same float32 formulas) and the shading follows
 :func:`matloom.render.preview.shade`, but in float32 with vectorised approximations of log2 and
@@ -26,6 +26,7 @@ _METALLIC, _ROUGHNESS = LAYOUT.plane("metallic"), LAYOUT.plane("roughness")
 _SHEEN, _COAT = LAYOUT.plane("sheen"), LAYOUT.plane("coat")
 _TRANSMISSION, _SUBSURFACE = LAYOUT.plane("transmission"), LAYOUT.plane("subsurface")
 _ANISOTROPY, _IOR = LAYOUT.plane("anisotropy"), LAYOUT.plane("ior")
+_ANISOTROPY_ANGLE = LAYOUT.plane("anisotropy_angle")
 _HEIGHT = LAYOUT.plane(RELIEF_SOURCE)
 _BASECOLOR, _EMISSIVE = LAYOUT.plane("basecolor"), LAYOUT.plane("emissive")  # r; g, b follow
 
@@ -153,7 +154,26 @@ def _ao_row(h, mean, i, wy, div_y, depth, out):  # type: ignore[no-untyped-def]
 
 
 @_jit()
-def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, out):  # type: ignore[no-untyped-def]
+def _rotate_stretch(shininess, anisotropy, angle, half):  # type: ignore[no-untyped-def]
+    """shininess *= :func:`matloom.render.preview.anisotropy_direction_factor` (in float64 per
+    texel; texels with angle 0 are left as they are)."""
+    hx, hy = np.float64(half[0]), np.float64(half[1])
+    in_plane = hx * hx + hy * hy
+    for j in range(shininess.size):
+        degrees = np.float64(angle[j])
+        if degrees != 0.0:  # NaN too: it propagates
+            quadrupled = 4.0 * np.float64(_clip01(anisotropy[j]))
+            stretch = quadrupled / (1.0 + quadrupled)
+            theta = degrees * (math.pi / 180.0)
+            along = hx * math.cos(theta) + hy * math.sin(theta)
+            at_zero = in_plane - stretch * (hx * hx)
+            if at_zero != 0.0:
+                factor = (in_plane - stretch * (along * along)) / at_zero
+                shininess[j] = np.float32(np.float64(shininess[j]) * factor)
+
+
+@_jit()
+def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, has_angle, rows, bits, out):  # type: ignore[no-untyped-def]
     """The preview shading of row i (see :func:`matloom.render.preview.shade`) in float32.
 
     ``rows`` (12, W) float32 scratch. The work is split into short branch-free loops over 1-D
@@ -188,6 +208,8 @@ def _shade_row(p, i, sx, sy, ao, light, half, coefs, has_emissive, rows, bits, o
         tmp[j] = (smooth * smooth * np.float32(100.0) + np.float32(2.0)) / (
             one + np.float32(4.0) * _clip01(anisotropy[j])
         )
+    if has_angle:
+        _rotate_stretch(tmp, anisotropy, p[_ANISOTROPY_ANGLE, i], half)
     log2_row(n_dot_h, spec, bits)
     for j in range(sx.size):
         tmp[j] *= spec[j]
@@ -259,6 +281,10 @@ def relief_shade(planes, spacing, wx, div_x, wy, div_y, depth, light, half, coef
         for i in range(rows):
             for j in range(cols):
                 has_emissive |= planes[c, i, j] != np.float32(0.0)
+    has_angle = False
+    for i in range(rows):
+        for j in range(cols):
+            has_angle |= planes[_ANISOTROPY_ANGLE, i, j] != np.float32(0.0)
     sx = np.empty(cols, np.float32)
     sy = np.empty(cols, np.float32)
     ao = np.empty(cols, np.float32)
@@ -267,4 +293,6 @@ def relief_shade(planes, spacing, wx, div_x, wy, div_y, depth, light, half, coef
     for i in range(rows):
         _normals_row(h, i, spacing[0], spacing[1], spacing[2], spacing[3], sx, sy)
         _ao_row(h, mean, i, wy, div_y, depth, ao)
-        _shade_row(planes, i, sx, sy, ao, light, half, coefs, has_emissive, scratch, bits, out)
+        _shade_row(
+            planes, i, sx, sy, ao, light, half, coefs, has_emissive, has_angle, scratch, bits, out
+        )

@@ -8,7 +8,10 @@ broadcasting from (S|1, H|1, W|1) arrays; constants are read directly by the ope
 Every operation is an IEEE operation with numpy's semantics (safe division gives 0 where the
 divisor is 0; min/max propagate NaN like ``np.minimum``/``np.maximum``); a float32 result is the
 float64 result rounded once to float32, which equals the float32 operation for + - * / and
-sqrt. So the register values equal the numpy evaluator's values bit for bit.
+sqrt. The language-2 opcodes (atan2, fract, mod, exp; :func:`_language2`) always give float64
+and run the scalar functions of :mod:`matloom.engine.kernels.mathops_numba`, which repeat the
+float64 operations of their numpy versions. So the register values equal the numpy evaluator's
+values bit for bit.
 
 The opcodes and the meaning of their operands come from the table of
 :mod:`matloom.engine.kernels.register_ops` (``REGISTER_OPS``): :func:`run_code` decodes a row
@@ -26,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from matloom.engine.kernels import mathops_numba as M
 from matloom.engine.kernels.jit import jit
 from matloom.engine.kernels.register_ops import ARITY, REGISTER_OPS
 
@@ -48,6 +52,11 @@ OP_SQRT = REGISTER_OPS["sqrt"].code
 OP_THRESHOLD = REGISTER_OPS["threshold"].code
 #: ``r[a] * c1 + c2`` (two roundings, as the separate * and + give); ``b`` = index of c1, c2.
 OP_AXPB = REGISTER_OPS["axpb"].code
+#: Language 2 (float64; the scalar functions of ``kernels.mathops_numba``).
+OP_ATAN2 = REGISTER_OPS["atan2"].code
+OP_FRACT = REGISTER_OPS["fract"].code
+OP_MOD = REGISTER_OPS["mod"].code
+OP_EXP = REGISTER_OPS["exp"].code
 
 _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
 
@@ -181,6 +190,30 @@ def _unary(op: int, r: np.ndarray, d: int, a: int) -> None:
 
 
 @_jit()
+def _language2(op, r, d, a, b, mask, consts):  # type: ignore[no-untyped-def]
+    """r[d] = fract/exp(r[a]) or atan2/mod(a, b), an operand being ``consts[a]`` / ``consts[b]``
+    where bit 0 / bit 1 of ``mask`` is set. Not inlined: the functions are compiled once, not
+    into each operand variant of :func:`run_code` (cold-start compile time)."""
+    n = r.shape[1]
+    if op == OP_FRACT:
+        for j in range(n):
+            r[d, j] = M.fract(r[a, j])
+    elif op == OP_EXP:
+        for j in range(n):
+            r[d, j] = M.exp(r[a, j])
+    elif op == OP_ATAN2:
+        for j in range(n):
+            x = consts[a] if mask & 1 else r[a, j]
+            y = consts[b] if mask & 2 else r[b, j]
+            r[d, j] = M.atan2(x, y)
+    else:
+        for j in range(n):
+            x = consts[a] if mask & 1 else r[a, j]
+            y = consts[b] if mask & 2 else r[b, j]
+            r[d, j] = M.mod(x, y)
+
+
+@_jit()
 def load_leaves(loads, regs, leaves64, leaves32, cand, i):  # type: ignore[no-untyped-def]
     """Copy row ``i`` of every leaf into its register (``loads`` rows: op, dst, slot).
 
@@ -243,6 +276,8 @@ def run_code(code, consts, regs):  # type: ignore[no-untyped-def]
             _threshold(regs, dst, a, consts, b)
         elif op == OP_AXPB:
             _axpb(regs, dst, a, consts[b], consts[b + 1])
+        elif op == OP_ATAN2 or op == OP_FRACT or op == OP_MOD or op == OP_EXP:
+            _language2(op, regs, dst, a, b, mask, consts)
         elif ARITY[op] == 1:
             _unary(op, regs, dst, a)
         elif mask == 2:

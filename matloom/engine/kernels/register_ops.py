@@ -60,6 +60,11 @@ _TABLE: tuple[tuple[str, int, int, str | None, str], ...] = (
         "Threshold(a); block: below_at, below_to, above_at, above_to, width, flags",
     ),
     ("axpb", 1, 2, None, "a * c1 + c2 with two roundings (block: c1, c2)"),
+    # language 2 (float64 results, the operations of kernels.mathops; see kernels.mathops_numba)
+    ("atan2", 2, 0, "atan2", "Atan2(a, b): angle of (b, a) in (-pi, pi]"),
+    ("fract", 1, 0, "fract", "a - floor(a), at most 1 - 2**-53"),
+    ("mod", 2, 0, "mod", "a - b * floor(a / b), 0 where b == 0"),
+    ("exp", 1, 0, "exp", "e ** a"),
 )
 
 #: Every opcode by name.

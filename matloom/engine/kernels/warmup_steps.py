@@ -4,7 +4,7 @@
 Each step evaluates a small program on the numba backend, so the kernels are compiled for exactly
 the argument types real renders pass; together the steps cover every evaluation kernel (fBm and
 Worley on separable axes and rotated grids, with and without coverage masks; both Bricks kernels;
-paths; compositing; relief; preview shading). On a machine with two or more cores a helper
+paths; compositing; relief; preview shading; the language-2 primitives). On a machine with two or more cores a helper
 process compiles the primitive kernels of the later steps (evaluating them unfused, so without
 the compositing kernel) while this process compiles compositing and shading; the later steps
 then run fused and mostly load from the cache. Importing this module does not import numba.
@@ -46,6 +46,18 @@ Define(line, Stroke(Path(0.1, 0.1, LineTo(0.9, 0.3), CubicTo(0.5, 0.5, 0.3, 0.9,
 Material(Layer(1).basecolor(240, 240, 240), Layer(star).basecolor(200, 20, 30).height(0.01),
   Layer(line).basecolor(10, 10, 10).emissive(255, 128, 0, 2))"""
 
+_LANGUAGE_2 = """View(0, 0, 4, 4)
+Define(warp, fBm(octaves=2, base_freq=0.5, seed=7))
+Define(board, Bricks(brick_width=2, brick_height=0.5, offset=0.5, mortar=0.02, output="cell_value",
+  seed=8))
+Define(dots, Tile(Fill(Ellipse(0, 0, 0.2, 0.2), feather=0.02), 1, 1, jitter=0.2, rotate=30,
+  seed=9))
+Material(Layer(1).basecolor(120 + board * 60, 90, 60)
+    .roughness(Fract(Translate(X(), warp * 0.5, 0) * 3))
+    .anisotropy(0.5).anisotropy_angle(Atan2(Y() - 2, X() - 2) * 57.3),
+  Layer(dots).basecolor(200 * Hash(Floor(X()), Floor(Y()), seed=10), 180, 40)
+    .height(Worley(output="edge", seed=11) * 0.01 + Rotate(fBm(seed=12), warp * 30) * 0.002))"""
+
 #: (label, program) of each warm-up step; ``None``: shade the previous step's maps.
 STEPS: tuple[tuple[str, str | None], ...] = (
     ("fBm and compositing", _TILE),
@@ -54,6 +66,7 @@ STEPS: tuple[tuple[str, str | None], ...] = (
     ("Worley", _WORLEY),
     ("column Bricks", _COLUMNS),
     ("paths", _PATHS),
+    ("language 2 (warps, Tile, cells)", _LANGUAGE_2),
 )
 
 #: The first steps compile every kernel of the paper's tile program (fBm, Bricks rows,

@@ -7,6 +7,7 @@ kernels, so that one rule serves the dense, banded and seed-batched schedules.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -14,6 +15,7 @@ import numpy as np
 from matloom.engine.kernels import shapes
 from matloom.engine.kernels import threshold as _threshold
 from matloom.lang import ast as A
+from matloom.lang.seeds import uses_seed
 from matloom.lang.static import static_number
 
 
@@ -38,7 +40,19 @@ def worley(ev: Any, call: A.Call, c: Any) -> Any:
 
 
 def bricks(ev: Any, call: A.Call, c: Any) -> Any:
-    return ev.backend.bricks(c[0], c[1], **ev.params(call))
+    """Bricks; its seed only where the output uses one (``ParamSpec.used_when``)."""
+    params = ev.params(call)
+    if not uses_seed(call):
+        return ev.backend.bricks(c[0], c[1], **{**params, "seed": None})
+    return per_seed(
+        ev, call, lambda seed: ev.backend.bricks(c[0], c[1], **{**params, "seed": seed})
+    )
+
+
+def per_seed(ev: Any, call: A.Call, compute: Callable[[int], Any]) -> Any:
+    """``compute(seed)`` for ``call``'s seed (``Evaluator.per_seed``; the sweep's schedule
+    stacks it over its seeds instead)."""
+    return ev.per_seed(call, compute)
 
 
 def weave(ev: Any, call: A.Call, c: Any) -> Any:

@@ -10,6 +10,7 @@ compiled for the fused compositing kernel (:func:`chunk_program`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -19,6 +20,7 @@ from matloom.engine.interpret import layer_fields
 from matloom.engine.lazy import LazyEvaluator, defer_fbm
 from matloom.lang import ast as A
 from matloom.lang.cost import field_params
+from matloom.lang.seeds import uses_seed
 
 
 def seeded_nodes(program: A.Program) -> set[int]:
@@ -29,7 +31,7 @@ def seeded_nodes(program: A.Program) -> set[int]:
     def visit(node: A.Node) -> bool:
         kids = [visit(ch) for ch in A.children(node)]
         dep = any(kids)
-        if isinstance(node, A.Call) and node.arg("seed") is not None:
+        if isinstance(node, A.Call) and node.arg("seed") is not None and uses_seed(node):
             dep = True
         if isinstance(node, A.Ref) and node.name in dep_defs:
             dep = True
@@ -84,6 +86,25 @@ class SweepEvaluator(LazyEvaluator):
         if len(seeds) > 1:
             raise _unsupported(f"{call.func} with a varying seed")
         return seeds.pop()
+
+    def per_seed(self, call: A.Call, compute: Callable[[int], Any]) -> np.ndarray:
+        """A seeded primitive without a seed-batch kernel (Bricks' cell values, see
+        ``ops.fields``): ``compute(seed)`` for each of the chunk's seeds, float32 (S, ...) like
+        the noise batches."""
+        seed = self.num(call, "seed")
+        seeds = [m.get(seed, seed) for m in self.seed_maps]
+        first = np.asarray(compute(seeds[0]))
+        out = np.empty((len(seeds), *first.shape), dtype=np.float32)
+        out[0] = first
+        for s, value in enumerate(seeds[1:], 1):
+            out[s] = compute(value)
+        return out
+
+    def batch_seeds(self, call: A.Call) -> list[int]:
+        """The chunk's seeds of ``call`` (one per candidate), for a primitive whose kernel takes
+        them all at once (Hash, see ``ops.fields_math``; its operands may be batched too)."""
+        seed = self.num(call, "seed")
+        return [m.get(seed, seed) for m in self.seed_maps]
 
     def batch_args(self, call: A.Call) -> dict[str, Any]:
         """The noise kernel's keywords with the chunk's seeds instead of the seed."""
