@@ -352,7 +352,7 @@ def leaf_tuples(prog: FusedProgram) -> tuple[tuple[np.ndarray, ...], tuple[np.nd
 
 def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
     """Zeroed output maps like :func:`composite._allocate_maps`, except that the 2-D maps
-    (alpha, the 7 scalars, ior, height) are views of one (K.N_MAP_PLANES, H, W) buffer, the
+    (alpha, the scalars, ior, height) are views of one (K.N_MAP_PLANES, H, W) buffer, the
     kernel's ``planes`` argument (see :func:`planes_of`), and that the height is not pre-set to
     the -inf accumulator start: the kernel writes every height row (the numpy fallback sets its
     band)."""
