@@ -118,10 +118,10 @@ def _numpy_backend() -> Backend:
 
 
 def _numba_backend() -> Backend:
-    from matloom.engine.kernels import noise_numba, patterns_numba, tile_numba
+    from matloom.engine.kernels import noise_numba, patterns_numba, patterns_weave_numba, tile_numba
 
     noise = noise_kernels(lambda: noise_numba.FBM_LOOPS, noise_numba.WORLEY_LOOPS)
-    shared = _shared_kernels("numba")
+    shared = {**_shared_kernels("numba"), "weave": patterns_weave_numba.weave}
     kernels = dict(bricks=patterns_numba.bricks, tile=tile_numba.instance)
     return Backend("numba", fused=True, **kernels, **shared, **noise)
 
