@@ -53,7 +53,7 @@ Define(board, Bricks(brick_width=2, brick_height=0.5, offset=0.5, mortar=0.02, o
 Define(dots, Tile(Fill(Ellipse(0, 0, 0.2, 0.2), feather=0.02), 1, 1, jitter=0.2, rotate=30,
   seed=9))
 Material(Layer(1).basecolor(120 + board * 60, 90, 60)
-    .roughness(Fract(Translate(X(), warp * 0.5, 0) * 3))
+    .roughness(Fract(Translate(X(), warp * 0.5, 0) * 3) * Weave(output="warp"))
     .anisotropy(0.5).anisotropy_angle(Atan2(Y() - 2, X() - 2) * 57.3),
   Layer(dots).basecolor(200 * Hash(Floor(X()), Floor(Y()), seed=10), 180, 40)
     .height(Worley(output="edge", seed=11) * 0.01 + Rotate(fBm(seed=12), warp * 30) * 0.002))"""
