@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo test lint bench clean clip-venv test-clip
+.PHONY: demo test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -16,8 +16,20 @@ $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 demo: $(VENV)/.installed-fast,llm
 	$(VENV)/bin/matloom demo -o $(DEMO_OUT)
 
-test: $(VENV)/.installed-fast,llm,test
-	$(PY) -m pytest -q -n 2 -p no:cacheprovider
+test: $(VENV)/.installed-fast,llm,test tools
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender"
+
+# The Khronos glTF validator (npm) for the glTF preset tests, in a project-local folder. If npm
+# or the registry is unreachable the tests that need it skip and say so; `make test` goes on.
+TOOLS ?= .tools
+GLTF_VALIDATOR_VERSION ?= 2.0.0-dev.3.10
+
+tools:
+	@if [ -f $(TOOLS)/node_modules/gltf-validator/index.js ]; then :; \
+	elif command -v npm >/dev/null 2>&1; then \
+	  npm install --silent --no-audit --no-fund --prefix $(TOOLS) gltf-validator@$(GLTF_VALIDATOR_VERSION) \
+	    || echo "tools: could not install gltf-validator; its tests will be skipped" >&2; \
+	else echo "tools: npm not found; the glTF validator tests will be skipped" >&2; fi
 
 lint: $(VENV)/.installed-fast,llm,test
 	$(VENV)/bin/ruff check matloom tests benchmarks
@@ -47,5 +59,36 @@ $(CLIP_VENV)/.installed: pyproject.toml
 test-clip: $(CLIP_VENV)/.installed
 	HF_HUB_OFFLINE=1 $(CLIP_VENV)/bin/python -m pytest -q -p no:cacheprovider -m clip tests/author
 
+# Optional interop extra (MaterialX + usd-core): its own venv; `make test` skips these tests.
+INTEROP_VENV ?= .venv-interop
+
+interop-venv: $(INTEROP_VENV)/.installed
+
+$(INTEROP_VENV)/.installed: pyproject.toml
+	$(PYTHON) -m venv $(INTEROP_VENV)
+	$(INTEROP_VENV)/bin/pip install --quiet --upgrade pip
+	$(INTEROP_VENV)/bin/pip install --quiet -e ".[fast,test,interop]"
+	touch $@
+
+test-interop: $(INTEROP_VENV)/.installed
+	$(INTEROP_VENV)/bin/python -m pytest -q -p no:cacheprovider -m interop tests/io
+
+# Optional Blender path: the bpy module (bpy 5.0.x needs Python 3.11) in its own venv.
+# Only bpy goes in it (its own numpy); MatLoom runs it as a separate process.
+BLENDER_VENV ?= .venv-blender
+BLENDER_PY ?= $(PYTHON)
+BPY_VERSION ?= 5.0.1
+
+blender-venv: $(BLENDER_VENV)/.installed
+
+$(BLENDER_VENV)/.installed:
+	$(BLENDER_PY) -m venv $(BLENDER_VENV)
+	$(BLENDER_VENV)/bin/pip install --quiet --upgrade pip
+	$(BLENDER_VENV)/bin/pip install --quiet bpy==$(BPY_VERSION)
+	touch $@
+
+test-blender: $(VENV)/.installed-fast,llm,test $(BLENDER_VENV)/.installed
+	MATLOOM_BLENDER_PYTHON=$(abspath $(BLENDER_VENV))/bin/python $(PY) -m pytest -q -p no:cacheprovider -m blender tests/blender
+
 clean:
-	rm -rf $(VENV) $(CLIP_VENV) $(DEMO_OUT) build *.egg-info
+	rm -rf $(VENV) $(CLIP_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info

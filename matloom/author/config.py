@@ -110,6 +110,8 @@ class AuthorConfig(BaseModel):
     export_size: int = Field(512, ge=8)
     sweep_jobs: int = Field(0, ge=0)
     seed: int = 0
+    #: Make the final program tileable (``View(..., tileable=True)``) before it is exported.
+    tileable: bool = False
 
     @field_validator("critic_signals", mode="before")
     @classmethod

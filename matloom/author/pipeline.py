@@ -370,6 +370,8 @@ class Run:
         )
         if warning:
             self.warn(warning)
+        if self.config.tileable:
+            final.program = _tileable_text(final.program)
         self.notify("export", "writing material.mat, preview and maps")
         final.files = self._export(final.program)
         record.final = final
@@ -402,6 +404,14 @@ class Run:
             export_maps(maps, self.store.folder / "maps", program_text=program)
         files["maps"] = "maps"
         return files
+
+
+def _tileable_text(program: str) -> str:
+    """``program`` with ``View(..., tileable=True)`` (canonical text)."""
+    import matloom
+    from matloom.lang.tileable import make_tileable
+
+    return matloom.format(make_tileable(matloom.parse(program)))
 
 
 # ---------------------------------------------------------------------- entry points

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
 import click
 
 from matloom.cli import params
 from matloom.cli.lang_cmds import _read
+from matloom.cli.tileable import apply_tileable, tileable_option
 from matloom.vocab.spec import LANGUAGE_VERSION
 
 
@@ -66,6 +68,35 @@ def check_ao_radius(units: float, view: tuple[float, float, float, float], w: in
         )
 
 
+#: ``--preset`` choices (the registry is imported lazily; this list is checked by a test).
+PRESET_NAMES = ("gltf", "mtlx", "usd", "unreal", "unity", "godot")
+
+
+def square_texel_view(
+    view: tuple[float, float, float, float], w: int, h: int, stretch: bool
+) -> tuple[tuple[float, float, float, float], dict | None]:
+    """The View to render ``w`` x ``h`` with square texels: the program's View widened about
+    its centre along the short side (only when ``w != h`` and not ``stretch``), and a note for
+    the manifest (None when the View is used as it is)."""
+    x1, y1, x2, y2 = view
+    dx, dy = abs(x2 - x1) / w, abs(y2 - y1) / h
+    if w == h or abs(dx - dy) <= 1e-9 * max(dx, dy):
+        return view, None
+    if stretch:
+        return view, {"program_view": list(view), "note": "--stretch: texels are not square"}
+    texel = max(dx, dy)
+    cx, cy = (x1 + x2) / 2, (y1 + y2) / 2
+    half_w = texel * w / 2 * (1 if x2 >= x1 else -1)
+    half_h = texel * h / 2 * (1 if y2 >= y1 else -1)
+    widened = (cx - half_w, cy - half_h, cx + half_w, cy + half_h)
+    note = {
+        "program_view": list(view),
+        "note": "the View was widened about its centre so that texels stay square "
+        "(--stretch keeps the program's View)",
+    }
+    return widened, note
+
+
 @click.command("render")
 @click.argument("file")
 @click.option(
@@ -80,10 +111,64 @@ def check_ao_radius(units: float, view: tuple[float, float, float, float], w: in
 @click.option(
     "--format",
     "float_format",
-    type=click.Choice(["exr", "png16"]),
-    default="exr",
+    type=click.Choice(["png", "exr", "png16"]),
+    default="png",
     show_default=True,
-    help="Float maps as EXR; png16 also writes a 16-bit height PNG.",
+    help="png: PNG maps (ior/height/emissive as float32 EXR); exr: every map as EXR; "
+    "png16: png plus a normalised 16-bit height16.png.",
+)
+@click.option(
+    "--bits",
+    type=click.Choice(["8", "16"]),
+    default="8",
+    show_default=True,
+    help="Bit depth of every PNG map (normal, base colour, roughness, ...).",
+)
+@click.option(
+    "--exr-precision",
+    type=click.Choice(["half", "float"]),
+    default="half",
+    show_default=True,
+    help="Sample type of --format exr files (float = float32).",
+)
+@click.option(
+    "--normal",
+    "normal_conv",
+    type=click.Choice(["gl", "dx", "both"]),
+    default="gl",
+    show_default=True,
+    help="Normal map convention(s): normal_gl (OpenGL, +Y) and/or normal_dx (DirectX).",
+)
+@click.option(
+    "--constants-as-values",
+    is_flag=True,
+    help="Record constant maps in material.json instead of writing their files.",
+)
+@click.option(
+    "--preset",
+    "presets",
+    multiple=True,
+    type=click.Choice(PRESET_NAMES),
+    help="Also write an engine/interchange preset into DIR/<preset>/ (repeatable).",
+)
+@click.option(
+    "--unit-m",
+    type=params.POSITIVE,
+    default=None,
+    help="Metres per coordinate unit: physical size and displacement in metres.",
+)
+@click.option(
+    "--name",
+    "material_name",
+    type=params.NAME,
+    default=None,
+    help="Material name for preset files (default: FILE's stem).",
+)
+@click.option(
+    "--stretch",
+    is_flag=True,
+    help="With --width != --height keep the program's View (non-square texels) instead of "
+    "widening it.",
 )
 @click.option(
     "--maps", "maps_csv", default=None, help="Comma-separated subset, e.g. basecolor,normal."
@@ -107,6 +192,7 @@ def check_ao_radius(units: float, view: tuple[float, float, float, float], w: in
     "--program-seed", type=int, default=0, show_default=True, help="Seed for omitted noise seeds."
 )
 @click.option("--json", "as_json", is_flag=True, help="Print the manifest as JSON on stdout.")
+@tileable_option
 def render_cmd(
     file: str,
     out_dir: str,
@@ -114,15 +200,24 @@ def render_cmd(
     width: int | None,
     height: int | None,
     float_format: str,
+    bits: str,
+    exr_precision: str,
+    normal_conv: str,
+    constants_as_values: bool,
+    presets: tuple[str, ...],
+    unit_m: float | None,
+    material_name: str | None,
+    stretch: bool,
     maps_csv: str | None,
     ao_radius: float | None,
     preview: bool,
     backend: str,
     program_seed: int,
     as_json: bool,
+    tileable: bool,
 ) -> None:
     """Evaluate FILE and export its maps (one per channel, normal, AO) and material.json into a
-    folder."""
+    folder, plus any --preset (gltf, mtlx, usd, unreal, unity, godot) in its subfolder."""
     import json
 
     from matloom.engine.evaluate import EvalStats, evaluate
@@ -131,6 +226,7 @@ def render_cmd(
     from matloom.io.export import (
         MANIFEST_NAME,
         MAP_NAMES,
+        Encoding,
         planned_files,
         write_manifest,
         write_maps,
@@ -146,12 +242,22 @@ def render_cmd(
             raise click.UsageError(
                 f"unknown map(s) {', '.join(unknown)}; choose from {', '.join(MAP_NAMES)}"
             )
-    program, _ = load_program(file, program_seed)
+    encoding = Encoding(
+        float_format,
+        int(bits),
+        exr_precision,
+        ("gl", "dx") if normal_conv == "both" else (normal_conv,),
+        constants_as_values,
+    )
+    program, text = load_program(file, program_seed)
+    program = apply_tileable(program, tileable, text, file)
+    view, view_note = square_texel_view(program.view_tuple, w, h, stretch)
     if ao_radius is not None:
-        check_ao_radius(ao_radius, program.view_tuple, w, h)
+        check_ao_radius(ao_radius, view, w, h)
     canonical = format_program(program)
+    name = material_name or params.NAME.convert(Path(file).stem, None, None)
     with OutputFolder(out_dir) as out:  # locked before the work starts: a second writer fails
-        out.check_writable(planned_files(subset, float_format, preview))
+        out.check_writable(planned_files(subset, float_format, preview, encoding))
         t0 = time.perf_counter()
         stats = EvalStats()
         try:
@@ -160,6 +266,7 @@ def render_cmd(
                 w,
                 h,
                 backend=backend,
+                view=view,
                 ao_radius_units=ao_radius,
                 stats=stats,
                 usage=Usage(preview_tile=1) if preview else EVALUATE,  # shading counted too
@@ -172,11 +279,16 @@ def render_cmd(
                 maps,
                 staging,
                 final_dir=out.path,
-                float_format=float_format,
                 maps_subset=subset,
                 program_text=canonical,
                 extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
+                encoding=encoding,
+                unit_m=unit_m,
+                presets=presets,
+                name=name,
             )
+            if view_note:
+                result.manifest["view_adjusted"] = view_note
             if preview:
                 from matloom.io.png import save_png
                 from matloom.render.preview import shade

@@ -35,6 +35,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "few_shot": "few_shot",
     "start": "start",
     "max_reply_chars": "max_reply_chars",
+    "tileable": "tileable",
 }
 #: Flags that override generator model settings.
 _MODEL_FLAGS: dict[str, str] = {
@@ -203,6 +204,13 @@ def _pipeline_options(f: Any) -> Any:
         ),
         click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
         click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
+        click.option(
+            "--tileable",
+            is_flag=True,
+            default=d.tileable,
+            help="Make the final material tileable (View(..., tileable=True)); the offline "
+            "author already does where the material allows it.",
+        ),
     ]
     for option in reversed(options):
         f = option(f)

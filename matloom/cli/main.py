@@ -22,6 +22,7 @@ COMMANDS: dict[str, str] = {
     "gallery": "matloom.cli.gallery_cmd:gallery_cmd",
     "demo": "matloom.cli.demo_cmd:demo_cmd",
     "scorer": "matloom.cli.generate_cmd:scorer_cmd",
+    "blender": "matloom.cli.blender_cmd:blender_cmd",
 }
 
 

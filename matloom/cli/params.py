@@ -91,6 +91,46 @@ NON_NEGATIVE = FiniteFloat(lo=0.0)
 """A finite real number >= 0 (radii in coordinate units)."""
 
 
+class PositiveFloat(FiniteFloat):
+    """A finite real number > 0 (a physical scale)."""
+
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> float:
+        number = super().convert(value, param, ctx)
+        if number <= 0:
+            self.fail(f"{value} is not a finite number > 0", param, ctx)
+        return number
+
+    def describe(self) -> str:
+        return "a finite number > 0"
+
+
+POSITIVE = PositiveFloat(lo=0.0)
+"""A finite real number > 0 (metres per coordinate unit)."""
+
+
+class MaterialName(click.ParamType):
+    """A material name for file names: letters, digits, ``_`` and ``-`` (others become ``_``),
+    1 to 64 characters."""
+
+    name = "name"
+
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> str:
+        import re
+
+        text = re.sub(r"[^A-Za-z0-9_-]+", "_", str(value)).strip("_")[:64]
+        if not text:
+            self.fail(f"{value!r} has no letter or digit to name files with", param, ctx)
+        return text
+
+
+NAME = MaterialName()
+"""A material name used in preset file names."""
+
+
 class LightAngles(click.ParamType):
     """``AZIMUTH,ELEVATION`` in degrees: a finite azimuth and an elevation in [-90, 90]."""
 

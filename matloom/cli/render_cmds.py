@@ -11,6 +11,7 @@ import click
 
 from matloom.cli import params
 from matloom.cli.engine_cmds import load_program, resolve_size, size_options
+from matloom.cli.tileable import apply_tileable, tileable_option
 
 
 def _light(angles: tuple[float, float] | None):  # noqa: ANN202 - Light | None
@@ -57,6 +58,7 @@ def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
     help="Tile the swatch N x N to show seams.",
 )
 @click.option("--backend", type=params.BACKEND, default="auto", show_default=True)
+@tileable_option
 def preview_cmd(
     file: str,
     out: str,
@@ -66,8 +68,10 @@ def preview_cmd(
     light: tuple[float, float] | None,
     tile: int,
     backend: str,
+    tileable: bool,
 ) -> None:
-    """Render the quick head-on shaded preview of FILE to a PNG."""
+    """Render the quick head-on shaded preview of FILE to a PNG (--tile 2 --tileable shows
+    the repeat)."""
     from matloom.render.api import preview
 
     w, h = resolve_size(size, width, height, 512)
@@ -76,7 +80,8 @@ def preview_cmd(
             f"{tile} x {max(w, h)} pixels is more than the maximum image side {params.MAX_SIDE}",
             param_hint="'--tile'",
         )
-    program, _ = load_program(file)
+    program, text = load_program(file)
+    program = apply_tileable(program, tileable, text, file)
     with _limits_as_errors():
         img = preview(program, width=w, height=h, light=_light(light), tile=tile, backend=backend)
     _save_png(out, img)
@@ -142,6 +147,7 @@ def stats_cmd(file: str, as_json: bool, grid: int) -> None:
     "--top", type=params.TOP, default=8, show_default=True, help="Candidates on the sheet."
 )
 @click.option("--json", "as_json", is_flag=True)
+@tileable_option
 def sweep_cmd(
     file: str,
     variants: int,
@@ -154,6 +160,7 @@ def sweep_cmd(
     sheet: str | None,
     top: int,
     as_json: bool,
+    tileable: bool,
 ) -> None:
     """Render the original and K seed variants of FILE; with a scorer, keep the best."""
     from matloom.author.scorers.base import ScorerUnavailableError
@@ -164,7 +171,8 @@ def sweep_cmd(
 
     if scorer and not prompt:
         raise click.UsageError("--scorer needs --prompt")
-    program, _ = load_program(file)
+    program, source = load_program(file)
+    program = apply_tileable(program, tileable, source, file)
     text = format_program(program)
     with contextlib.ExitStack() as stack:  # the folder is locked before the work starts
         out = stack.enter_context(OutputFolder(out_dir)) if out_dir else None

@@ -340,6 +340,15 @@ def composite(
     for rows in relief.bands(height, BAND_ROWS):
         _composite_band(layers, maps, rows)
     dx, dy = view.texel_size(width, height)
-    maps["normal"] = relief.normals(maps["height"], dx, dy)
-    maps["ao"] = relief.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
+    if view.tileable:
+        from matloom.engine.tiling import wrapped_relief
+
+        reach = max(radius_x, radius_y) + 1
+        maps["normal"] = wrapped_relief(relief.normals, maps["height"], 1, dx, dy)
+        maps["ao"] = wrapped_relief(
+            relief.ambient_occlusion, maps["height"], reach, dx, radius_x, radius_y
+        )
+    else:
+        maps["normal"] = relief.normals(maps["height"], dx, dy)
+        maps["ao"] = relief.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
     return MaterialMaps(**maps, view=view, n_layers=len(layers))

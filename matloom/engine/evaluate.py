@@ -9,6 +9,7 @@ run the one interpreter (:mod:`matloom.engine.interpret`) over the op table
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 from functools import lru_cache
 
 import numpy as np
@@ -86,6 +87,7 @@ def evaluate(
     limits: Limits = DEFAULT_LIMITS,
     stats: EvalStats | None = None,
     usage: Usage = EVALUATE,
+    tileable: bool = False,
 ) -> MaterialMaps:
     """Evaluate a program into composited float32 maps at ``width`` x ``height``.
 
@@ -93,6 +95,8 @@ def evaluate(
     (default: the reference's 8 texels). Omitted seeds are derived from ``program_seed``.
     Raises :class:`~matloom.engine.limits.LimitError` before any work when the request exceeds
     a limit (``usage``: what the caller makes of the maps too, e.g. a tiled preview).
+    ``tileable=True`` (or ``View(..., tileable=True)`` in the program, or a tileable ``view``)
+    makes every map repeat seamlessly with the View's width and height (docs/tileable.md).
     """
     program = prepare(program_or_text, program_seed)
     check_size(width, height, limits=limits)
@@ -101,6 +105,8 @@ def evaluate(
     if not program.layers:
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")
     v = view if isinstance(view, View) else View(*(view or program.view_tuple))
+    if (tileable or program.tileable) and not v.tileable:
+        v = replace(v, tileable=True)
     x, y = sample_axes(v, width, height)
     if be.fused:  # same maps as below, bit for bit (see matloom.engine.schedules.banded)
         from matloom.engine.schedules.banded import evaluate_fused

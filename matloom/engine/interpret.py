@@ -86,8 +86,18 @@ def _noise_names(func: str) -> tuple[str, ...]:
 class Evaluator:
     """Evaluates the expressions of one program on one sampling grid (dense values)."""
 
-    def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend: Backend) -> None:
+    def __init__(
+        self,
+        program: A.Program,
+        x: np.ndarray,
+        y: np.ndarray,
+        backend: Backend,
+        *,
+        periods: tuple[float, float] | None = None,
+    ) -> None:
         self.program = program
+        #: (W, H) of a tileable View (every noise repeats with them), else None
+        self.periods = periods
         self.backend = backend
         self.base: Coords = Frame(x, y, 0)
         self.defines = {d.name: d.expr for d in program.defines}
@@ -181,19 +191,46 @@ class Evaluator:
 
     # ---------------------------------------------------------------- primitives
     def fbm(self, call: A.Call, c: Coords) -> Field:
-        return self.backend.fbm(c[0], c[1], **self.noise_args(call))
+        return self.backend.fbm(c[0], c[1], **self.noise_args(call, c))
 
     def worley(self, call: A.Call, c: Coords) -> Field:
-        return self.backend.worley(c[0], c[1], **self.noise_args(call))
+        return self.backend.worley(c[0], c[1], **self.noise_args(call, c))
 
-    def noise_args(self, call: A.Call) -> dict[str, Any]:
-        """The keyword arguments of the fBm/Worley kernel for ``call``."""
+    def noise_args(self, call: A.Call, c: Coords | None = None) -> dict[str, Any]:
+        """The keyword arguments of the fBm/Worley kernel for ``call`` (in coordinates ``c``:
+        with ``period`` where the output is tileable, see :meth:`periods_of`)."""
         fx, fy = self.freqs(call)
         seed = self.num(call, "seed")
         if seed is None:
             raise ValueError(f"{call.func} has no seed; canonicalise the program first")
         kw = dict(freq_x=fx, freq_y=fy, to_01=bool(self.num(call, "to_01")), seed=seed)
+        period = None if c is None else self.periods_of(c, call.func)
+        if period is not None:
+            kw["period"] = period
         return {**kw, **{name: self.num(call, name) for name in _noise_names(call.func)}}
+
+    def periods_of(self, c: Coords, func: str = "") -> tuple[float, float] | None:
+        """The View's periods (W, H) in the frame of ``c``, for a tileable output whose frame
+        is an axis-aligned affine map of the grid (Translate, Scale): (|a| W, |e| H). None
+        when the output is not tileable, and (with a note) for a rotated frame or a domain
+        warp other than Translate's, where a noise cannot repeat with the View (a Translate
+        warp keeps its coordinates' periods: it adds periodic offsets); Tile's instance
+        frames need no period (their instances repeat)."""
+        if self.periods is None:
+            return None
+        fid = self._frame_id(c)
+        affine = self.frame_table.affine(fid)
+        warped = self.frame_table.warped
+        if warped.get(fid) is not None:
+            return warped[fid]
+        if affine is None or not _axis_aligned(affine):
+            if affine is not None or fid in warped:
+                note = f"tileable: {func or 'a field'} in a rotated or warped frame cannot repeat"
+                if note not in self.stats.notes:
+                    self.stats.notes.append(note)
+            return None
+        width, height = self.periods
+        return abs(affine[0]) * width, abs(affine[4]) * height
 
     def transform(self, call: A.Call, c: Coords) -> Coords:
         """Coordinates of ``call``'s operand. Their frame is the composed transform, so a Define
@@ -224,7 +261,11 @@ class Evaluator:
         a, b = (np.asarray(v).astype(dtype) if np.ndim(v) else v for v in (a, b))
         with np.errstate(all="ignore"):
             new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
-        return self.new_frame(*new)
+        frame = self.new_frame(*new)
+        # a Translate warp adds periodic offsets: its frame keeps the periods of ``c``
+        kept = self.periods_of(c, call.func) if call.func == "Translate" else None
+        self.frame_table.warped[frame.fid] = kept  # type: ignore[attr-defined]
+        return frame
 
     def new_frame(self, x: Any, y: Any) -> Coords:
         """Coordinates that no transform of the grid made (a frame equal to no other)."""
@@ -240,6 +281,17 @@ class Evaluator:
         """The array of a value (dense values already are; see LazyEvaluator)."""
         return value
 
+    def instance_value(self, node: A.Node, frame: Coords) -> Any:
+        """The array of ``node`` in a frame of its own (a Tile instance), without keeping the
+        frame's Define values or intermediate arrays once it is computed: the 9 instances of a
+        Tile then hold one instance's arrays at a time."""
+        memo = set(self.memo)
+        try:
+            return self.concrete(self.eval(node, frame))
+        finally:
+            for key in [k for k in self.memo if k not in memo]:
+                del self.memo[key]
+
     def per_seed(self, call: A.Call, compute: Any) -> Any:
         """``compute(seed)`` with ``call``'s seed (a seed batch stacks it over its seeds)."""
         return compute(self.num(call, "seed"))
@@ -254,6 +306,13 @@ class Evaluator:
     def shape(self, node: A.Call) -> shapes.Shape:
         """The geometry of a shape (or path segment) node."""
         return OPS[node.func].numpy(self, node)  # type: ignore[no-any-return]
+
+
+def _axis_aligned(affine: tuple[float, ...]) -> bool:
+    """The frame maps axes to axes (a rotation by a multiple of 180 degrees included: its
+    sine is ~1e-16, not 0)."""
+    a, b, _, d, e, _ = affine
+    return abs(b) <= 1e-12 * abs(a) and abs(d) <= 1e-12 * abs(e)
 
 
 def warp_values(func: str, values: list[Any]) -> tuple[Any, Any]:

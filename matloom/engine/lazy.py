@@ -209,11 +209,20 @@ class LazyEvaluator(Evaluator):
         """The numpy value of ``value`` (materialises a Lazy once)."""
         return materialise(value, self.materialised)
 
+    def instance_value(self, node: A.Node, frame: Coords) -> Any:
+        """:meth:`Evaluator.instance_value`, also dropping the arrays materialised for it."""
+        cached = set(self.materialised)
+        try:
+            return super().instance_value(node, frame)
+        finally:
+            for key in [k for k in self.materialised if k not in cached]:
+                del self.materialised[key]
+
     def fbm(self, call: A.Call, c: Coords) -> Field:
         masked = self.backend.fbm_masked
         if not (self.defer_noise and masked is not None):
             return super().fbm(call, c)
-        kw = self.noise_args(call)
+        kw = self.noise_args(call, c)
         x, y = c
         dense = self.backend.fbm  # no reference to self: the field must not form a cycle
 

@@ -35,9 +35,18 @@ class View:
     y1: float = 0.0
     x2: float = 1.0
     y2: float = 1.0
+    #: The maps repeat seamlessly with the window's width and height (docs/tileable.md).
+    tileable: bool = False
 
     def as_tuple(self) -> tuple[float, float, float, float]:
         return (self.x1, self.y1, self.x2, self.y2)
+
+    @property
+    def periods(self) -> tuple[float, float] | None:
+        """(width, height) of the window when the output is tileable, else None."""
+        if not self.tileable:
+            return None
+        return abs(float(self.x2) - float(self.x1)), abs(float(self.y2) - float(self.y1))
 
     def texel_size(self, width: int, height: int) -> tuple[float, float]:
         """Texel spacing (dx, dy) in coordinate units, as the reference computes it."""

@@ -8,13 +8,20 @@ The 14 maps (in this order, see :data:`MAP_NAMES`; one per channel of the regist
   ``anisotropy``, ``ao`` ``.png``: 8-bit grey;
 * ``anisotropy_angle.png``: 8-bit grey of (angle mod 180) / 180 (the direction is axial), plus
   ``anisotropy_angle.exr`` with the blended degrees (float32, unreduced);
-* ``normal.png``: 8-bit RGB, n * 0.5 + 0.5, OpenGL convention (+Y up);
+* ``normal_gl.png``: 8-bit RGB, n * 0.5 + 0.5, OpenGL convention (+Y up); on request also
+  ``normal_dx.png`` (DirectX, green = 1 - OpenGL green);
 * ``ior.exr``, ``height.exr`` (one float32 channel) and ``emissive.exr`` (float32 linear RGB,
   unclipped).
 
 Every map is written on every render, whether or not the program writes its channel (a
 channel no layer writes gives its default, e.g. a constant 0 angle): the folder's file list
 depends only on the options, never on the program, and ``--maps`` picks a subset.
+
+``bits=16`` writes every PNG map at 16 bits; ``float_format="exr"`` writes every map as EXR
+(half by default, ``exr_precision="float"`` for float32); ``constants=True`` records constant
+maps as manifest values instead of files (see :mod:`matloom.io.encode`). ``presets`` add
+engine and interchange files in subfolders (:mod:`matloom.io.presets`), ``unit_m`` (metres
+per coordinate unit) gives the physical size.
 
 With ``float_format="png16"`` the height is also written as ``height16.png`` (16-bit grey,
 normalised to its finite min/max, which ``material.json`` records). A ``material.json``
@@ -39,15 +46,15 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.colour import linear_to_srgb
 from matloom.engine.maps import MaterialMaps
-from matloom.io import exr as exr_io
+from matloom.engine.tiling import manifest_entry as tiling_entry
 from matloom.io import png as png_io
 from matloom.io.atomic import atomic_write_bytes
+from matloom.io.encode import FLOAT_FORMATS as FLOAT_FORMATS
+from matloom.io.encode import Encoding, file_names, write_map
+from matloom.io.encode import periodic_unit as periodic_unit
 from matloom.vocab.layout import LAYOUT, MapSpec
 
-#: Values accepted by ``export_maps(float_format=...)``.
-FLOAT_FORMATS: tuple[str, ...] = ("exr", "png16")
 #: Name of the manifest written into every export folder.
 MANIFEST_NAME = "material.json"
 #: File written next to ``height.exr`` when ``float_format="png16"``.
@@ -77,10 +84,15 @@ def select_maps(names: Sequence[str] | None) -> tuple[MapSpec, ...]:
 
 
 def planned_files(
-    maps_subset: Sequence[str] | None, float_format: str, preview: bool = False
+    maps_subset: Sequence[str] | None,
+    float_format: str,
+    preview: bool = False,
+    encoding: Encoding | None = None,
 ) -> list[str]:
-    """The file names a render with these options writes (to check the folder up front)."""
-    names = [name for spec in select_maps(maps_subset) for name in spec.file_names]
+    """The file names a render with these options may write (to check the folder up front;
+    preset files are checked by the batch install)."""
+    enc = encoding or Encoding(float_format=float_format)
+    names = [name for spec in select_maps(maps_subset) for name in file_names(spec, enc)]
     names += [MANIFEST_NAME, "material.mat"]
     if float_format == "png16" and (maps_subset is None or "height" in maps_subset):
         names.append(HEIGHT_PNG16_NAME)
@@ -151,44 +163,6 @@ def _map_stats(maps: MaterialMaps, spec: MapSpec) -> dict[str, Any]:
 # Writers
 
 
-def _srgb(linear: np.ndarray) -> np.ndarray:
-    with np.errstate(invalid="ignore"):
-        return linear_to_srgb(np.asarray(linear, dtype=np.float32))
-
-
-def periodic_unit(values: np.ndarray, period: float) -> np.ndarray:
-    """(values mod period) / period in [0, 1], computed in float64 (a negative value wraps to
-    the top of the range; NaN and +-inf give NaN, which the 8-bit writer stores as 0)."""
-    with np.errstate(invalid="ignore"):
-        return np.mod(np.asarray(values, dtype=np.float64), period) / period
-
-
-def _write_map(maps: MaterialMaps, spec: MapSpec, folder: Path) -> list[Path]:
-    """Encode one map into ``folder`` with its spec's writer (and its float copy, if any);
-    returns the file paths, the main file first."""
-    path = folder / spec.file_name
-    sources = [getattr(maps, name) for name in spec.sources]
-    if spec.writer == "srgb8-alpha":  # colour as sRGB, the second source (coverage) as alpha
-        png_io.write_rgba8(path, _srgb(sources[0]), sources[1])
-    elif spec.writer == "srgb8":
-        png_io.write_rgb8(path, _srgb(sources[0]))
-    elif spec.writer == "normal8":
-        encoded = np.asarray(sources[0], dtype=np.float32) * np.float32(0.5) + np.float32(0.5)
-        png_io.write_rgb8(path, encoded)
-    elif spec.writer == "exr":
-        exr_io.write_exr(path, sources[0])
-    elif spec.writer == "grey8":
-        png_io.write_grey8(path, sources[0])
-    elif spec.writer == "periodic8" and spec.period:
-        png_io.write_grey8(path, periodic_unit(sources[0], spec.period))
-    else:
-        raise ValueError(f"map {spec.name!r}: unknown writer {spec.writer!r}")
-    if not spec.float_file:
-        return [path]
-    exr_io.write_exr(folder / spec.float_file, np.asarray(sources[0], dtype=np.float32))
-    return [path, folder / spec.float_file]
-
-
 def _write_height_png16(height: np.ndarray, folder: Path) -> dict[str, Any]:
     """Write height16.png normalised to the finite min/max; returns its manifest entry.
 
@@ -225,10 +199,12 @@ def _manifest(
     map_entries: dict[str, dict[str, Any]],
     program_text: str | None,
     engine_version: str,
+    unit_m: float | None = None,
 ) -> dict[str, Any]:
     """The material.json content (without the optional extras)."""
     view = maps.view
     dx, dy = view.texel_size(maps.width, maps.height_px)
+    square = abs(dx - dy) <= 1e-6 * max(dx, dy)
     nonfinite = {name: e["nonfinite_values"] for name, e in map_entries.items()}
     return {
         "format": MANIFEST_FORMAT[0],
@@ -243,7 +219,9 @@ def _manifest(
         "height": maps.height_px,
         "view": {"x1": view.x1, "y1": view.y1, "x2": view.x2, "y2": view.y2},
         "texel_size": {"dx": dx, "dy": dy},
+        "square_texels": square,
         "units": "coordinate units (positions, sizes and heights share one unit)",
+        "physical_size": physical_size(maps, unit_m),
         "orientation": "row 0 is the top of the image (largest Y); column 0 is the smallest X",
         "n_layers": maps.n_layers,
         "quantisation_8bit": "clip [0, 1], x255, +0.5, truncate (float32); NaN -> 0",
@@ -267,40 +245,89 @@ def _json_safe(value: Any) -> Any:
 # Entry point
 
 
+def physical_size(maps: MaterialMaps, unit_m: float | None) -> dict[str, Any] | None:
+    """The real-world size of the maps for ``unit_m`` metres per coordinate unit (None when
+    unknown): the View's width and height, the texel size and density, and the factor that
+    turns heights into metres."""
+    if unit_m is None:
+        return None
+    view = maps.view
+    width_m = abs(view.x2 - view.x1) * unit_m
+    height_m = abs(view.y2 - view.y1) * unit_m
+    return {
+        "unit_m": unit_m,
+        "width_m": width_m,
+        "height_m": height_m,
+        "texel_m": {"x": width_m / maps.width, "y": height_m / maps.height_px},
+        "texels_per_m": maps.width / width_m if width_m > 0 else None,
+        "height_scale_m": unit_m,
+        "note": "height map values x height_scale_m = displacement in metres",
+    }
+
+
 def write_maps(
     maps: MaterialMaps,
     folder: Path,
     *,
     final_dir: Path | None = None,
-    float_format: str = "exr",
+    float_format: str = "png",
     maps_subset: Sequence[str] | None = None,
     program_text: str | None = None,
     engine_version: str | None = None,
     extra_meta: dict[str, Any] | None = None,
+    encoding: Encoding | None = None,
+    unit_m: float | None = None,
+    presets: Sequence[str] = (),
+    name: str = "material",
 ) -> ExportResult:
     """Encode the maps into ``folder`` (a staging folder) and build the manifest.
 
     The manifest is returned, not written: other files may join the folder before
     :func:`write_manifest` lists them all. ``final_dir`` is where the files will be installed
-    (the paths in the result point there).
+    (the paths in the result point there). ``encoding`` (default: ``float_format`` with 8-bit
+    PNGs) decides the map files; each of ``presets`` (names from
+    :data:`matloom.io.presets.PRESETS`) writes its subfolder, named files ``<name>_...``.
     """
-    if float_format not in FLOAT_FORMATS:
-        raise ValueError(f"float_format must be one of {FLOAT_FORMATS}, got {float_format!r}")
+    enc = encoding or Encoding(float_format=float_format)
     selected = select_maps(maps_subset)
+    writers = _preset_writers(presets)
     version = engine_version if engine_version is not None else _default_engine_version()
     final = folder if final_dir is None else final_dir
     entries: dict[str, dict[str, Any]] = {}
     files: dict[str, Path] = {}
     for spec in selected:
-        written = _write_map(maps, spec, folder)
-        files[spec.name] = final / written[0].name
+        written, override = write_map(maps, spec, folder, enc)
+        if written:
+            files[spec.name] = final / written[0]
         for extra in written[1:]:
-            files[f"{spec.name}_float"] = final / extra.name
-        entries[spec.name] = {**spec.describe(), **_map_stats(maps, spec)}
-    manifest = _manifest(maps, selected, entries, program_text, version)
-    if float_format == "png16" and "height" in entries:
+            key = f"{spec.name}_float" if extra == spec.float_file else f"{spec.name}_{extra}"
+            files[key] = final / extra
+        described = spec.describe()
+        if enc.all_exr or not written:
+            described.pop("float_file", None)
+            described.pop("float_encoding", None)
+        entries[spec.name] = {**described, **override, **_map_stats(maps, spec)}
+    manifest = _manifest(maps, selected, entries, program_text, version, unit_m)
+    manifest.update(tiling_entry(maps, selected))  # tileable renders: seam ratios
+    manifest["encoding"] = {
+        "float_format": enc.float_format,
+        "bits": enc.bits,
+        "exr_precision": enc.exr_precision if enc.all_exr else "float",
+        "normal_conventions": list(enc.normals),
+        "constants_as_values": enc.constants,
+    }
+    if enc.float_format == "png16" and "height" in entries:
         manifest["height_png16"] = _write_height_png16(maps.height, folder)
         files["height16"] = final / HEIGHT_PNG16_NAME
+    if writers:
+        from matloom.io.presets import PresetInput
+
+        source = PresetInput(maps, name=name, unit_m=unit_m, bits=enc.bits)
+        manifest["presets"] = {}
+        for preset, writer in writers.items():
+            (folder / preset).mkdir(exist_ok=True)
+            manifest["presets"][preset] = writer(source, folder / preset)
+            files[f"preset:{preset}"] = final / preset
     if extra_meta:
         manifest["extra"] = dict(extra_meta)
     manifest = _json_safe(manifest)
@@ -311,6 +338,20 @@ def write_maps(
         manifest=manifest,
         nonfinite_counts=dict(manifest["nonfinite_values"]),
     )
+
+
+def _preset_writers(presets: Sequence[str]) -> dict[str, Any]:
+    """The writer of each requested preset (unknown names raise ValueError)."""
+    if not presets:
+        return {}
+    if isinstance(presets, str):
+        raise TypeError("presets must be a sequence of preset names, not a string")
+    from matloom.io.presets import PRESETS
+
+    unknown = sorted(set(presets) - set(PRESETS))
+    if unknown:
+        raise ValueError(f"unknown preset(s) {unknown}; valid presets: {', '.join(PRESETS)}")
+    return {p: PRESETS[p].write for p in dict.fromkeys(presets)}
 
 
 def write_manifest(result: ExportResult, folder: Path) -> None:
@@ -335,15 +376,28 @@ def export_maps(
     maps: MaterialMaps,
     out_dir: str | os.PathLike[str],
     *,
-    float_format: str = "exr",
+    float_format: str = "png",
     maps_subset: Sequence[str] | None = None,
     program_text: str | None = None,
     engine_version: str | None = None,
     extra_meta: dict[str, Any] | None = None,
+    bits: int = 8,
+    exr_precision: str = "half",
+    normals: Sequence[str] = ("gl",),
+    constants: bool = False,
+    unit_m: float | None = None,
+    presets: Sequence[str] = (),
+    name: str = "material",
 ) -> ExportResult:
     """Write ``maps`` into the folder ``out_dir`` through a staged, locked install.
 
-    ``float_format``: "exr" (default) or "png16" (adds height16.png; ior/emissive stay EXR).
+    ``float_format``: "png" (default: PNG maps, float32 EXR for ior/height/emissive), "exr"
+    (every map as EXR, ``exr_precision`` "half" or "float") or "png16" ("png" plus
+    height16.png). ``bits``: 8 or 16 for every PNG map. ``normals``: "gl" and/or "dx"
+    (``normal_gl`` / ``normal_dx`` files). ``constants``: constant maps become manifest values
+    instead of files. ``unit_m``: metres per coordinate unit (physical size in the manifest and
+    the presets). ``presets``: names from :data:`matloom.io.presets.PRESETS`, each written to
+    its subfolder with files named ``<name>_...``.
     ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all, in that order);
     an unknown name raises ValueError before anything is written. ``program_text`` is hashed
     (SHA-256) into the manifest; ``extra_meta`` is stored under the manifest key "extra".
@@ -353,19 +407,30 @@ def export_maps(
     """
     from matloom.io.outdir import output_folder
 
-    if float_format not in FLOAT_FORMATS:  # bad arguments fail before the folder is touched
-        raise ValueError(f"float_format must be one of {FLOAT_FORMATS}, got {float_format!r}")
+    # bad arguments fail before the folder is touched
+    enc = Encoding(float_format, bits, exr_precision, tuple(normals), constants)
     select_maps(maps_subset)
+    _preset_writers(presets)
+    check_unit_m(unit_m)
     with output_folder(out_dir) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
         result = write_maps(
             maps,
             staging,
             final_dir=out.path,
-            float_format=float_format,
             maps_subset=maps_subset,
             program_text=program_text,
             engine_version=engine_version,
             extra_meta=extra_meta,
+            encoding=enc,
+            unit_m=unit_m,
+            presets=presets,
+            name=name,
         )
         write_manifest(result, staging)
     return result
+
+
+def check_unit_m(unit_m: float | None) -> None:
+    """Raise ValueError unless ``unit_m`` is None or a finite number > 0."""
+    if unit_m is not None and not (isinstance(unit_m, (int, float)) and 0 < unit_m < float("inf")):
+        raise ValueError(f"unit_m must be a finite number of metres > 0, got {unit_m!r}")

@@ -1,7 +1,9 @@
-"""float32 OpenEXR writing and reading through the OpenEXR 3.x Python bindings.
+"""OpenEXR writing and reading through the OpenEXR 3.x Python bindings.
 
-Maps are stored losslessly as 32-bit float (ZIP compression): one channel ``Y`` for a (H, W)
-map, or ``R``, ``G``, ``B`` for a (H, W, 3) map. NaN and +-inf are kept as they are.
+Maps are stored as 32-bit float (lossless, the default) or 16-bit half float
+(``precision="half"``), ZIP compression: one channel ``Y`` for a (H, W) map, ``R``, ``G``,
+``B`` for a (H, W, 3) map and ``R``, ``G``, ``B``, ``A`` for a (H, W, 4) map. NaN and +-inf are
+kept as they are (in half, finite values beyond 65504 become +-inf).
 
 Note: do not route ``.exr`` through imageio, which silently writes TIFF data under an ``.exr``
 name; and OpenCV needs an environment variable to enable EXR at all.
@@ -22,17 +24,27 @@ _HEADER = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage
 
 
 def _channels_for(values: np.ndarray) -> dict[str, np.ndarray]:
-    """OpenEXR channel dict for a (H, W) or (H, W, 3) float32 array."""
+    """OpenEXR channel dict for a (H, W), (H, W, 3) or (H, W, 4) array."""
     if values.ndim == 2:
         return {"Y": values}
     if values.ndim == 3 and values.shape[2] == 3:
         return {"RGB": values}
-    raise ValueError(f"EXR maps must be (H, W) or (H, W, 3), got {values.shape}")
+    if values.ndim == 3 and values.shape[2] == 4:
+        return {"RGBA": values}
+    raise ValueError(f"EXR maps must be (H, W), (H, W, 3) or (H, W, 4), got {values.shape}")
 
 
-def write_exr(path: str | os.PathLike[str], values: np.ndarray) -> Path:
-    """Write a (H, W) or (H, W, 3) map as a float32 EXR (atomically: temp file + rename)."""
-    pixels = np.ascontiguousarray(values, dtype=np.float32)
+#: ``precision`` values of :func:`write_exr` and their sample types.
+PRECISIONS: dict[str, type] = {"float": np.float32, "half": np.float16}
+
+
+def write_exr(path: str | os.PathLike[str], values: np.ndarray, precision: str = "float") -> Path:
+    """Write a (H, W), (H, W, 3) or (H, W, 4) map as a float32 (``"float"``) or half
+    (``"half"``) EXR, atomically (temp file + rename)."""
+    if precision not in PRECISIONS:
+        raise ValueError(f"EXR precision must be one of {sorted(PRECISIONS)}, got {precision!r}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        pixels = np.ascontiguousarray(values, dtype=PRECISIONS[precision])
     channels = _channels_for(pixels)
 
     def write(temp: Path) -> None:
@@ -49,8 +61,9 @@ def read_exr(path: str | os.PathLike[str]) -> np.ndarray:
     """
     with OpenEXR.File(os.fspath(path)) as exr_file:
         channels = exr_file.channels()
-        if "RGB" in channels:
-            return np.array(channels["RGB"].pixels, dtype=np.float32)
+        for name in ("RGBA", "RGB"):
+            if name in channels:
+                return np.array(channels[name].pixels, dtype=np.float32)
         if len(channels) == 1:
             (channel,) = channels.values()
             return np.array(channel.pixels, dtype=np.float32)

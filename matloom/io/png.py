@@ -63,21 +63,36 @@ def _chunk(kind: bytes, data: bytes) -> bytes:
 
 def encode_png8(pixels: np.ndarray, compress_level: int = PNG_COMPRESS_LEVEL) -> bytes:
     """Encode a uint8 array of shape (H, W), (H, W, 3) or (H, W, 4) as PNG bytes."""
-    array = np.ascontiguousarray(pixels)
+    array = np.asarray(pixels)
     if array.dtype != np.uint8:
         raise TypeError(f"8-bit PNG needs uint8 pixels, got {array.dtype}")
+    return encode_png(array, compress_level)
+
+
+def encode_png(pixels: np.ndarray, compress_level: int = PNG_COMPRESS_LEVEL) -> bytes:
+    """Encode a uint8 or uint16 array of shape (H, W), (H, W, 3) or (H, W, 4) as PNG bytes.
+
+    16-bit samples are stored big-endian, as PNG requires; the "Up" filter subtracts the byte
+    above, so it works the same on the byte rows of 16-bit images.
+    """
+    array = np.ascontiguousarray(pixels)
+    if array.dtype not in (np.uint8, np.uint16):
+        raise TypeError(f"PNG needs uint8 or uint16 pixels, got {array.dtype}")
     channels = 1 if array.ndim == 2 else array.shape[-1]
     if array.ndim not in (2, 3) or channels not in _COLOUR_TYPES:
-        raise ValueError(f"8-bit PNG needs (H, W), (H, W, 3) or (H, W, 4), got {array.shape}")
+        raise ValueError(f"PNG needs (H, W), (H, W, 3) or (H, W, 4), got {array.shape}")
     height, width = array.shape[:2]
     if height == 0 or width == 0:
         raise ValueError(f"PNG needs at least one pixel, got {array.shape}")
-    rows = array.reshape(height, width * channels)
-    filtered = np.empty((height, 1 + width * channels), np.uint8)
+    depth = 8 * array.dtype.itemsize
+    if depth == 16:
+        array = array.astype(">u2")
+    rows = array.view(np.uint8).reshape(height, width * channels * array.dtype.itemsize)
+    filtered = np.empty((height, 1 + rows.shape[1]), np.uint8)
     filtered[:, 0] = _FILTER_UP
     filtered[0, 1:] = rows[0]
     np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])  # uint8 arithmetic wraps mod 256
-    header = struct.pack(">IIBBBBB", width, height, 8, _COLOUR_TYPES[channels], 0, 0, 0)
+    header = struct.pack(">IIBBBBB", width, height, depth, _COLOUR_TYPES[channels], 0, 0, 0)
     return b"".join(
         (
             _SIGNATURE,
@@ -162,6 +177,32 @@ def save_png(path: str | os.PathLike[str], img: np.ndarray) -> Path:
 def write_grey16(path: str | os.PathLike[str], values: ArrayLike) -> Path:
     """Quantise a (H, W) unit-range map to 16 bits and write it as a 16-bit grey PNG."""
     return atomic_write_bytes(path, encode_png16_grey(quantize_unit16(values)))
+
+
+def quantize(values: ArrayLike, bits: int) -> np.ndarray:
+    """Unit-range floats -> uint8 (``bits=8``) or uint16 (``bits=16``), see the quantisers."""
+    if bits == 8:
+        return quantize_unit8(values)
+    if bits == 16:
+        return quantize_unit16(values)
+    raise ValueError(f"bits must be 8 or 16, got {bits}")
+
+
+def write_unit(path: str | os.PathLike[str], values: ArrayLike, bits: int = 8) -> Path:
+    """Quantise a unit-range (H, W), (H, W, 3) or (H, W, 4) map and write it at ``bits``."""
+    return atomic_write_bytes(path, encode_png(quantize(values, bits)))
+
+
+def write_rgba(
+    path: str | os.PathLike[str], rgb: ArrayLike, alpha: ArrayLike, bits: int = 8
+) -> Path:
+    """Quantise (H, W, 3) colour and (H, W) alpha, both unit range, into an RGBA PNG."""
+    colour = quantize(rgb, bits)
+    coverage = quantize(alpha, bits)
+    if colour.ndim != 3 or colour.shape[2] != 3 or coverage.shape != colour.shape[:2]:
+        raise ValueError(f"RGBA needs (H, W, 3) + (H, W), got {colour.shape} + {coverage.shape}")
+    pixels = np.concatenate([colour, coverage[..., None]], axis=2)
+    return atomic_write_bytes(path, encode_png(pixels))
 
 
 def read_png(path: str | os.PathLike[str]) -> np.ndarray:

@@ -128,7 +128,8 @@ Node = Num | Str | Lit | Const | Ref | Neg | BinOp | Call
 
 @dataclass(frozen=True)
 class ViewDecl:
-    """``View(x1, y1, x2, y2)``: bottom-left and top-right corners of the sampling window."""
+    """``View(x1, y1, x2, y2[, tileable=True])``: bottom-left and top-right corners of the
+    sampling window; ``tileable``: the output repeats seamlessly with the window's size."""
 
     x1: float
     y1: float
@@ -136,6 +137,7 @@ class ViewDecl:
     y2: float
     span: Span = _span()
     comments: tuple[Comment, ...] = _comments()
+    tileable: bool = False
 
     def as_tuple(self) -> tuple[float, float, float, float]:
         return (self.x1, self.y1, self.x2, self.y2)
@@ -197,6 +199,11 @@ class Program:
     @property
     def view_tuple(self) -> tuple[float, float, float, float]:
         return self.view.as_tuple() if self.view else (0.0, 0.0, 1.0, 1.0)
+
+    @property
+    def tileable(self) -> bool:
+        """The program asks for tileable output (``View(..., tileable=True)``)."""
+        return self.view is not None and self.view.tileable
 
 
 Commented = ViewDecl | Define | ChannelSet | Layer | Program

@@ -32,7 +32,7 @@ def bind_call(
     name = name_tok.text
     spec = FUNCTIONS.get(name)
     if spec is None:
-        from matloom.lang.parser import function_alias
+        from matloom.lang.aliases import function_alias
 
         hint = _NOT_FUNCTIONS.get(name) or hint_for(name, FUNCTIONS) or function_alias(name)
         if hint is None and name.lower() in CHANNELS:

@@ -73,6 +73,10 @@ class Checker:
         self._check_expanded_cost(program)
         self._warn_unused(program)
         self._warn_hidden(program)
+        if program.tileable:
+            from matloom.lang.tileable import tileable_warnings
+
+            self.diags.extend(tileable_warnings(program, self.src))
         return self.diags
 
     def _check_inlined_depth(self, program: A.Program) -> None:

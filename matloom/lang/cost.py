@@ -114,6 +114,9 @@ class FrameTable:
         self._affine: list[Affine | None] = [IDENTITY]
         self._ids: dict[tuple[int, ...], int] = {frame_key(IDENTITY): 0}
         self._children: dict[tuple[int, str, float, float], int] = {}
+        #: frames made by domain warps -> their tileable periods (the evaluator's; None: the
+        #: warp cannot keep them)
+        self.warped: dict[int, tuple[float, float] | None] = {}
 
     def __len__(self) -> int:
         return len(self._affine)
@@ -141,6 +144,10 @@ class FrameTable:
         if key is not None:
             self._ids[key] = len(self._affine) - 1
         return len(self._affine) - 1
+
+    def affine(self, fid: int) -> Affine | None:
+        """The frame's map from the grid's (x, y), or None (coordinates no transform made)."""
+        return self._affine[fid]
 
     def is_rotated(self, fid: int) -> bool:
         """True when the frame mixes x and y (its coordinates are full grids, not axes)."""

@@ -3,7 +3,7 @@
 One grammar for the whole program (no regex splitting):
 
     program  := [view] {define} material EOF
-    view     := "View" "(" expr "," expr "," expr "," expr ")"
+    view     := "View" "(" expr "," expr "," expr "," expr ["," "tileable" "=" BOOL] ")"
     define   := "Define" "(" IDENT "," expr ")"
     material := "Material" "(" [layer {"," layer}] ")"
     layer    := "Layer" "(" [expr] ")" {"." IDENT "(" [expr {"," expr}] ")"}
@@ -22,9 +22,10 @@ statement, so one pass reports as many independent problems as possible.
 from __future__ import annotations
 
 from matloom.lang import ast as A
+from matloom.lang.aliases import channel_alias, name_alias
 from matloom.lang.comments import attach_comments
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
-from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token, as_float
+from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token
 from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS, Returns
 
 MAX_NESTING = 100
@@ -270,38 +271,9 @@ class Parser:
         return first_on_line and self.at("(", 1)
 
     def parse_view(self) -> A.ViewDecl | None:
-        kw = self.next()
-        self.expect("(", "after View")
-        from matloom.lang.static import is_static, static_number
+        from matloom.lang.parse_view import parse_view
 
-        values: list[float] = []
-        bad = False
-        for k in range(4):
-            if k:
-                self.expect(",", "between View arguments")
-            tok = self.peek()
-            node = self.parse_expr()
-            v = static_number(node) if is_static(node) else None  # X()/Y() are not numbers here
-            if v is None:
-                self.diag(
-                    "E061",
-                    "View arguments must be numbers",
-                    node_span(node, tok.span),
-                    expected="View(x1, y1, x2, y2) with numeric corners",
-                )
-                bad, v = True, 0.0
-            values.append(as_float(v))  # beyond the float range: inf, E061
-        if self.at(","):
-            raise self.fail(
-                "E027",
-                "View takes exactly 4 arguments",
-                self.peek().span,
-                expected="View(x1, y1, x2, y2)",
-            )
-        self.expect(")", "to close View(...)")
-        if bad:  # drop the View, so its placeholder corners cause no follow-on errors
-            raise _Bail()
-        return A.ViewDecl(*values, span=self.span_from(kw.span))
+        return parse_view(self)
 
     def parse_define(self) -> A.Define | None:
         kw = self.next()
@@ -436,7 +408,7 @@ class Parser:
                     f"unknown layer channel '.{name}'",
                     name_tok.span,
                     expected="one of " + ", ".join(CHANNELS),
-                    hint=hint_for(name, CHANNELS) or _channel_alias(name),
+                    hint=hint_for(name, CHANNELS) or channel_alias(name),
                 )
                 continue
             if len(args) != spec.arity:
@@ -658,7 +630,7 @@ class Parser:
                 hint=f"move Define({name}, ...) above this line",
             )
         else:
-            hint = hint_for(name, [*self.defined, *CONSTANTS]) or _name_alias(name)
+            hint = hint_for(name, [*self.defined, *CONSTANTS]) or name_alias(name)
             if hint is None and name in _STATEMENTS:
                 hint = f"{name}(...) is a statement, not an expression"
             self.diag(
@@ -719,83 +691,6 @@ def node_span(node: A.Node, fallback: Span) -> Span:
 def _join(left: A.Node, right: A.Node, op: Span) -> Span:
     ls, rs = node_span(left, op), node_span(right, op)
     return Span(ls.start, max(rs.end, op.end), ls.line, ls.col)
-
-
-_FUNCTION_ALIASES = {
-    "noise": "fBm",
-    "perlin": "fBm",
-    "simplex": "fBm",
-    "fbm": "fBm",
-    "turbulence": "fBm",
-    "voronoi": "Worley",
-    "cellular": "Worley",
-    "cells": "Worley",
-    "brick": "Bricks",
-    "tiles": "Bricks",
-    "tile": "Bricks",
-    "grid": "Bricks",
-    "checker": "Bricks",
-    "circle": "Ellipse",
-    "rectangle": "Rect",
-    "box": "Rect",
-    "square": "Rect",
-    "line": "Stroke",
-    "clamp": "Threshold",
-    "step": "Threshold",
-    "smoothstep": "Threshold",
-    "mix": "Add",
-    "lerp": "Add",
-    "power": "Pow",
-    "exp": "Pow",
-    "ln": "Log",
-    "round": "Floor",
-    "translate": "Translate",
-    "rotate": "Rotate",
-    "scale": "Scale",
-}
-
-
-def function_alias(name: str) -> str | None:
-    """A hint naming the vocabulary function that does what ``name`` usually means elsewhere."""
-    target = _FUNCTION_ALIASES.get(name.lower())
-    return f"did you mean `{target}(...)`?" if target else None
-
-
-def _name_alias(name: str) -> str | None:
-    target = _FUNCTION_ALIASES.get(name.lower())
-    if target:
-        return f"there is no name '{name}'; call a function such as {target}(...)"
-    return None
-
-
-def _channel_alias(name: str) -> str | None:
-    aliases = {
-        "color": "basecolor",
-        "colour": "basecolor",
-        "albedo": "basecolor",
-        "base_color": "basecolor",
-        "rough": "roughness",
-        "metal": "metallic",
-        "metalness": "metallic",
-        "emission": "emissive",
-        "normal": "height",
-        "bump": "height",
-        "displacement": "height",
-        "opacity": "alpha",
-        "clearcoat": "coat",
-        "specular": "roughness",
-        "glossiness": "roughness",
-        "gloss": "roughness",
-        "smoothness": "roughness",
-        "transparency": "transmission",
-        "refraction": "ior",
-        "glow": "emissive",
-        "emit": "emissive",
-        "sss": "subsurface",
-    }
-    if name.lower() in aliases:
-        return f"did you mean `.{aliases[name.lower()]}`?"
-    return None
 
 
 def parse_source(source: str) -> tuple[A.Program | None, list[Diagnostic]]:

@@ -286,9 +286,9 @@ def format_program(program: A.Program, *, comments: bool = False) -> str:
     """
     out = _Lines(comments)
     if program.view is not None:
-        out.code(
-            "", f"View({', '.join(fmt_num(v) for v in program.view.as_tuple())})", program.view
-        )
+        corners = ", ".join(fmt_num(v) for v in program.view.as_tuple())
+        tiled = ", tileable=True" if program.view.tileable else ""
+        out.code("", f"View({corners}{tiled})", program.view)
     for d in program.defines:
         out.code("", f"Define({d.name}, {format_expr(d.expr)})", d)
     if not program.layers:

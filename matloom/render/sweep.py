@@ -85,9 +85,10 @@ class _Renderer:
         from matloom.engine.schedules.seed_batch import SweepEvaluator
         from matloom.render.preview import _light_and_half_vectors
 
-        view = View(*self.program.view_tuple)
+        view = View(*self.program.view_tuple, tileable=self.program.tileable)
         x, y = sample_axes(view, self.size, self.size)
-        self.evaluator = SweepEvaluator(self.program, x, y, get_backend("numba"))
+        numba = get_backend("numba")
+        self.evaluator = SweepEvaluator(self.program, x, y, numba, periods=view.periods)
         dx, dy = view.texel_size(self.size, self.size)
         wx, div_x = relief_numba._tap_weights(8.0) or (np.ones(17, np.float32), np.float32(17))
         light, half = _light_and_half_vectors(None)

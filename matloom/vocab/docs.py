@@ -46,6 +46,21 @@ def render_language_reference() -> str:
         "enclosing statement, layer or channel call. Canonical text for the reference engine "
         "(`matloom.format`, exports, seed variants) leaves comments out.",
         "",
+        "`View(x1, y1, x2, y2, tileable=True)` (or `--tileable` on render, preview, sweep and "
+        "generate, or `matloom.evaluate(..., tileable=True)`) makes every map repeat seamlessly "
+        "with the View's width and height; the keyword is printed only when true. Every fBm, "
+        "Worley, Hash and Tile repeats with the View: fBm samples each octave through a map "
+        "that puts a whole number of its lattice periods in the View (a stretch of at most "
+        "about half a lattice cell per View), Worley's frequencies and Tile's cell size and row "
+        "offset are snapped to whole cells, and Hash (and the cell values of Worley and Bricks) "
+        "wrap their cells; the normal and AO see across the edges. Under Translate and Scale "
+        "(and Translate warps) the periods follow the transform. What cannot repeat is a "
+        "warning: W009 for a noise or pattern under Rotate (other than by a multiple of 180 "
+        "degrees) or another domain warp, for a Bricks or Weave whose cells do not divide the "
+        "View (naming the nearest tiling value) and for a Hash with fractional cells per View; "
+        "W010 for X()/Y() used other than in Fract, Mod, Sin, Cos, Floor or Hash with a whole "
+        "number of cycles per View. Output without tileable is unchanged. See docs/tileable.md.",
+        "",
         "## Layer channels",
         "",
         "| method | arguments | default | range / units | meaning |",

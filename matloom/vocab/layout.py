@@ -246,7 +246,7 @@ DERIVED: tuple[DerivedMap, ...] = (
         3,
         MapSpec(
             "normal",
-            "normal.png",
+            "normal_gl.png",
             "png8-rgb",
             NON_COLOUR,
             ("normal",),

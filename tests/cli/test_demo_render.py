@@ -48,7 +48,7 @@ def test_render_exports_maps_and_manifest(tmp_path):
     assert manifest["width"] == 48
     for name in (
         "basecolor.png",
-        "normal.png",
+        "normal_gl.png",
         "ao.png",
         "height.exr",
         "height16.png",

@@ -75,13 +75,13 @@ def test_written_on_every_render_even_unused(tmp_path: Path) -> None:
     assert not png.read_png(tmp_path / "out" / "anisotropy_angle.png").any()
     assert not exr.read_exr(tmp_path / "out" / "anisotropy_angle.exr").any()
     assert "anisotropy_angle" in MAP_NAMES
-    planned = planned_files(None, "exr")
+    planned = planned_files(None, "png")
     assert "anisotropy_angle.png" in planned and "anisotropy_angle.exr" in planned
     written = {p.name for p in (tmp_path / "out").iterdir() if not p.name.startswith(".")}
     assert written == set(planned) - {"material.mat"}
 
 
-@pytest.mark.parametrize("float_format", ["exr", "png16"])
+@pytest.mark.parametrize("float_format", ["png", "png16"])
 def test_maps_subset_selects_both_files(tmp_path: Path, float_format: str) -> None:
     maps = evaluate(PROGRAM, 16, 8)
     export_maps(maps, tmp_path / "a", maps_subset=["anisotropy_angle"], float_format=float_format)

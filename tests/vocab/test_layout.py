@@ -121,7 +121,7 @@ EXPORT_ROWS = [
     ),
     (
         "normal",
-        "normal.png",
+        "normal_gl.png",
         "png8-rgb",
         LINEAR,
         ("normal",),

@@ -173,7 +173,22 @@ def _build(
             break
         notes.append(f"dropped modifier {overlays[-1][0]} to keep the program short")
         overlays = overlays[:-1]
-    return text, filled, [kind for kind, _, _ in overlays]
+    return _tileable(text, notes), filled, [kind for kind, _, _ in overlays]
+
+
+def _tileable(text: str, notes: list[str]) -> str:
+    """``text`` with ``View(..., tileable=True)`` when nothing in it keeps it from repeating
+    (no W009/W010, see :mod:`matloom.lang.tileable`); otherwise unchanged, with a note saying
+    why (e.g. a Rotate of a noise, a radial pattern, bricks that do not divide the View)."""
+    from matloom.lang.tileable import make_tileable, tileable_warnings
+
+    program = matloom.parse(text)
+    tiled = make_tileable(program)
+    warnings = tileable_warnings(tiled, text)
+    if warnings:
+        notes.append("not tileable: " + warnings[0].message.removeprefix("tileable: "))
+        return text
+    return matloom.format(tiled)
 
 
 def _explain(

@@ -34,6 +34,7 @@ from matloom.engine.kernels.opensimplex import (
     scale_grid,
     worley_codes,
 )
+from matloom.engine.kernels.periodic import simplex_tiling, snap_frequency
 
 __all__ = [
     "FbmPlan",
@@ -82,6 +83,25 @@ class FbmPlan:
     ys: np.ndarray | None = None
     fxs: np.ndarray | None = None
     fys: np.ndarray | None = None
+    #: Tileable plans (``period`` given): per-octave coordinate maps (O, 4) and sublattices
+    #: (O, 5) of :func:`~matloom.engine.kernels.periodic.simplex_tiling`; the loops' ``tiled``
+    #: kernel samples the flat float64 grids ``grid_x``, ``grid_y``.
+    tile_maps: np.ndarray | None = None
+    tile_lattices: np.ndarray | None = None
+
+    @property
+    def tiled(self) -> bool:
+        return self.tile_maps is not None
+
+    def grids64(self) -> tuple[np.ndarray, np.ndarray]:
+        """The flat float64 coordinates of every texel (separable axes broadcast)."""
+        lay = self.layout
+        if lay.separable:
+            h, w = lay.y_axis.size, lay.x_axis.size
+            gx = np.broadcast_to(lay.x_axis.astype(np.float64)[None, :], (h, w))
+            gy = np.broadcast_to(lay.y_axis.astype(np.float64)[:, None], (h, w))
+            return np.ascontiguousarray(gx).reshape(-1), np.ascontiguousarray(gy).reshape(-1)
+        return lay.x_grid.astype(np.float64), lay.y_grid.astype(np.float64)
 
     @property
     def norm(self) -> float:
@@ -110,11 +130,18 @@ def plan_fbm(
     freq_x: float,
     freq_y: float,
     to_01: bool,
+    period: tuple[float, float] | None = None,
 ) -> FbmPlan:
-    """The :class:`FbmPlan` of an fBm on the broadcast of x and y."""
+    """The :class:`FbmPlan` of an fBm on the broadcast of x and y; with ``period`` (Px, Py)
+    the fBm repeats with those periods (:mod:`matloom.engine.kernels.periodic`)."""
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     amps = np.array(sched.amps, dtype=np.float64)
     lay = coord_layout(x, y)
+    if period is not None:
+        maps, lattices = simplex_tiling(sched.freqs_x, sched.freqs_y, period)
+        plan = FbmPlan(sched, bool(to_01), lay, amps)
+        plan.tile_maps, plan.tile_lattices = maps, lattices
+        return plan
     if lay.separable:
         xs, ys = octave_axes(lay.x_axis, lay.y_axis, sched.freqs_x, sched.freqs_y)
         return FbmPlan(sched, bool(to_01), lay, amps, xs, ys)
@@ -141,6 +168,9 @@ class FbmLoops:
     #: The loops take a coverage mask (``Backend.fbm_masked``).
     masks: bool = False
     seed_batch: FbmBatch | None = None
+    #: The tileable fBm (``loop(plan, seed, out, mask, fill)`` on the flat (N,) ``out``); the
+    #: C loops run numpy's (``noise_numpy.fbm_tiled``).
+    tiled: FbmLoop | None = None
 
 
 def run_fbm(
@@ -157,6 +187,12 @@ def run_fbm(
         if not loops.masks:
             raise ValueError(f"the {loops.name} fBm loops take no coverage mask")
         where = np.ascontiguousarray(np.broadcast_to(mask, lay.shape), dtype=np.bool_)
+    if plan.tiled:
+        if loops.tiled is None:
+            raise ValueError(f"the {loops.name} fBm loops have no tileable fBm")
+        flat = np.empty(int(np.prod(lay.shape, dtype=np.int64)), dtype=np.float64)
+        loops.tiled(plan, seed, flat, None if where is None else where.reshape(-1), fill)
+        return flat.reshape(lay.shape)
     if lay.separable:
         out = np.empty((lay.y_axis.size, lay.x_axis.size), dtype=np.float64)
         rows_mask = None if where is None else where.reshape(out.shape)
@@ -204,7 +240,8 @@ def fbm_seed_batch(
     inside the fBm's range (coverage culling, see matloom.engine.cull)."""
     plan = plan_fbm(x, y, **params)
     seeds = [int(s) for s in seeds]
-    batch = loops.seed_batch(plan, seeds, mask) if loops.seed_batch is not None else None
+    batched = loops.seed_batch is not None and not plan.tiled
+    batch = loops.seed_batch(plan, seeds, mask) if batched else None  # type: ignore[misc]
     return _stack(plan.layout.shape, seeds, batch, lambda seed: run_fbm(plan, loops, seed))
 
 
@@ -269,6 +306,8 @@ class WorleyPlan:
     v_axis: np.ndarray | None = None
     #: What the loops compute (:data:`WORLEY_OUTPUTS`).
     output: int = 0
+    #: Tileable plans: cells per period (nx, ny); the loops hash cell (cx mod nx, cy mod ny).
+    wrap: tuple[int, int] | None = None
 
     @property
     def shape2d(self) -> tuple[int, int]:
@@ -301,13 +340,22 @@ def plan_worley(
     freq_y: float,
     to_01: bool,
     output: str = "distance",
+    period: tuple[float, float] | None = None,
 ) -> WorleyPlan:
-    """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y."""
+    """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y; with ``period``
+    (Px, Py) the frequencies are snapped to whole numbers of cells per period and the cells
+    wrap (:mod:`matloom.engine.kernels.periodic`)."""
     metric, combo, norm = worley_codes(distance, combination)
     if output not in WORLEY_OUTPUTS:
         raise ValueError(f"unknown Worley output {output!r}; expected {list(WORLEY_OUTPUTS)}")
     lay = coord_layout(x, y)
+    wrap = None
+    if period is not None:
+        freq_x, nx = snap_frequency(freq_x, float(period[0]))
+        freq_y, ny = snap_frequency(freq_y, float(period[1]))
+        wrap = (nx, ny)
     plan = WorleyPlan(metric, combo, float(norm), bool(to_01), freq_x, freq_y, lay)
+    plan.wrap = wrap
     plan.output = WORLEY_OUTPUTS[output]
     if lay.separable:
         plan.u_axis = lay.x_axis.astype(np.float64) * freq_x

@@ -22,6 +22,7 @@ from types import ModuleType
 import numpy as np
 
 from matloom.engine.kernels.noise import FbmLoops, FbmPlan
+from matloom.engine.kernels.noise_numpy import fbm_tiled
 from matloom.engine.kernels.opensimplex import perm_from_seed
 from matloom.engine.kernels.threads import run_split
 
@@ -110,4 +111,4 @@ def _fbm_grid(
 
 
 #: The C extension's fBm loops (raise RuntimeError when it is not :func:`available`).
-FBM_LOOPS = FbmLoops("c", separable=_fbm_separable, grid=_fbm_grid)
+FBM_LOOPS = FbmLoops("c", separable=_fbm_separable, grid=_fbm_grid, tiled=fbm_tiled)

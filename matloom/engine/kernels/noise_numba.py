@@ -30,6 +30,7 @@ from matloom.engine.kernels.noise_numba_core import (
     new_scratch,
     noise_chunk,
 )
+from matloom.engine.kernels.noise_numba_tileable import fbm_tiled
 from matloom.engine.kernels.noise_numba_worley import WORLEY_LOOPS
 from matloom.engine.kernels.opensimplex import FBM_SCALE, gradient_table
 from matloom.engine.kernels.threads import parallel_rows
@@ -304,7 +305,12 @@ def _fbm_grid(
 
 #: The numba fBm loops: coverage masks, and the seed-batch kernel of ``noise_numba_batch``.
 FBM_LOOPS = FbmLoops(
-    "numba", separable=_fbm_separable, grid=_fbm_grid, masks=True, seed_batch=seed_batch
+    "numba",
+    separable=_fbm_separable,
+    grid=_fbm_grid,
+    masks=True,
+    seed_batch=seed_batch,
+    tiled=fbm_tiled,
 )
 
 

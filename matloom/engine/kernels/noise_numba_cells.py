@@ -87,9 +87,10 @@ def cells_row(
     out_row: np.ndarray,
 ) -> None:
     """One row of cell values (output 1) or border distances (output 2), as
-    ``noise_numpy._cells``; ``params`` = (output, metric, freq_x, freq_y, use_table, cx0, cy0)
-    (a flat tuple of scalars: the seed batch's ``prange`` takes no nested tuple)."""
-    output, metric, freq_x, freq_y, use_table, cx0, cy0 = params
+    ``noise_numpy._cells``; ``params`` = (output, metric, freq_x, freq_y, use_table, cx0, cy0,
+    wrap_x, wrap_y) (a flat tuple of scalars: the seed batch's ``prange`` takes no nested
+    tuple; wrap_x > 0: a tileable plan, whose cell values hash the wrapped cell)."""
+    output, metric, freq_x, freq_y, use_table, cx0, cy0, wrap_x, wrap_y = params
     key_metric = metric if output == 1 else 0
     for m in range(u.size):
         um, vm = u[m], v[m]
@@ -106,6 +107,8 @@ def cells_row(
                 if key < best:
                     best, bx, by, p1x, p1y = key, cu + ox, cv + oy, px, py
         if output == 1:
+            if wrap_x > 0:
+                bx, by = bx % wrap_x, by % wrap_y
             out_row[m] = worley_hash(bx, by, seed_term, WORLEY_CELL_SALT)
             continue
         edge = np.inf

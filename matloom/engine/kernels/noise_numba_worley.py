@@ -297,7 +297,27 @@ def _params(plan: WorleyPlan, box: tuple[int, int, int, int]) -> tuple:
     if plan.output == 0:
         return (plan.metric, plan.combo, plan.norm, plan.to_01, nx > 0)
     freqs = (float(plan.freq_x), float(plan.freq_y))
-    return (plan.output, plan.metric, *freqs, nx > 0, np.int64(cx0), np.int64(cy0))
+    wrap = tuple(np.int64(n) for n in (plan.wrap or (0, 0)))
+    return (plan.output, plan.metric, *freqs, nx > 0, np.int64(cx0), np.int64(cy0), *wrap)
+
+
+def _fill_wrapped(
+    box: tuple[int, int, int, int],
+    seed_term: np.int64,
+    wrap: tuple[int, int],
+    tx: np.ndarray,
+    ty: np.ndarray,
+) -> None:
+    """The feature table of a tileable plan: each cell's point hashed as its wrapped cell
+    (``noise_numpy._point``'s numbers)."""
+    from matloom.engine.kernels.noise_numpy import _point
+
+    cx0, cy0, nx, ny = box
+    cx = np.arange(cx0, cx0 + nx, dtype=np.int64)[None, :]
+    cy = np.arange(cy0, cy0 + ny, dtype=np.int64)[:, None]
+    px, py = _point(*np.broadcast_arrays(cx, cy), seed_term, wrap)
+    tx[...] = px
+    ty[...] = py
 
 
 def _dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
@@ -306,9 +326,16 @@ def _dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
     seed_term = worley_seed_term(seed)
     coords, box = _prepare(plan)
     cx0, cy0, nx, ny = box
+    if plan.wrap is not None and nx == 0:  # a tileable plan needs the (wrapped) table
+        from matloom.engine.kernels import noise_numpy
+
+        noise_numpy.WORLEY_LOOPS.dense(plan, seed, out)
+        return
     tx = np.empty((max(ny, 1), max(nx, 1)), dtype=np.float64)
     ty = np.empty_like(tx)
-    if nx > 0:
+    if plan.wrap is not None:
+        _fill_wrapped(box, seed_term, plan.wrap, tx, ty)
+    elif nx > 0:
         fill_table(np.int64(cx0), np.int64(cy0), seed_term, tx, ty)
     params = _params(plan, box)
     kernel = _worley_kernel if plan.output == 0 else cells_kernel
@@ -327,6 +354,8 @@ def _seed_batch(plan: WorleyPlan, seeds: list[int]) -> np.ndarray | None:
     rebuilt.  Parallel over seeds.
     """
     height, width = plan.shape2d
+    if plan.wrap is not None:  # the batch kernel's tables are not wrapped: per-seed calls
+        return None
     coords, box = _prepare(plan)
     cx0, cy0, nx, ny = box
     if nx == 0 or height * width == 0:

@@ -35,12 +35,13 @@ from matloom.engine.kernels.opensimplex import (
     WORLEY_MIX1,
     WORLEY_MIX2,
     WORLEY_SEARCH,
+    gradient_table,
     perm_from_seed,
     scale_grid,
     worley_seed_term,
 )
 
-__all__ = ["FBM_LOOPS", "WORLEY_LOOPS", "noise2", "worley_hash"]
+__all__ = ["FBM_LOOPS", "WORLEY_LOOPS", "fbm_tiled", "noise2", "noise2_tiled", "worley_hash"]
 
 _CHUNK = 1 << 15  # elements per vectorised block
 _TWO_SQUISH = 2.0 * SQUISH_CONSTANT2
@@ -179,8 +180,109 @@ def _fbm_grid(
         out[part] = _finish_fbm(total, plan.norm, plan.to_01)
 
 
+# --- tileable fBm ------------------------------------------------------------------------------
+# Per octave k the noise runs at ``p = M_k (x, y)`` (float64: ``m00 x + m01 y``, ``m10 x +
+# m11 y``) with each vertex's gradient taken from its index reduced modulo the octave's
+# sublattice (:mod:`.periodic`). The geometry is :func:`noise2`'s, operation by operation; the
+# numba kernel (:mod:`.noise_numba_tileable`) repeats every operation in the same order.
+
+#: As ``noise_numba_core._SAFE_FLOOR``: larger (or non-finite) lattice indices become 0.
+_SAFE_FLOOR = 4.0e18
+
+
+def wrapped_key(iv: np.ndarray, jv: np.ndarray, lattice: np.ndarray) -> np.ndarray:
+    """Gradient-table key of lattice vertices (float64 integer indices) modulo the sublattice
+    ``lattice`` = (p, q, r, 1/p, 1/r): ``(i' r + j') & 0xFFFF`` of the canonical representative
+    (0 <= i' < p, 0 <= j' < r)."""
+    p, q, r, inv_p, inv_r = (float(v) for v in lattice)
+    k = np.floor((iv + 0.5) * inv_p)
+    i2 = iv - k * p
+    j2 = jv - k * q
+    kj = np.floor((j2 + 0.5) * inv_r)
+    j3 = j2 - kj * r
+    return (i2 * r + j3).astype(np.int64) & 0xFFFF
+
+
+def _term(
+    table: np.ndarray,
+    key: np.ndarray,
+    off_x: np.ndarray | float,
+    off_y: np.ndarray | float,
+    dx0: np.ndarray,
+    dy0: np.ndarray,
+) -> np.ndarray:
+    """One vertex's contribution (``noise_numpy._vertex_term`` with a table key)."""
+    squish = (off_x + off_y) * SQUISH_CONSTANT2
+    dx = (dx0 - off_x) - squish
+    dy = (dy0 - off_y) - squish
+    attn = 2 - dx * dx - dy * dy
+    index = table[key].astype(np.int64) * 2
+    extrapolated = GRADIENTS2[index] * dx + GRADIENTS2[index + 1] * dy
+    positive = attn > 0
+    attn = attn * attn
+    return np.where(positive, attn * attn * extrapolated, 0.0)
+
+
+def noise2_tiled(
+    x: np.ndarray, y: np.ndarray, table: np.ndarray, lattice: np.ndarray
+) -> np.ndarray:
+    """OpenSimplex 2-D noise at float64 points with vertex indices wrapped by ``lattice``."""
+    with np.errstate(invalid="ignore"):
+        stretch_offset = (x + y) * STRETCH_CONSTANT2
+        xs = x + stretch_offset
+        ys = y + stretch_offset
+        xsb = np.floor(xs)
+        ysb = np.floor(ys)
+        squish_offset = (xsb + ysb) * SQUISH_CONSTANT2
+        dx0 = x - (xsb + squish_offset)
+        dy0 = y - (ysb + squish_offset)
+        xins = xs - xsb
+        yins = ys - ysb
+        xsb = np.where(np.abs(xsb) < _SAFE_FLOOR, xsb, 0.0)
+        ysb = np.where(np.abs(ysb) < _SAFE_FLOOR, ysb, 0.0)
+    ext_x, ext_y, base = _ext_offsets(xins, yins, xins + yins)
+    ext_x, ext_y, base = (v.astype(np.float64) for v in (ext_x, ext_y, base))
+    value = _term(table, wrapped_key(xsb + 1.0, ysb, lattice), 1.0, 0.0, dx0, dy0)
+    value = value + _term(table, wrapped_key(xsb, ysb + 1.0, lattice), 0.0, 1.0, dx0, dy0)
+    key = wrapped_key(xsb + base, ysb + base, lattice)
+    value = value + _term(table, key, base, base, dx0, dy0)
+    key = wrapped_key(xsb + ext_x, ysb + ext_y, lattice)
+    value = value + _term(table, key, ext_x, ext_y, dx0, dy0)
+    return value / NORM_CONSTANT2
+
+
+def fbm_tiled(
+    plan: FbmPlan, seed: int, out: np.ndarray, mask: np.ndarray | None, fill: float
+) -> None:
+    """The tileable fBm of ``plan`` into the flat ``out`` (N,); with a ``mask`` only its set
+    texels are computed, the others get ``fill``."""
+    assert plan.tile_maps is not None and plan.tile_lattices is not None
+    table = gradient_table(int(seed))
+    gx, gy = plan.grids64()
+    idx = None if mask is None else np.flatnonzero(mask)
+    if idx is not None:
+        out[...] = fill
+        gx, gy = gx[idx], gy[idx]
+    values = np.empty(gx.size)
+    for start in range(0, gx.size, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        x, y = gx[part], gy[part]
+        total = np.zeros(x.size)
+        for k, amp in enumerate(plan.schedule.amps):
+            m00, m01, m10, m11 = (float(v) for v in plan.tile_maps[k])
+            px = m00 * x + m01 * y
+            py = m10 * x + m11 * y
+            n = noise2_tiled(px, py, table, plan.tile_lattices[k])
+            total = total + n * FBM_SCALE * amp
+        values[part] = _finish_fbm(total, plan.norm, plan.to_01)
+    if idx is None:
+        out[...] = values
+    else:
+        out[idx] = values
+
+
 #: The pure-numpy fBm loops (what the numpy backend runs without the C extension).
-FBM_LOOPS = FbmLoops("numpy", separable=_fbm_separable, grid=_fbm_grid)
+FBM_LOOPS = FbmLoops("numpy", separable=_fbm_separable, grid=_fbm_grid, tiled=fbm_tiled)
 
 
 # --- Worley -----------------------------------------------------------------------------------
@@ -220,8 +322,22 @@ def _combine(f1: np.ndarray, f2: np.ndarray, combo: int, norm: float, to_01: boo
         return np.maximum(out, 0.0)
 
 
+def _wrapped(
+    cx: np.ndarray, cy: np.ndarray, wrap: tuple[int, int] | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The cell whose hash a cell takes: itself, or (tileable plans) its indices modulo
+    ``wrap``'s cell counts."""
+    if wrap is None:
+        return cx, cy
+    return np.mod(cx, np.int64(wrap[0])), np.mod(cy, np.int64(wrap[1]))
+
+
 def _worley_points(
-    u: np.ndarray, v: np.ndarray, seed_term: np.uint64, metric: int
+    u: np.ndarray,
+    v: np.ndarray,
+    seed_term: np.uint64,
+    metric: int,
+    wrap: tuple[int, int] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """F1 and F2 over the 5 x 5 cell block around (floor u, floor v) (flat float64 inputs)."""
     finite = np.isfinite(u) & np.isfinite(v)
@@ -233,8 +349,9 @@ def _worley_points(
         cx = cu + off_x
         for off_y in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
             cy = cv + off_y
-            px = cx + worley_hash(cx, cy, seed_term, 0)
-            py = cy + worley_hash(cx, cy, seed_term, 1)
+            hx, hy = _wrapped(cx, cy, wrap)
+            px = cx + worley_hash(hx, hy, seed_term, 0)
+            py = cy + worley_hash(hx, hy, seed_term, 1)
             d = _metric(u - px, v - py, metric)
             d = np.where(finite, d, np.nan)
             closer = d < f1
@@ -250,13 +367,20 @@ def _metric_key(dx: np.ndarray, dy: np.ndarray, metric: int) -> np.ndarray:
     return _metric(dx, dy, metric)
 
 
-def _point(cx: np.ndarray, cy: np.ndarray, seed_term: np.int64) -> tuple[np.ndarray, np.ndarray]:
-    """The feature point of cell (cx, cy)."""
-    return cx + worley_hash(cx, cy, seed_term, 0), cy + worley_hash(cx, cy, seed_term, 1)
+def _point(
+    cx: np.ndarray, cy: np.ndarray, seed_term: np.int64, wrap: tuple[int, int] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The feature point of cell (cx, cy) (hashed as its wrapped cell, see ``_wrapped``)."""
+    hx, hy = _wrapped(cx, cy, wrap)
+    return cx + worley_hash(hx, hy, seed_term, 0), cy + worley_hash(hx, hy, seed_term, 1)
 
 
 def _nearest(
-    u: np.ndarray, v: np.ndarray, seed_term: np.int64, metric: int
+    u: np.ndarray,
+    v: np.ndarray,
+    seed_term: np.int64,
+    metric: int,
+    wrap: tuple[int, int] | None = None,
 ) -> tuple[np.ndarray, ...]:
     """(key, cx, cy, px, py): the nearest feature point over the 5 x 5 block by the metric's
     key (strict ``<``, the reference's order), its cell and position (finite u, v only)."""
@@ -269,7 +393,7 @@ def _nearest(
         cx = cu + off_x
         for off_y in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
             cy = cv + off_y
-            hx, hy = _point(cx, cy, seed_term)
+            hx, hy = _point(cx, cy, seed_term, wrap)
             key = _metric_key(u - hx, v - hy, metric)
             closer = key < best
             best = np.where(closer, key, best)
@@ -279,17 +403,22 @@ def _nearest(
 
 
 def _edge(
-    u: np.ndarray, v: np.ndarray, seed_term: np.int64, freq_x: float, freq_y: float
+    u: np.ndarray,
+    v: np.ndarray,
+    seed_term: np.int64,
+    freq_x: float,
+    freq_y: float,
+    wrap: tuple[int, int] | None = None,
 ) -> np.ndarray:
     """Distance in x/y units to the nearest border of the Euclidean cell (see WorleyPlan)."""
-    key1, bx, by, p1x, p1y = _nearest(u, v, seed_term, 0)
+    key1, bx, by, p1x, p1y = _nearest(u, v, seed_term, 0, wrap)
     edge = np.full(u.shape, np.inf)
     reach = range(-WORLEY_EDGE_SEARCH, WORLEY_EDGE_SEARCH + 1)
     for off_x in reach:
         for off_y in reach:
             if off_x == 0 and off_y == 0:
                 continue
-            pkx, pky = _point(bx + off_x, by + off_y, seed_term)
+            pkx, pky = _point(bx + off_x, by + off_y, seed_term, wrap)
             du, dv = u - pkx, v - pky
             num = ((du * du + dv * dv) - key1) * 0.5
             su, sv = (pkx - p1x) * freq_x, (pky - p1y) * freq_y
@@ -307,10 +436,11 @@ def _cells(u: np.ndarray, v: np.ndarray, seed_term: np.int64, plan: WorleyPlan) 
     finite = np.isfinite(u) & np.isfinite(v)
     uf, vf = u[finite], v[finite]
     if plan.output == 1:
-        _, bx, by, _, _ = _nearest(uf, vf, seed_term, plan.metric)
+        _, bx, by, _, _ = _nearest(uf, vf, seed_term, plan.metric, plan.wrap)
+        bx, by = _wrapped(bx, by, plan.wrap)
         out[finite] = worley_hash(bx, by, seed_term, WORLEY_CELL_SALT)
     else:
-        out[finite] = _edge(uf, vf, seed_term, plan.freq_x, plan.freq_y)
+        out[finite] = _edge(uf, vf, seed_term, plan.freq_x, plan.freq_y, plan.wrap)
     return out
 
 
@@ -320,7 +450,7 @@ def _worley_values(
     """The plan's output at flat float64 u, v."""
     if plan.output != 0:
         return _cells(u, v, seed_term, plan)
-    f1, f2 = _worley_points(u, v, seed_term, plan.metric)
+    f1, f2 = _worley_points(u, v, seed_term, plan.metric, plan.wrap)
     return _combine(f1, f2, plan.combo, plan.norm, plan.to_01)
 
 

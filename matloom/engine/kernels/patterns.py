@@ -79,6 +79,7 @@ def bricks(
     feather: float,
     output: str = "mask",
     seed: int | None = None,
+    wrap: tuple[int, int, int] | None = None,
 ) -> np.ndarray:
     """Running-bond brick mask: 1 on brick, 0 in mortar (spec §2.5).
 
@@ -91,7 +92,10 @@ def bricks(
     the position in the brick's cell (the floor-mods of the mask); ``edge`` the inset where it
     is >= 0, else 0 (inside a rectangle the min of the four side distances is the exact distance
     to its border); ``cell_value`` the Worley cell hash (salt :data:`BRICK_CELL_SALT`) of the
-    brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN.
+    brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN; with
+    ``wrap`` (tileable output: bricks along a course, courses, and the bricks the course shift
+    adds over them, :func:`~matloom.engine.kernels.periodic.course_wrap`) the indices are
+    wrapped first, as Tile's cells are.
     """
     check_bricks(axis, output, seed)
     bw, bh = float(brick_width), float(brick_height)
@@ -100,7 +104,7 @@ def bricks(
         if output == "mask":
             inset = _brick_inset(x, y, bw, bh, offset, mortar / 2, axis)
             return _full_float64(smooth_coverage(inset, feather), _grid_shape(x, y))
-        value = _brick_output(x, y, bw, bh, offset, mortar / 2, axis, output, seed)
+        value = _brick_output(x, y, bw, bh, offset, mortar / 2, axis, output, seed, wrap)
         return _full_float64(value, _grid_shape(x, y))
 
 
@@ -124,6 +128,7 @@ def _brick_output(
     axis: str,
     output: str,
     seed: int | None,
+    wrap: tuple[int, int, int] | None = None,
 ) -> np.ndarray:
     """Bricks' cell value, u, v or edge (see :func:`bricks`) in the coordinate dtype (the cell
     value in float64)."""
@@ -136,6 +141,14 @@ def _brick_output(
     if output == "v":
         return ly / bh
     nan = np.isnan(col) | np.isnan(row)
+    if wrap is not None:
+        from matloom.engine.kernels.tile import wrap_cell
+
+        along, across, k = (float(v) for v in wrap)
+        if axis == "row":
+            row, col = wrap_cell(row, col, across, along, k)
+        else:
+            col, row = wrap_cell(col, row, across, along, k)
     value = worley_hash(
         _cell_int(col), _cell_int(row), worley_seed_term(int(seed or 0)), BRICK_CELL_SALT
     )

@@ -46,10 +46,35 @@ class TileParams:
     probability: float = 1.0
     offset: float = 0.0
     seed: int = 0
+    #: Tileable output (:meth:`tiled`): rows and columns per period and the whole number of
+    #: cells the row shift adds up to over those rows; 0: the cells do not wrap.
+    wrap_rows: int = 0
+    wrap_cols: int = 0
+    wrap_shift: int = 0
 
     @classmethod
     def of(cls, params: dict[str, Any]) -> TileParams:
         return cls(**{k: params[k] for k in cls.__dataclass_fields__ if k in params})
+
+    def tiled(self, period: tuple[float, float]) -> TileParams:
+        """These parameters made periodic with ``period`` (Px, Py): the cell size snapped to a
+        whole number of cells per period, the row offset to a whole number of cells per
+        period of rows, and the cells' random numbers taken from the wrapped cell."""
+        from dataclasses import replace
+
+        px, py = (float(v) for v in period)
+        cols = max(1, round(px / float(self.width)))
+        rows = max(1, round(py / float(self.height)))
+        shift = round(float(self.offset) * rows)
+        return replace(
+            self,
+            width=px / cols,
+            height=py / rows,
+            offset=shift / rows,
+            wrap_rows=rows,
+            wrap_cols=cols,
+            wrap_shift=shift,
+        )
 
     @property
     def rotates(self) -> bool:
@@ -70,6 +95,9 @@ class TileParams:
                 float(self.scale_max) - float(self.scale_min),
                 float(self.probability),
                 float(self.rotate) * (math.pi / 180.0),
+                float(self.wrap_rows),
+                float(self.wrap_cols),
+                float(self.wrap_shift),
             ]
         )
 
@@ -104,15 +132,16 @@ def instance_parts(
     whether it is kept. Non-finite coordinates and cells past :data:`MAX_CELL` are dropped
     (NaN offsets)."""
     k = p.consts()
-    w, h, shift_w, jit_w, jit_h, smin, srange, prob, rot = (float(v) for v in k)
+    w, h, shift_w, jit_w, jit_h, smin, srange, prob, rot, nr, nc, ks = (float(v) for v in k)
     x64, y64 = np.broadcast_arrays(np.asarray(x, np.float64), np.asarray(y, np.float64))
     with np.errstate(all="ignore"):
         r = np.floor(y64 / h) + dr
         shift = r * shift_w
         c = np.floor((x64 - shift) / w) + dc
         valid = (np.abs(r) < MAX_CELL) & (np.abs(c) < MAX_CELL)
-        ri = np.where(valid, r, 0.0).astype(np.int64)
-        ci = np.where(valid, c, 0.0).astype(np.int64)
+        hr, hc = (r, c) if nc == 0 else wrap_cell(r, c, nr, nc, ks)
+        ri = np.where(valid, hr, 0.0).astype(np.int64)
+        ci = np.where(valid, hc, 0.0).astype(np.int64)
         keys = stream_keys(p.seed)
         u = [uniform(keys[s], ri, ci) for s in range(_STREAMS)]
         keep = valid & (u[4] < prob)
@@ -123,6 +152,16 @@ def instance_parts(
         scale = smin + srange * u[3]
         theta = (2.0 * u[2] - 1.0) * rot
     return dx, dy, scale, theta, keep
+
+
+def wrap_cell(r: Any, c: Any, nr: float, nc: float, ks: float) -> tuple[Any, Any]:
+    """The cell whose random numbers cell (r, c) takes in tileable output: the row modulo
+    ``nr`` rows, the column moved back by the ``ks`` cells the row shift adds per ``nr``
+    rows, then modulo ``nc`` (float64 integers; floor of an exact quotient)."""
+    kr = np.floor(r / nr)
+    rr = r - kr * nr
+    cc = c + kr * ks
+    return rr, cc - np.floor(cc / nc) * nc
 
 
 #: Taylor coefficients of sin (odd powers 3..17) and cos (even powers 2..18) for

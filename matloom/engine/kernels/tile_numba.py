@@ -80,6 +80,7 @@ def _instance_kernel(
     run of texels in that cell (the same values as computing them per texel)."""
     w, h, shift_w, jit_w, jit_h = consts[0], consts[1], consts[2], consts[3], consts[4]
     smin, srange, prob, rot = consts[5], consts[6], consts[7], consts[8]
+    nr, nc, ks = consts[9], consts[10], consts[11]
     x0, y0, x1, y1 = box[0], box[1], box[2], box[3]
     limit = tile.MAX_CELL
     width = lx.shape[1]
@@ -102,7 +103,12 @@ def _instance_kernel(
                 prev_r = r
                 prev_c = c
                 valid = abs(r) < limit and abs(c) < limit
-                if valid:
+                if valid and nc != 0:
+                    kr = np.floor(r / nr)
+                    cc = c + kr * ks
+                    ri = np.uint64(np.int64(r - kr * nr))
+                    ci = np.uint64(np.int64(cc - np.floor(cc / nc) * nc))
+                elif valid:
                     ri = np.uint64(np.int64(r))
                     ci = np.uint64(np.int64(c))
                 else:

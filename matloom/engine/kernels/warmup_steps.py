@@ -58,6 +58,11 @@ Material(Layer(1).basecolor(120 + board * 60, 90, 60)
   Layer(dots).basecolor(200 * Hash(Floor(X()), Floor(Y()), seed=10), 180, 40)
     .height(Worley(output="edge", seed=11) * 0.01 + Rotate(fBm(seed=12), warp * 30) * 0.002))"""
 
+_TILEABLE = """View(0, 0, 2, 2, tileable=True)
+Define(cells, Worley(base_freq=3, output="cell_value", seed=13))
+Material(Layer(1).basecolor(100 + cells * 100, 90, 80)
+    .height(fBm(octaves=4, base_freq=2, seed=14) * 0.02 + Worley(base_freq=3, seed=13) * 0.01))"""
+
 #: (label, program) of each warm-up step; ``None``: shade the previous step's maps.
 STEPS: tuple[tuple[str, str | None], ...] = (
     ("fBm and compositing", _TILE),
@@ -67,6 +72,7 @@ STEPS: tuple[tuple[str, str | None], ...] = (
     ("column Bricks", _COLUMNS),
     ("paths", _PATHS),
     ("language 2 (warps, Tile, cells)", _LANGUAGE_2),
+    ("tileable output", _TILEABLE),
 )
 
 #: The first steps compile every kernel of the paper's tile program (fBm, Bricks rows,

@@ -8,6 +8,7 @@ kernels, so that one rule serves the dense, banded and seed-batched schedules.
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -44,9 +45,25 @@ def bricks(ev: Any, call: A.Call, c: Any) -> Any:
     params = ev.params(call)
     if not uses_seed(call):
         return ev.backend.bricks(c[0], c[1], **{**params, "seed": None})
-    return per_seed(
-        ev, call, lambda seed: ev.backend.bricks(c[0], c[1], **{**params, "seed": seed})
-    )
+    kernel = ev.backend.bricks
+    period = ev.periods_of(c, "Bricks")
+    wrap = None if period is None else brick_wrap(params, period)
+    if wrap is not None:  # tileable cell values: the numpy kernel wraps them (both backends)
+        from matloom.engine.kernels import patterns
+
+        kernel = partial(patterns.bricks, wrap=wrap)
+    return per_seed(ev, call, lambda seed: kernel(c[0], c[1], **{**params, "seed": seed}))
+
+
+def brick_wrap(params: dict[str, Any], period: tuple[float, float]) -> tuple[int, int, int] | None:
+    """Bricks' :func:`~matloom.engine.kernels.periodic.course_wrap` in a frame of periods
+    ``period``: courses are rows (axis "row") or columns."""
+    from matloom.engine.kernels.periodic import course_wrap
+
+    bw, bh, offset = (float(params[k]) for k in ("brick_width", "brick_height", "offset"))
+    if params["axis"] == "row":
+        return course_wrap(period[0], period[1], bw, bh, offset)
+    return course_wrap(period[1], period[0], bh, bw, offset)
 
 
 def per_seed(ev: Any, call: A.Call, compute: Callable[[int], Any]) -> Any:
@@ -85,6 +102,9 @@ def tile(ev: Any, call: A.Call, c: Any) -> Any:
     from matloom.engine.kernels.tile import NEIGHBOURS, TileParams
 
     params = TileParams.of({**ev.params(call), "seed": ev.seed_of(call)})
+    period = ev.periods_of(c, "Tile")
+    if period is not None:
+        params = params.tiled(period)
     motif = call.arg("expr")
     box = ev.motif_support(motif)
     shape = np.broadcast_shapes(np.shape(c[0]), np.shape(c[1]))
@@ -92,7 +112,8 @@ def tile(ev: Any, call: A.Call, c: Any) -> Any:
         out = None
         for dr, dc in NEIGHBOURS:
             lx, ly, keep = ev.backend.tile(c[0], c[1], params, dr, dc)
-            value = ev.concrete(ev.eval(motif, ev.new_frame(lx, ly)))
+            value = ev.instance_value(motif, ev.new_frame(lx, ly))
+            del lx, ly
             with np.errstate(invalid="ignore"):
                 value = np.where(keep, value, 0.0)
                 out = value if out is None else np.maximum(out, value)
@@ -107,7 +128,7 @@ def tile(ev: Any, call: A.Call, c: Any) -> Any:
         if idx.size == 0:
             continue
         points = ev.new_frame(lx.reshape(-1)[idx][None, :], ly.reshape(-1)[idx][None, :])
-        value = np.broadcast_to(ev.concrete(ev.eval(motif, points)), (1, idx.size))[0]
+        value = np.broadcast_to(ev.instance_value(motif, points), (1, idx.size))[0]
         flat[idx] = np.maximum(flat[idx], value)
     with np.errstate(invalid="ignore"):
         return np.where(missed, np.maximum(best, 0.0), best)

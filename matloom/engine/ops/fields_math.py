@@ -93,6 +93,9 @@ def hash_cells(ev: Any, call: A.Call, c: Any) -> Any:
         raise ValueError("Hash has no seed; canonicalise the program first")
     x = _concrete(ev, _operand(ev, call, "x", c))
     y = _concrete(ev, _operand(ev, call, "y", c, 0.0))
+    period = ev.periods_of(c, "Hash") if getattr(ev, "periods", None) else None
+    if period is not None:
+        x, y = _wrap_hash(ev, call, period, x, y)
     batch = getattr(ev, "batch_seeds", None)
     seeds = [seed] if batch is None else batch(call)
     out = _hash_kernel(ev.backend)(x, y, [seed_key(s) for s in seeds])
@@ -100,3 +103,37 @@ def hash_cells(ev: Any, call: A.Call, c: Any) -> Any:
         return out
     shape = np.broadcast_shapes(np.shape(x), np.shape(y))
     return out[0, 0, 0] if shape == () else out.reshape(shape)
+
+
+def hash_wrap(call: A.Call, defines: Any, period: tuple[float, float]) -> tuple[float, float]:
+    """Cells per period (nx, ny) of Hash's operands for tileable output, 0 for an operand that
+    does not wrap: the x operand must be ``a X()`` plus terms that repeat with the View, with
+    a whole number ``|a| Px`` of cells per period (the y operand likewise in Y(); see
+    :mod:`matloom.lang.affine`); operands without coordinates need no wrap."""
+    from matloom.lang.affine import coord_coeffs, whole
+
+    out = []
+    for name, axis in (("x", 0), ("y", 1)):
+        coeffs = coord_coeffs(call.arg(name), defines, period)
+        if coeffs is None or coeffs[1 - axis] != 0.0 or coeffs[axis] == 0.0:
+            out.append(0.0)
+            continue
+        cells = whole(abs(coeffs[axis] * period[axis]))
+        out.append(float(cells) if cells else 0.0)
+    return out[0], out[1]
+
+
+def _wrap_hash(
+    ev: Any, call: A.Call, period: tuple[float, float], x: Any, y: Any
+) -> tuple[Any, Any]:
+    """Operands whose cells are wrapped modulo their cells per period: (floor(v) mod n) + 0.5
+    (exact for integer cells), so both backends hash the same cells."""
+    nx, ny = hash_wrap(call, ev.defines, period)
+    with np.errstate(invalid="ignore"):
+        if nx:
+            cx = np.floor(np.asarray(x, dtype=np.float64))
+            x = cx - np.floor(cx / nx) * nx + 0.5
+        if ny:
+            cy = np.floor(np.asarray(y, dtype=np.float64))
+            y = cy - np.floor(cy / ny) * ny + 0.5
+    return x, y

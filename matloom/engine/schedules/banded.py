@@ -491,6 +491,7 @@ def composite_program(
     backend: Backend,
     stats: EvalStats,
     cull: bool = True,
+    periods: tuple[float, float] | None = None,
 ) -> dict[str, np.ndarray]:
     """Evaluate and composite every band; returns the blended maps (no normal/AO yet).
     ``cull``: compute fBm fields only where a layer can see them (:mod:`matloom.engine.cull`)."""
@@ -498,7 +499,7 @@ def composite_program(
     maps = allocate_maps(width, height)
     flagged: list[_Flagged] = []
     for index, rows in enumerate(_band_slices(height, width)):
-        ev = LazyEvaluator(program, x, y[rows], backend)
+        ev = LazyEvaluator(program, x, y[rows], backend, periods=periods)
         ev.count_row_invariant_zero_divisions = index == 0
         ev.defer_noise = cull
         shape = (rows.stop - rows.start, width)
@@ -547,8 +548,17 @@ def evaluate_fused(
     height, width = y.shape[0], x.shape[1]
     stats = stats if stats is not None else EvalStats()
     radius_x, radius_y = C._ao_radii(view, width, height, None, ao_radius_units)
-    maps = composite_program(program, x, y, backend, stats, cull)
+    maps = composite_program(program, x, y, backend, stats, cull, periods=view.periods)
     dx, dy = view.texel_size(width, height)
-    maps["normal"] = relief_numba.normals(maps["height"], dx, dy)
-    maps["ao"] = relief_numba.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
+    if view.tileable:
+        from matloom.engine.tiling import wrapped_relief
+
+        reach = max(radius_x, radius_y) + 1
+        maps["normal"] = wrapped_relief(relief_numba.normals, maps["height"], 1, dx, dy)
+        maps["ao"] = wrapped_relief(
+            relief_numba.ambient_occlusion, maps["height"], reach, dx, radius_x, radius_y
+        )
+    else:
+        maps["normal"] = relief_numba.normals(maps["height"], dx, dy)
+        maps["ao"] = relief_numba.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
     return MaterialMaps(**maps, view=view, n_layers=len(program.layers))

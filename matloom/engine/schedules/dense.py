@@ -23,7 +23,7 @@ def evaluate_dense(
 ) -> MaterialMaps:
     """Evaluate ``program`` on the sample axes ``x`` (1, W), ``y`` (H, 1) and composite it."""
     height, width = y.shape[0], x.shape[1]
-    ev = Evaluator(program, x, y, backend)
+    ev = Evaluator(program, x, y, backend, periods=view.periods)
     raws = [layer_fields(ev, layer) for layer in program.layers]
     maps = composite(raws, width, height, view, ao_radius_units=ao_radius_units)
     maps.n_layers = len(program.layers)

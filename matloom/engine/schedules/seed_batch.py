@@ -51,8 +51,16 @@ class SweepEvaluator(LazyEvaluator):
     """Evaluates one chunk of candidates at once (leading seed axis on seeded values);
     seed-free values persist across chunks."""
 
-    def __init__(self, program: A.Program, x: np.ndarray, y: np.ndarray, backend: Any) -> None:
-        super().__init__(program, x, y, backend)
+    def __init__(
+        self,
+        program: A.Program,
+        x: np.ndarray,
+        y: np.ndarray,
+        backend: Any,
+        *,
+        periods: tuple[float, float] | None = None,
+    ) -> None:
+        super().__init__(program, x, y, backend, periods=periods)
         self.seeded = seeded_nodes(program)
         self.persistent: dict[tuple[int, int], Any] = {}
         self.seed_maps: list[dict[int, int]] = [{}]
@@ -106,18 +114,18 @@ class SweepEvaluator(LazyEvaluator):
         seed = self.num(call, "seed")
         return [m.get(seed, seed) for m in self.seed_maps]
 
-    def batch_args(self, call: A.Call) -> dict[str, Any]:
+    def batch_args(self, call: A.Call, c: Any = None) -> dict[str, Any]:
         """The noise kernel's keywords with the chunk's seeds instead of the seed."""
-        kw = self.noise_args(call)
+        kw = self.noise_args(call, c)
         seed = kw.pop("seed")
         kw["seeds"] = [m.get(seed, seed) for m in self.seed_maps]
         return kw
 
     def worley(self, call: A.Call, c: Any) -> Any:
-        return self.backend.worley_seed_batch(c[0], c[1], **self.batch_args(call))
+        return self.backend.worley_seed_batch(c[0], c[1], **self.batch_args(call, c))
 
     def fbm(self, call: A.Call, c: Any) -> Any:
-        kw = self.batch_args(call)
+        kw = self.batch_args(call, c)
         if self.backend.fbm_masked is None:  # its seed batch takes no mask
             return self.backend.fbm_seed_batch(c[0], c[1], **kw)
 

@@ -1,0 +1,156 @@
+"""Periodic lattices for tileable noise (shared by every backend; pure Python/numpy).
+
+**fBm** (OpenSimplex 2014) samples a triangular lattice: the vertex with stretched indices
+(i, j) sits at ``(i + (i + j) SQUISH, j + (i + j) SQUISH)``. No lattice vector is parallel to
+an axis, so a View's periods cannot be matched by snapping the frequency alone. For each
+octave the noise instead samples ``p = M (x, y)``, where M maps the View's period vectors
+``(Px, 0)`` and ``(0, Py)`` onto the two lattice vectors ``L1``, ``L2`` nearest to where the
+octave's frequency would put them (``(f_x Px, 0)`` and ``(0, f_y Py)``): an affine map within
+about half a lattice cell per period of the plain ``(f_x x, f_y y)`` (a slight stretch and
+shear, largest for octaves with few cells per View). Shifting (x, y) by a period then shifts p
+by a lattice vector, and the vertex hash takes the vertex's index modulo the sublattice that
+``L1``, ``L2`` span (its Hermite normal form ``(p, q), (0, r)``: index ``i' r + j'`` of the
+canonical representative, its low 16 bits replacing the 8 + 8 bits of the unbounded noise), so
+the field repeats exactly. The reductions use float64 ``floor((n + 0.5) / p)``, exact for every
+index below 2**51, so numpy and numba compute the same integers.
+
+**Worley** and the cell values use a square lattice: the frequency is snapped so that each
+period holds a whole number of cells, and cell indices are wrapped modulo those counts.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+
+from matloom.engine.kernels.opensimplex import SQUISH_CONSTANT2, STRETCH_CONSTANT2
+
+__all__ = ["simplex_octave", "simplex_tiling", "cell_counts", "snap_frequency"]
+
+
+def _stretch(v: tuple[float, float]) -> tuple[float, float]:
+    """Real-space vector -> stretched (index) coordinates."""
+    s = (v[0] + v[1]) * STRETCH_CONSTANT2
+    return v[0] + s, v[1] + s
+
+
+def _squish(n: tuple[int, int]) -> tuple[float, float]:
+    """Index vector -> real-space lattice vector."""
+    s = (n[0] + n[1]) * SQUISH_CONSTANT2
+    return n[0] + s, n[1] + s
+
+
+def _candidates(target: tuple[float, float]) -> list[tuple[int, int]]:
+    """Integer index vectors around the stretched ``target`` (nearest first), none zero."""
+    sx, sy = _stretch(target)
+    bx, by = round(sx), round(sy)
+    out = [(bx + a, by + b) for a, b in itertools.product((0, -1, 1), repeat=2)]
+    return [n for n in out if n != (0, 0)]
+
+
+def _error(n: tuple[int, int], target: tuple[float, float]) -> float:
+    lx, ly = _squish(n)
+    return (lx - target[0]) ** 2 + (ly - target[1]) ** 2
+
+
+def _hnf(n1: tuple[int, int], n2: tuple[int, int]) -> tuple[int, int, int]:
+    """(p, q, r) of the sublattice spanned by index vectors n1, n2 (rows): its Hermite basis
+    (p, q), (0, r) with p, r > 0 and 0 <= q < r."""
+    a, b = n1
+    c, d = n2
+    det = a * d - b * c
+    g, s, t = _ext_gcd(a, c)
+    if g < 0:
+        g, s, t = -g, -s, -t
+    r = abs(det) // g
+    q = (s * b + t * d) % r
+    return g, q, r
+
+
+def _ext_gcd(a: int, b: int) -> tuple[int, int, int]:
+    """(g, s, t) with s a + t b = g = gcd(a, b) (g may be negative)."""
+    if b == 0:
+        return (a, 1, 0) if a != 0 else (0, 0, 0)
+    g, s, t = _ext_gcd(b, a % b)
+    return g, t, s - (a // b) * t
+
+
+def simplex_octave(
+    px: float, py: float, fx: float, fy: float
+) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float, float]]:
+    """One fBm octave of frequencies (fx, fy) tiling periods (px, py): (m00, m01, m10, m11) of
+    the coordinate map M and (p, q, r, 1/p, 1/r) of the sublattice (see the module docstring)."""
+    t1, t2 = (fx * px, 0.0), (0.0, fy * py)
+    best: tuple[float, tuple[int, int], tuple[int, int]] | None = None
+    for n1 in _candidates(t1):
+        for n2 in _candidates(t2):
+            if n1[0] * n2[1] - n1[1] * n2[0] == 0:
+                continue
+            err = _error(n1, t1) + _error(n2, t2)
+            if best is None or err < best[0]:
+                best = (err, n1, n2)
+    assert best is not None
+    _, n1, n2 = best
+    l1, l2 = _squish(n1), _squish(n2)
+    m = (l1[0] / px, l2[0] / py, l1[1] / px, l2[1] / py)
+    p, q, r = _hnf(n1, n2)
+    return m, (float(p), float(q), float(r), 1.0 / p, 1.0 / r)
+
+
+def simplex_tiling(
+    freqs_x: tuple[float, ...], freqs_y: tuple[float, ...], period: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per-octave (O, 4) coordinate maps and (O, 5) sublattices (:func:`simplex_octave`)."""
+    px, py = (float(v) for v in period)
+    if not (px > 0 and py > 0 and math.isfinite(px) and math.isfinite(py)):
+        raise ValueError(f"tileable periods must be finite and > 0, got {period!r}")
+    rows = [simplex_octave(px, py, fx, fy) for fx, fy in zip(freqs_x, freqs_y, strict=True)]
+    maps = np.array([m for m, _ in rows], dtype=np.float64)
+    lattices = np.array([lat for _, lat in rows], dtype=np.float64)
+    return maps, lattices
+
+
+def cell_counts(freq_x: float, freq_y: float, period: tuple[float, float]) -> tuple[int, int]:
+    """Whole numbers of unit cells (>= 1) nearest to each period at the given frequencies."""
+    return _count(freq_x * period[0]), _count(freq_y * period[1])
+
+
+def _count(cells: float) -> int:
+    if not math.isfinite(cells):
+        return 1
+    return max(1, int(round(abs(cells))))
+
+
+def snap_frequency(freq: float, period: float) -> tuple[float, int]:
+    """(frequency, cells): ``freq`` snapped so that ``period`` holds a whole number of cells
+    (at least 1), keeping its sign."""
+    cells = _count(freq * period)
+    return math.copysign(cells / period, freq), cells
+
+
+#: Relative tolerance of a whole number of cells per period (patterns, Hash).
+WHOLE = 1e-6
+
+
+def whole(value: float) -> int | None:
+    """``value`` as a whole number when it is one (within :data:`WHOLE` relative), else None."""
+    if not math.isfinite(value):
+        return None
+    n = round(value)
+    return int(n) if abs(value - n) <= WHOLE * max(1.0, abs(value)) else None
+
+
+def course_wrap(
+    period_along: float, period_across: float, size_along: float, size_across: float, shift: float
+) -> tuple[int, int, int] | None:
+    """(cells along, courses, cells the course shift adds over the courses) of a running-bond
+    grid (Bricks, Tile) whose cells of ``size_along`` x ``size_across``, shifted by ``shift``
+    cells per course, repeat with the periods; None when they do not."""
+    along = whole(period_along / size_along)
+    across = whole(period_across / size_across)
+    if not along or not across:
+        return None
+    k = whole(shift * across)
+    return None if k is None else (along, across, k)

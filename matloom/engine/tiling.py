@@ -1,0 +1,121 @@
+"""Tileable output: periods of the View, lattice snapping, wrapped relief and the seam ratio.
+
+A tileable render (``View(..., tileable=True)``, ``--tileable``, ``evaluate(tileable=True)``)
+makes every map repeat with the View's width W and height H. The evaluator passes each noise the
+periods of its coordinate frame (the View's (W, 0) and (0, H) through the frame's affine map,
+see :meth:`matloom.engine.interpret.Evaluator.periods_of`); the noise kernels then make their
+lattices periodic (:mod:`matloom.engine.kernels.noise`: fBm's per-octave sublattice, Worley's
+snapped cell counts), Tile and Hash wrap their cell indices, and the relief (normals, AO) is
+computed on the height padded by wrapping, so that the borders see the opposite edge.
+
+:func:`seam_ratio` measures the result: the mean absolute difference across the wrap edge over
+the mean absolute difference between interior neighbours (1 for a seamless map);
+:func:`matloom.render.seams.seam_ratios_over_offsets` pools it over shifted renders.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "manifest_entry",
+    "seam_ratio",
+    "seam_ratios",
+    "snap_count",
+    "wrapped_relief",
+]
+
+
+def snap_count(cells: float) -> int:
+    """The whole number of cells (>= 1) nearest to ``cells`` (a period in cell units)."""
+    if not math.isfinite(cells):
+        return 1
+    return max(1, int(round(abs(cells))))
+
+
+def wrapped_relief(
+    relief: Callable[..., np.ndarray], height: np.ndarray, reach: float, *args: Any
+) -> np.ndarray:
+    """``relief(height, *args)`` as if the height repeated beyond its borders: computed on the
+    height padded by wrapping with ``reach`` texels (at least 2) and cropped back."""
+    h = np.asarray(height)
+    pad = int(math.ceil(min(max(reach, 0.0), 4.0 * max(h.shape)))) + 2
+    padded = np.pad(h, pad, mode="wrap")
+    out = relief(padded, *args)
+    return np.ascontiguousarray(out[pad:-pad, pad:-pad])
+
+
+def seam_ratio(image: np.ndarray) -> float:
+    """Mean |difference| across the wrap edges (last column vs first, last row vs first) over
+    the mean |difference| between interior neighbours (horizontal and vertical); 1.0 for a
+    map constant up to float rounding; NaN/inf texels ignored; colour maps: all channels."""
+    a = np.asarray(image)
+    if a.ndim < 2 or a.shape[0] < 2 or a.shape[1] < 2:
+        return 1.0
+    edge, inner = seam_parts(a)
+    return ratio(edge, inner, magnitude(a))
+
+
+def magnitude(a: np.ndarray) -> float:
+    """Largest finite |value| of ``a`` (0 when none)."""
+    finite = np.abs(a[np.isfinite(a)])
+    return float(finite.max()) if finite.size else 0.0
+
+
+def seam_ratios(arrays: dict[str, np.ndarray]) -> dict[str, float]:
+    """:func:`seam_ratio` of every map, rounded to 4 decimals (for ``material.json``)."""
+    return {name: round(seam_ratio(a), 4) for name, a in arrays.items()}
+
+
+def manifest_entry(maps: Any, specs: Any) -> dict[str, Any]:
+    """The manifest's tiling fields of a render: ``tileable`` and, for tileable maps, the
+    ``seam_ratio`` of every exported map (``specs``: the exported maps' ``MapSpec``s; the
+    ratio is that of the first ``MaterialMaps`` array each is made from)."""
+    view = getattr(maps, "view", None)
+    if view is None or not view.tileable:
+        return {}
+    ratios: dict[str, float] = {}
+    for spec in specs:
+        source = spec.sources[0] if spec.sources else None
+        if source is not None and hasattr(maps, source):
+            ratios[spec.name] = round(seam_ratio(getattr(maps, source)), 4)
+    return {
+        "tileable": True,
+        "seam_ratio": ratios,
+        "seam_ratio_note": "mean |difference| across the wrap edges / mean |difference| "
+        "between interior neighbours (1 = as smooth as the interior)",
+    }
+
+
+def seam_parts(image: np.ndarray) -> tuple[float, float]:
+    """(wrap, interior): the mean |difference| across the vertical wrap edge (last column vs
+    first) plus that across the horizontal one (last row vs first), and the mean |difference|
+    of horizontal interior neighbours plus that of vertical ones: each edge is compared with
+    the neighbours across the same direction (a map of vertical stripes has no horizontal
+    seam to dilute)."""
+    a = np.asarray(image, dtype=np.float64)
+    a = a[:, :, None] if a.ndim == 2 else a
+    parts = (
+        np.abs(a[:, -1] - a[:, 0]),
+        np.abs(a[-1] - a[0]),
+        np.abs(np.diff(a, axis=1)),
+        np.abs(np.diff(a, axis=0)),
+    )
+    means = []
+    for part in parts:
+        values = part[np.isfinite(part)]
+        means.append(float(values.mean()) if values.size else 0.0)
+    return means[0] + means[1], means[2] + means[3]
+
+
+def ratio(edge: float, inner: float, scale: float) -> float:
+    """edge / inner, 1.0 for a map that is constant up to float rounding (both below a
+    millionth of its magnitude), inf for a step on an otherwise constant map."""
+    tiny = 1e-6 * max(1.0, scale)
+    if inner <= tiny:
+        return 1.0 if edge <= tiny else math.inf
+    return edge / inner

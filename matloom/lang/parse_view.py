@@ -1,0 +1,68 @@
+"""The ``View(x1, y1, x2, y2[, tileable=True])`` statement (called by the parser)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from matloom.lang import ast as A
+from matloom.lang.lexer import as_float
+from matloom.lang.static import is_static, static_number
+from matloom.vocab import LITERALS
+
+if TYPE_CHECKING:
+    from matloom.lang.parser import Parser
+
+#: View's keyword arguments after the four corners.
+VIEW_KEYWORDS = ("tileable",)
+
+
+def parse_view(p: Parser) -> A.ViewDecl | None:
+    """Parse a View statement at ``p``'s current token (the ``View`` name)."""
+    from matloom.lang.parser import _Bail, node_span
+
+    kw = p.next()
+    p.expect("(", "after View")
+    values: list[float] = []
+    bad = False
+    for k in range(4):
+        if k:
+            p.expect(",", "between View arguments")
+        tok = p.peek()
+        node = p.parse_expr()
+        v = static_number(node) if is_static(node) else None  # X()/Y() are not numbers here
+        if v is None:
+            p.diag(
+                "E061",
+                "View arguments must be numbers",
+                node_span(node, tok.span),
+                expected="View(x1, y1, x2, y2) with numeric corners",
+            )
+            bad, v = True, 0.0
+        values.append(as_float(v))  # beyond the float range: inf, E061
+    tileable = False
+    if p.at(",") and p.peek(1).text in VIEW_KEYWORDS and p.at("=", 2):
+        p.next()
+        p.next()
+        p.next()
+        tok = p.peek()
+        value = LITERALS.get(tok.text, 0) if tok.kind == "IDENT" else 0
+        if not isinstance(value, bool):
+            raise p.fail(
+                "E061",
+                "View's tileable must be True or False",
+                tok.span,
+                expected="View(x1, y1, x2, y2, tileable=True)",
+            )
+        p.next()
+        tileable = value
+    if p.at(","):
+        raise p.fail(
+            "E027",
+            "View takes exactly 4 arguments",
+            p.peek().span,
+            expected="View(x1, y1, x2, y2) or View(x1, y1, x2, y2, tileable=True)",
+        )
+    p.expect(")", "to close View(...)")
+    if bad:  # drop the View, so its placeholder corners cause no follow-on errors
+        raise _Bail()
+    return A.ViewDecl(*values, span=p.span_from(kw.span), tileable=tileable)
