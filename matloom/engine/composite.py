@@ -339,16 +339,9 @@ def composite(
     maps = _allocate_maps(width, height)
     for rows in relief.bands(height, BAND_ROWS):
         _composite_band(layers, maps, rows)
-    dx, dy = view.texel_size(width, height)
-    if view.tileable:
-        from matloom.engine.tiling import wrapped_relief
+    from matloom.engine.tiling import relief_maps
 
-        reach = max(radius_x, radius_y) + 1
-        maps["normal"] = wrapped_relief(relief.normals, maps["height"], 1, dx, dy)
-        maps["ao"] = wrapped_relief(
-            relief.ambient_occlusion, maps["height"], reach, dx, radius_x, radius_y
-        )
-    else:
-        maps["normal"] = relief.normals(maps["height"], dx, dy)
-        maps["ao"] = relief.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
+    maps["normal"], maps["ao"] = relief_maps(
+        maps["height"], view, (radius_x, radius_y), relief.normals, relief.ambient_occlusion
+    )
     return MaterialMaps(**maps, view=view, n_layers=len(layers))

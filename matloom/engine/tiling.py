@@ -49,6 +49,27 @@ def wrapped_relief(
     return np.ascontiguousarray(out[pad:-pad, pad:-pad])
 
 
+def relief_maps(
+    height: np.ndarray,
+    view: Any,
+    radii: tuple[float, float],
+    normals: Callable[..., np.ndarray],
+    ambient_occlusion: Callable[..., np.ndarray],
+) -> tuple[np.ndarray, np.ndarray]:
+    """(normal, ao) of the composited ``height`` with a backend's relief functions, wrapped
+    around the image edges when ``view`` is tileable."""
+    rows, cols = height.shape
+    dx, dy = view.texel_size(cols, rows)
+    radius_x, radius_y = radii
+    if not view.tileable:
+        return normals(height, dx, dy), ambient_occlusion(height, dx, radius_x, radius_y)
+    reach = max(radius_x, radius_y) + 1
+    return (
+        wrapped_relief(normals, height, 1, dx, dy),
+        wrapped_relief(ambient_occlusion, height, reach, dx, radius_x, radius_y),
+    )
+
+
 def seam_ratio(image: np.ndarray) -> float:
     """Mean |difference| across the wrap edges (last column vs first, last row vs first) over
     the mean |difference| between interior neighbours (horizontal and vertical); 1.0 for a

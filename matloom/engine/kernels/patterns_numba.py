@@ -174,6 +174,15 @@ def _bricks_rows_kernel(
             out_row[j] = _coverage(_nan_min(_nan_min(lx - half, bw_in - lx), y_inset), ramp, hard)
 
 
+def kernel_takes(x: np.ndarray, y: np.ndarray) -> bool:
+    """Whether the pattern kernels take these coordinates: 2-D arrays of one float dtype
+    (anything else goes to the numpy version)."""
+    return x.ndim == 2 and y.ndim == 2 and y.dtype == x.dtype and x.dtype in _FLOATS
+
+
+_FLOATS = (np.dtype(np.float32), np.dtype(np.float64))
+
+
 def bricks(
     x: np.ndarray,
     y: np.ndarray,
@@ -202,13 +211,7 @@ def bricks(
     patterns.check_bricks(axis, output, seed)
     x, y = np.asarray(x), np.asarray(y)
     dtype = x.dtype
-    if (
-        axis not in patterns.BRICK_AXES
-        or x.ndim != 2
-        or y.ndim != 2
-        or y.dtype != dtype
-        or dtype not in (np.float32, np.float64)
-    ):
+    if axis not in patterns.BRICK_AXES or not kernel_takes(x, y):
         return patterns.bricks(x, y, **kwargs)
     bw, bh, half, feather = float(brick_width), float(brick_height), mortar / 2, float(feather)
     values = [bw, bh, offset, half, feather / 2, feather, 0, 1, 2, 3, bw - half, bh - half]

@@ -11,11 +11,13 @@ dtypes) go to the numpy version.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from matloom.engine.kernels import patterns
 from matloom.engine.kernels.noise_numba_core import jit_kernel
-from matloom.engine.kernels.patterns_numba import _coverage
+from matloom.engine.kernels.patterns_numba import _coverage, kernel_takes
 from matloom.engine.kernels.threads import parallel_rows
 
 #: The outputs the kernel computes, by code.
@@ -77,46 +79,19 @@ def _weave_kernel(
             out_row[j] = value
 
 
-def weave(
-    x: np.ndarray,
-    y: np.ndarray,
-    *,
-    over: int,
-    under: int,
-    shift: int,
-    freq_x: float,
-    freq_y: float,
-    warp_width: float,
-    feather: float,
-    output: str = "mask",
-) -> np.ndarray:
-    """Woven thread mask (or another output), as :func:`patterns.weave` (same arguments, same
-    numbers)."""
-    kwargs = dict(
-        over=over,
-        under=under,
-        shift=shift,
-        freq_x=freq_x,
-        freq_y=freq_y,
-        warp_width=warp_width,
-        feather=feather,
-        output=output,
-    )
+def weave(x: np.ndarray, y: np.ndarray, **kwargs: Any) -> np.ndarray:
+    """Woven thread mask (or another output): :func:`patterns.weave` with the same keywords and
+    the same numbers."""
     x, y = np.asarray(x), np.asarray(y)
-    dtype = x.dtype
-    if (
-        output not in KERNEL_OUTPUTS
-        or x.ndim != 2
-        or y.ndim != 2
-        or y.dtype != dtype
-        or dtype not in (np.float32, np.float64)
-    ):
+    output = kwargs.get("output", "mask")
+    if output not in KERNEL_OUTPUTS or not kernel_takes(x, y):
         return patterns.weave(x, y, **kwargs)
-    ww, feather = float(warp_width), float(feather)
-    values = [freq_x, freq_y, ww / 2, feather / 2, feather, 0, 1, 2, 3, 0.5, ww]
-    values += [int(over) + int(under), int(shift), int(over)]
+    ww, feather = float(kwargs["warp_width"]), float(kwargs["feather"])
+    over, under, shift = (int(kwargs[k]) for k in ("over", "under", "shift"))
+    values = [kwargs["freq_x"], kwargs["freq_y"], ww / 2, feather / 2, feather, 0, 1, 2, 3, 0.5]
+    values += [ww, over + under, shift, over]
     with np.errstate(all="ignore"):  # huge Python floats become inf in float32, as in numpy
-        consts = np.array(values, dtype=np.float64).astype(dtype)
+        consts = np.array(values, dtype=np.float64).astype(x.dtype)
     shape = np.broadcast_shapes(x.shape, y.shape)
     out = np.empty(shape, dtype=np.float64)
     xb, yb = np.broadcast_to(x, shape), np.broadcast_to(y, shape)

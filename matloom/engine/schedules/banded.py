@@ -549,16 +549,13 @@ def evaluate_fused(
     stats = stats if stats is not None else EvalStats()
     radius_x, radius_y = C._ao_radii(view, width, height, None, ao_radius_units)
     maps = composite_program(program, x, y, backend, stats, cull, periods=view.periods)
-    dx, dy = view.texel_size(width, height)
-    if view.tileable:
-        from matloom.engine.tiling import wrapped_relief
+    from matloom.engine.tiling import relief_maps
 
-        reach = max(radius_x, radius_y) + 1
-        maps["normal"] = wrapped_relief(relief_numba.normals, maps["height"], 1, dx, dy)
-        maps["ao"] = wrapped_relief(
-            relief_numba.ambient_occlusion, maps["height"], reach, dx, radius_x, radius_y
-        )
-    else:
-        maps["normal"] = relief_numba.normals(maps["height"], dx, dy)
-        maps["ao"] = relief_numba.ambient_occlusion(maps["height"], dx, radius_x, radius_y)
+    maps["normal"], maps["ao"] = relief_maps(
+        maps["height"],
+        view,
+        (radius_x, radius_y),
+        relief_numba.normals,
+        relief_numba.ambient_occlusion,
+    )
     return MaterialMaps(**maps, view=view, n_layers=len(program.layers))
