@@ -139,7 +139,12 @@ class KernelProgress:
                 f"{COMPILING}: {current.done}/{current.total} done, continuing in the "
                 "background; later runs use them once it has finished"
             )
-        return f"{COMPILING}: the background compiler stopped ({current.error or 'unknown'})"
+        if current.error:
+            return f"{COMPILING}: the background compiler stopped ({current.error})"
+        return (
+            f"{COMPILING}: the background compiler did not finish (it was stopped, or the "
+            "kernels changed meanwhile); the next command starts it again"
+        )
 
 
 def kernel_start_up() -> None:
