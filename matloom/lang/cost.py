@@ -246,7 +246,17 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
         return ("transform", node.func, None, node.arg("expr"), (), TILE_INSTANCES)
     extra = _shape_nodes(node) if isinstance(node, A.Call) and node.func in _SHAPED else 0
     axis = isinstance(node, A.Call) and node.func in ("X", "Y")
-    return ("field", extra, _field_children(node), not (axis or _constant(node, constants)))
+    if axis or _constant(node, constants):
+        return ("field", extra, _field_children(node), 0)
+    return ("field", extra, _field_children(node), _arrays(node))
+
+
+def _arrays(node: A.Node) -> int:
+    """Field-sized arrays one evaluation of ``node`` allocates (the op table's ``arrays``)."""
+    from matloom.engine.ops import OPS
+
+    op = OPS.get(node.func) if isinstance(node, A.Call) else None
+    return op.arrays if op is not None else 1
 
 
 def _roots(program: A.Program) -> list[A.Node]:

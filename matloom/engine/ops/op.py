@@ -87,6 +87,9 @@ class Op:
     check: Callable[..., None] | None = None
     #: For a coordinate transform: (x, y, a, b) -> new (x, y), a and b from lang.cost.
     coords: Callable[..., tuple[Any, Any]] | None = None
+    #: Field-sized arrays one evaluation of the op allocates, its intermediates included (the
+    #: memory estimate of ``matloom.engine.limits`` counts this many per evaluation).
+    arrays: int = 1
     #: Where the field can be non-zero: ``support(context, node, operands)`` -> a box or None
     #: (see :mod:`matloom.engine.ops.support`); None: anywhere (no rule).
     support: Callable[..., Any] | None = None

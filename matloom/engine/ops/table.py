@@ -163,6 +163,7 @@ def _field(
     rule: str,
     coords: Callable[..., Any] | None = None,
     support: Callable[..., Any] | None = None,
+    arrays: int = 1,
 ) -> Op:
     return Op(
         name,
@@ -173,6 +174,7 @@ def _field(
         NUMPY,
         coords=coords,
         support=support,
+        arrays=arrays,
     )
 
 
@@ -251,9 +253,9 @@ _ENTRIES: tuple[Op, ...] = (
     ),
     # primitive fields (backend kernels)
     _field("fBm", "fbm"),
-    _field("Worley", "worley"),
-    _field("Bricks", "bricks"),
-    _field("Weave", "weave"),
+    _field("Worley", "worley", arrays=3),
+    _field("Bricks", "bricks", arrays=2),
+    _field("Weave", "weave", arrays=5),
     _field("Fill", "fill", support=Ref(_SUPPORT + "fill")),
     _field("Stroke", "stroke", support=Ref(_SUPPORT + "stroke")),
     # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
@@ -266,7 +268,7 @@ _ENTRIES: tuple[Op, ...] = (
         support=_MOVED,
     ),
     # instancing: the operand in 9 neighbouring instance frames
-    _field("Tile", "tile"),
+    _field("Tile", "tile", arrays=6),
     # geometry (arguments of Fill/Stroke; not fields)
     _geometry("Rect", "rect"),
     _geometry("Ellipse", "ellipse"),

@@ -135,9 +135,13 @@ def _elementwise(name: str, function: str, arity: int, bounds: Callable[..., Bou
 
 
 def _composed(
-    name: str, rule: str, static: Callable[..., Any], bounds: Callable[..., Bounds]
+    name: str,
+    rule: str,
+    static: Callable[..., Any],
+    bounds: Callable[..., Bounds],
+    arrays: int,
 ) -> Op:
-    return Op(name, Kind.FIELD, Ref(_RULES + rule), static, bounds, NUMPY)
+    return Op(name, Kind.FIELD, Ref(_RULES + rule), static, bounds, NUMPY, arrays=arrays)
 
 
 MATH_V2_ENTRIES: tuple[Op, ...] = (
@@ -145,8 +149,10 @@ MATH_V2_ENTRIES: tuple[Op, ...] = (
     _elementwise("Fract", "fract", 1, _fract_bounds),
     _elementwise("Mod", "mod", 2, _mod_bounds),
     _elementwise("Exp", "exp_", 1, _exp_bounds),
-    _composed("Clamp", "clamp", _folded(_MATHOPS + "clamp", 3, (0.0, 1.0)), _clamp_bounds),
-    _composed("Mix", "mix", _folded(_MATHOPS + "mix", 3), _mix_bounds),
-    _composed("Smoothstep", "smoothstep", _folded(_MATHOPS + "smoothstep", 3), _smoothstep_bounds),
-    _composed("Hash", "hash_cells", _hash_static, _hash_bounds),
+    _composed("Clamp", "clamp", _folded(_MATHOPS + "clamp", 3, (0.0, 1.0)), _clamp_bounds, 3),
+    _composed("Mix", "mix", _folded(_MATHOPS + "mix", 3), _mix_bounds, 4),
+    _composed(
+        "Smoothstep", "smoothstep", _folded(_MATHOPS + "smoothstep", 3), _smoothstep_bounds, 9
+    ),
+    _composed("Hash", "hash_cells", _hash_static, _hash_bounds, 3),
 )
