@@ -42,8 +42,11 @@ CASES = {
 }
 
 
-def field_seconds(expr: str, size: int, backend: str, repeat: int) -> float | None:
-    """Median wall seconds of one evaluation of ``expr``; None if it cannot be evaluated."""
+def field_seconds(
+    expr: str, size: int, backend: str, repeat: int, periods: tuple[float, float] | None = None
+) -> float | None:
+    """Median wall seconds of one evaluation of ``expr`` (``periods``: tileable, with the View's
+    periods); None if it cannot be evaluated."""
     try:
         program = prepare(f"View{VIEW}\nMaterial(Layer(1).height({expr}))")
     except Exception as exc:  # a primitive this checkout lacks
@@ -54,7 +57,7 @@ def field_seconds(expr: str, size: int, backend: str, repeat: int) -> float | No
     be = get_backend(backend)
     times = []
     for k in range(repeat + 1):
-        ev = Evaluator(program, x, y, be)
+        ev = Evaluator(program, x, y, be, periods=periods)
         start = time.perf_counter()
         ev.field(node)
         if k:

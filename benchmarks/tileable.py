@@ -12,19 +12,15 @@ fBm costs at most 2.5x the plain fBm at 1024^2 on the numba backend.
 from __future__ import annotations
 
 import argparse
-import statistics
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from matloom.engine.backends import available_backends, get_backend  # noqa: E402
-from matloom.engine.evaluate import Evaluator, prepare  # noqa: E402
-from matloom.engine.grid import View, sample_axes  # noqa: E402
+from benchmarks.language_v2 import VIEW, field_seconds  # noqa: E402
+from matloom.engine.backends import available_backends  # noqa: E402
 
-VIEW = (0.0, 0.0, 8.0, 8.0)
 CASES = {
     "fBm (6 octaves)": "fBm(octaves=6, base_freq=2, seed=1)",
     "fBm (8 octaves, to_01)": "fBm(octaves=8, base_freq=1.5, to_01=True, seed=2)",
@@ -36,20 +32,11 @@ CASES = {
 
 
 def seconds(expr: str, size: int, backend: str, repeat: int, tiled: bool) -> float:
-    """Median wall seconds of one evaluation of ``expr``."""
-    program = prepare(f"View{VIEW}\nMaterial(Layer(1).height({expr}))")
-    node = program.layers[0].channel("height").args[0]
-    x, y = sample_axes(View(*VIEW), size, size)
-    be = get_backend(backend)
+    """Median wall seconds of one evaluation of ``expr``, plain or tileable."""
     periods = (VIEW[2] - VIEW[0], VIEW[3] - VIEW[1]) if tiled else None
-    times = []
-    for k in range(repeat + 1):
-        ev = Evaluator(program, x, y, be, periods=periods)
-        start = time.perf_counter()
-        ev.field(node)
-        if k:
-            times.append(time.perf_counter() - start)
-    return statistics.median(times)
+    t = field_seconds(expr, size, backend, repeat, periods)
+    assert t is not None, expr
+    return t
 
 
 def main() -> None:

@@ -25,13 +25,15 @@ from matloom.lang import ast as A
 from matloom.lang.affine import WRAPPERS, coord_coeffs, periodic_wrap, whole, wrapper_cycles
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt
 from matloom.lang.static import is_static, param_value
+from matloom.vocab import FUNCTIONS
 
 __all__ = ["make_tileable", "tileable_warnings"]
 
 #: A frame's View periods (Px, Py), or the name of what made them unknown (Rotate, a warp).
 Frame = tuple[float, float] | str
-_NOISE = ("fBm", "Worley", "Hash", "Tile")
-_PATTERNS = ("Bricks", "Weave")
+#: From the registry: the seeded primitives (noise, Hash, Tile) and the periodic patterns.
+_PATTERNS = tuple(name for name, spec in FUNCTIONS.items() if spec.family == "pattern")
+_NOISE = tuple(name for name, spec in FUNCTIONS.items() if spec.is_noise and name not in _PATTERNS)
 
 
 def make_tileable(program: A.Program) -> A.Program:
