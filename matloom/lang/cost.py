@@ -191,10 +191,6 @@ def _field_children(node: A.Node) -> tuple[A.Node, ...]:
     return tuple(a.value for a in node.args if a.param in fields)
 
 
-#: Instances a Tile evaluates its motif in (its cell and the 8 neighbours).
-TILE_INSTANCES = 9
-
-
 def _shape_nodes(node: A.Call) -> int:
     """Extra nodes of a Fill/Stroke: its shape and the shape's path segments."""
     shape = node.arg("shape")
@@ -242,8 +238,9 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
         values = None if warp else _transform_values(node)
         params = tuple(node.arg(name) for name in warp)
         return ("transform", node.func, values, node.arg("expr"), params, 1)
-    if isinstance(node, A.Call) and node.func == "Tile":
-        return ("transform", node.func, None, node.arg("expr"), (), TILE_INSTANCES)
+    spec = FUNCTIONS.get(node.func) if isinstance(node, A.Call) else None
+    if spec is not None and spec.instances:  # instancing (Tile): one frame per instance
+        return ("transform", node.func, None, node.arg("expr"), (), spec.instances)
     extra = _shape_nodes(node) if isinstance(node, A.Call) and node.func in _SHAPED else 0
     axis = isinstance(node, A.Call) and node.func in ("X", "Y")
     if axis or _constant(node, constants):

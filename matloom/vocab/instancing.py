@@ -96,5 +96,6 @@ def instancing_specs() -> list[FunctionSpec]:
             ),
             print_style=PrintStyle.NONDEFAULT_KEYWORDS,
             since=2,
+            instances=9,
         )
     ]

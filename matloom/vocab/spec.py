@@ -150,6 +150,9 @@ class FunctionSpec:
     min_variadic: int = 0
     #: Language version that introduced the function (see ``ParamSpec.since``).
     since: int = 1
+    #: Instancing: the frames its ``expr`` is evaluated in per sample (Tile: its cell and the 8
+    #: neighbours); 0 for every other function. The cost walk counts the operand this often.
+    instances: int = 0
 
     def param(self, name: str) -> ParamSpec | None:
         for p in self.params:

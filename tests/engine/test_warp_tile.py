@@ -169,6 +169,9 @@ def test_tile_support_culling_and_backends_agree(expr, monkeypatch):
 
 
 def test_tile_counts_nine_instances_of_its_motif():
+    from matloom.vocab import FUNCTIONS
+
+    assert FUNCTIONS["Tile"].instances == len(T.NEIGHBOURS)  # the registry and the kernel agree
     one = expanded_cost(matloom.parse(f"Material(Layer(1).height({_MOTIF}))"))
     tiled = expanded_cost(matloom.parse(f"Material(Layer(1).height(Tile({_MOTIF}, 1, 1)))"))
     assert tiled.arrays == one.arrays * 9
