@@ -7,9 +7,10 @@ from __future__ import annotations
 
 import difflib
 import enum
-import functools
 from collections.abc import Iterable
 from dataclasses import dataclass
+
+from matloom.lang.excerpt import caret_excerpt
 
 
 class Severity(enum.Enum):
@@ -82,36 +83,6 @@ class Diagnostic:
         return self.format()
 
 
-@functools.lru_cache(maxsize=4)
-def _source_lines(source: str) -> tuple[str, ...]:
-    """Lines of ``source``, cached: a program with many diagnostics is split once, not per
-    diagnostic (which was quadratic on large inputs)."""
-    return tuple(source.split("\n"))
-
-
-def caret_excerpt(source: str, span: Span, context: int = 1) -> str:
-    """The offending line (plus ``context`` lines before it) with a caret line under the span."""
-    lines = _source_lines(source)
-    idx = max(0, min(span.line - 1, len(lines) - 1))
-    out = []
-    width = len(str(idx + 1))
-    for i in range(max(0, idx - context), idx + 1):
-        text = lines[i] if i < len(lines) else ""
-        if len(text) > 160:  # keep excerpts readable for very long lines
-            lo = max(0, span.col - 80) if i == idx else 0
-            text = ("..." if lo else "") + text[lo : lo + 160]
-        out.append(f" {str(i + 1).rjust(width)} | {text}")
-    line_text = lines[idx] if idx < len(lines) else ""
-    col0 = span.col - 1
-    if len(line_text) > 160:
-        lo = max(0, span.col - 80)
-        col0 = col0 - lo + (3 if lo else 0)
-    length = max(1, min(span.end - span.start, max(1, len(line_text) - (span.col - 1))))
-    length = min(length, 80)
-    out.append(f" {' ' * width} | {' ' * col0}{'^' * length}")
-    return "\n".join(out)
-
-
 def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
     """The closest candidate to ``word`` (case-insensitive first), or ``None``."""
     cands = list(dict.fromkeys(candidates))
@@ -144,3 +115,16 @@ class ProgramError(ValueError):
 
 def format_diagnostics(diags: Iterable[Diagnostic], filename: str = "<program>") -> str:
     return "\n\n".join(d.format(filename) for d in diags)
+
+
+__all__ = [
+    "NO_SPAN",
+    "Diagnostic",
+    "ProgramError",
+    "Severity",
+    "Span",
+    "caret_excerpt",
+    "did_you_mean",
+    "format_diagnostics",
+    "hint_for",
+]

@@ -8,6 +8,7 @@ import re
 import sys
 from dataclasses import dataclass
 
+from matloom.lang.brackets import wrong_bracket_hint
 from matloom.lang.diagnostics import Span
 
 MAX_SOURCE_CHARS = 2_000_000
@@ -82,7 +83,7 @@ class Lexer:
         while i < n:
             m = _TOKEN.match(src, i)
             if m is None:
-                raise self._bad_character(i)
+                raise self._bad_character(i, out)
             kind, end = m.lastgroup, m.end()
             if len(out) >= MAX_TOKENS and kind not in ("ws", "comment"):
                 raise LexError(
@@ -107,7 +108,7 @@ class Lexer:
         out.append(Token("EOF", "", self.span(n, n)))
         return out
 
-    def _bad_character(self, i: int) -> LexError:
+    def _bad_character(self, i: int, before: list[Token]) -> LexError:
         c = self.src[i]
         if c in "\"'":
             return LexError(
@@ -120,7 +121,7 @@ class Lexer:
         if c == ";":
             hint = "statements are not separated by ';' — remove it"
         elif c in "[]{}":
-            hint = "only round parentheses are used in MatLoom programs"
+            hint = wrong_bracket_hint(before, c, self.span(i, i + 1))
         elif c == "`":
             hint = "remove Markdown code fences around the program"
         return LexError(

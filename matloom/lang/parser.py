@@ -14,6 +14,10 @@ One grammar for the whole program (no regex splitting):
     atom     := NUM | STRING | IDENT "(" [arg {"," arg}] ")" | IDENT | "(" expr ")"
     arg      := IDENT "=" expr | expr
 
+Statements, Material and Layers are parsed here, View in :mod:`matloom.lang.parse_view`,
+expressions and calls in :mod:`matloom.lang.parse_expr`; the token cursor and diagnostics are
+in :mod:`matloom.lang.parse_base`. Bracket-related errors get their hints from the bracket
+analysis of :mod:`matloom.lang.brackets` (which construct's parenthesis is extra or missing).
 Binding of arguments to registry parameters happens here; value checks live in the checker.
 Syntax errors inside one statement are reported and the parser resynchronises at the next
 statement, so one pass reports as many independent problems as possible.
@@ -22,96 +26,18 @@ statement, so one pass reports as many independent problems as possible.
 from __future__ import annotations
 
 from matloom.lang import ast as A
-from matloom.lang.aliases import channel_alias, name_alias
+from matloom.lang.aliases import channel_alias
 from matloom.lang.comments import attach_comments
-from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
-from matloom.lang.lexer import MAX_SOURCE_CHARS, Lexer, LexError, Token
+from matloom.lang.diagnostics import Diagnostic, Severity, Span, hint_for
+from matloom.lang.lexer import MAX_SOURCE_CHARS, LexError, Token
+from matloom.lang.parse_base import _Bail as _Bail
+from matloom.lang.parse_base import node_span as node_span
+from matloom.lang.parse_expr import KEYWORDS, MAX_NESTING, ExpressionParser
 from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS, Returns
 
-MAX_NESTING = 100
-"""Maximum expression nesting depth, and maximum depth of an expression tree (documented limit).
 
-It bounds the recursion of the parser and of every recursive tree walker (checker, printer,
-evaluator), so hostile inputs such as ``((((...`` or ``1+1+...+1`` fail with E070 instead of
-exhausting Python's stack (the parser needs about 6 frames per nesting level)."""
-
-_STATEMENTS = ("View", "Define", "Material", "Layer")
-_BINARY_FUNCS = {"Add": "+", "Sub": "-", "Mul": "*", "Div": "/", "Pow": "**"}
-
-
-class _Bail(Exception):
-    """Abort the current statement after a syntax error has been recorded."""
-
-
-class Parser:
+class Parser(ExpressionParser):
     """Parses one program. Use :func:`parse_source` rather than this class directly."""
-
-    def __init__(self, source: str) -> None:
-        self.src = source
-        self.lexer = Lexer(source)
-        self.toks: list[Token] = []
-        self.i = 0
-        self.depth = 0
-        self.diags: list[Diagnostic] = []
-        self.defined: dict[str, None] = {}  # ordered set: O(1) lookups on huge inputs
-        self.all_define_names: set[str] = set()
-        self.broken_defines: set[str] = set()
-
-    # ---------------------------------------------------------------- diagnostics
-    def diag(
-        self,
-        code: str,
-        msg: str,
-        span: Span,
-        expected: str | None = None,
-        hint: str | None = None,
-        severity: Severity = Severity.ERROR,
-    ) -> None:
-        self.diags.append(
-            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
-        )
-
-    def fail(
-        self, code: str, msg: str, span: Span, expected: str | None = None, hint: str | None = None
-    ) -> _Bail:
-        self.diag(code, msg, span, expected, hint)
-        return _Bail()
-
-    # ---------------------------------------------------------------- token helpers
-    def peek(self, k: int = 0) -> Token:
-        return self.toks[min(self.i + k, len(self.toks) - 1)]
-
-    def next(self) -> Token:
-        tok = self.toks[self.i]
-        if tok.kind != "EOF":
-            self.i += 1
-        return tok
-
-    def at(self, text: str, k: int = 0) -> bool:
-        t = self.peek(k)
-        return t.kind in ("OP", "IDENT") and t.text == text
-
-    def expect(self, text: str, context: str = "") -> Token:
-        tok = self.peek()
-        if tok.kind in ("OP", "IDENT") and tok.text == text:
-            return self.next()
-        where = f" {context}" if context else ""
-        hint = None
-        if text == ")" and tok.kind in ("NUM", "IDENT", "STR"):
-            hint = "a ',' may be missing between arguments"
-        elif text == "," and tok.text == ")":
-            hint = "an argument is missing"
-        raise self.fail(
-            "E010",
-            f"expected '{text}'{where} but found {tok.describe()}",
-            tok.span,
-            expected=f"'{text}'",
-            hint=hint,
-        )
-
-    def span_from(self, start: Span) -> Span:
-        prev = self.toks[self.i - 1] if self.i > 0 else self.peek()
-        return Span(start.start, max(start.end, prev.span.end), start.line, start.col)
 
     # ---------------------------------------------------------------- program
     def parse(self) -> A.Program | None:
@@ -183,7 +109,8 @@ class Parser:
                         "Layer outside Material(...)",
                         tok.span,
                         expected="Material(Layer(...), ...)",
-                        hint="put every Layer inside one Material(...)",
+                        hint=self.brackets.closed_early(self.i)
+                        or "put every Layer inside one Material(...)",
                     )
                 else:
                     raise self._unexpected_statement(tok, layers is not None)
@@ -193,7 +120,7 @@ class Parser:
                 self._skip_statement(start)
         if layers is None:
             eof = self.peek()
-            if not getattr(self, "material_started", False) and not any(
+            if not self.material_started and not any(
                 d.code in ("E012", "E025") for d in self.diags
             ):
                 self.diag(
@@ -207,16 +134,20 @@ class Parser:
         return attach_comments(program, self.lexer.comments, self.toks)
 
     def _unexpected_statement(self, tok: Token, after_material: bool) -> _Bail:
+        hint = None
+        if _is_close(tok):
+            hint = self.brackets.extra_close(self.i)
+        elif tok.kind == "IDENT" and not after_material:
+            hint = hint_for(tok.text, KEYWORDS)  # a misspelt statement
+        hint = hint or self.brackets.closed_early(self.i)
         if after_material:
             return self.fail(
                 "E012",
                 f"unexpected trailing input {tok.describe()} after Material(...)",
                 tok.span,
                 expected="end of input",
+                hint=hint,
             )
-        hint = None
-        if tok.kind == "IDENT":
-            hint = hint_for(tok.text, _STATEMENTS)
         return self.fail(
             "E012",
             f"unexpected {tok.describe()} at top level",
@@ -310,7 +241,7 @@ class Parser:
                 expected="a unique name",
                 hint="rename one of the Defines",
             )
-        elif name in FUNCTIONS or name in CONSTANTS or name in LITERALS or name in _STATEMENTS:
+        elif name in FUNCTIONS or name in CONSTANTS or name in LITERALS or name in KEYWORDS:
             self.diag(
                 "W005",
                 f"Define name '{name}' is shadowed by a built-in and can never be referenced",
@@ -345,15 +276,9 @@ class Parser:
                         "trailing comma after the last layer",
                         tok.span,
                         expected="another Layer(...) or no comma",
+                        hint=self.brackets.trailing_comma(self.i - 1),
                     )
-                hint = hint_for(tok.text, ["Layer"]) if tok.kind == "IDENT" else None
-                raise self.fail(
-                    "E025",
-                    f"expected Layer(...) but found {tok.describe()}",
-                    tok.span,
-                    expected="Layer(...)",
-                    hint=hint,
-                )
+                raise self._not_a_layer(tok)
             layers.append(self.parse_layer())
             if self.at(","):
                 self.next()
@@ -361,15 +286,31 @@ class Parser:
             break
         if not self.at(")"):
             tok = self.peek()
+            hint = "a ',' may be missing between layers" if tok.text == "Layer" else None
             raise self.fail(
                 "E010",
                 f"expected ',' or ')' after a layer but found {tok.describe()}",
                 tok.span,
                 expected="',' between layers or ')' to close Material",
-                hint="a ',' may be missing between layers" if tok.text == "Layer" else None,
+                hint=hint or self.missing_close_hint(),
             )
         self.next()
         return tuple(layers)
+
+    def _not_a_layer(self, tok: Token) -> _Bail:
+        """E025 where a ``Layer(`` should stand in Material(...)."""
+        hint = hint_for(tok.text, ["Layer"]) if tok.kind == "IDENT" else None
+        if tok.kind == "EOF":
+            hint = self.brackets.ends_early(self.i)
+        elif tok.kind == "OP" and tok.text == "(":
+            hint = f"Material(...) holds only Layer(...) calls: remove the '(' at {tok.span.line}:{tok.span.col}"
+        return self.fail(
+            "E025",
+            f"expected Layer(...) but found {tok.describe()}",
+            tok.span,
+            expected="Layer(...)",
+            hint=hint,
+        )
 
     def parse_layer(self) -> A.Layer:
         kw = self.next()
@@ -456,241 +397,15 @@ class Parser:
             if self.at(","):
                 comma = self.next()
                 if self.at(")"):
-                    raise self.fail(
-                        "E013",
-                        "trailing comma in argument list",
-                        comma.span,
-                        expected="another argument",
-                    )
+                    raise self.trailing_comma(comma, "another argument")
                 continue
             break
         self.expect(")", f"to close .{name_tok.text}(...)")
         return args
 
-    # ---------------------------------------------------------------- expressions
-    def parse_expr(self) -> A.Node:
-        self.depth += 1
-        try:
-            if self.depth > MAX_NESTING:
-                raise self.fail(
-                    "E070",
-                    f"expression nested deeper than {MAX_NESTING} levels",
-                    self.peek().span,
-                    expected="a shallower expression",
-                    hint="move sub-expressions into Defines",
-                )
-            left = self.parse_muldiv()
-            chain = 0
-            while self.peek().kind == "OP" and self.peek().text in "+-" and self.peek().text:
-                op = self.next()
-                chain += 1
-                self._check_chain(chain, op)
-                right = self.parse_muldiv()
-                left = A.BinOp(op.text, left, right, _join(left, right, op.span))
-            if self.depth == 1 and _tree_depth(left) > MAX_NESTING:  # long operator chains
-                raise self.fail(
-                    "E070",
-                    f"expression tree deeper than {MAX_NESTING} levels",
-                    node_span(left, self.peek().span),
-                    expected="a shallower expression",
-                    hint="move sub-expressions into Defines",
-                )
-            return left
-        finally:
-            self.depth -= 1
 
-    def _check_chain(self, chain: int, op: Token) -> None:
-        """Fail early on an operator chain whose tree alone would exceed :data:`MAX_NESTING`."""
-        if chain >= MAX_NESTING:  # the chain alone makes the tree deeper than the limit
-            raise self.fail(
-                "E070",
-                f"expression tree deeper than {MAX_NESTING} levels",
-                op.span,
-                expected="a shallower expression",
-                hint="move sub-expressions into Defines",
-            )
-
-    def parse_muldiv(self) -> A.Node:
-        left = self.parse_unary()
-        chain = 0
-        while self.peek().kind == "OP" and self.peek().text in ("*", "/"):
-            op = self.next()
-            chain += 1
-            self._check_chain(chain, op)
-            right = self.parse_unary()
-            left = A.BinOp(op.text, left, right, _join(left, right, op.span))
-        return left
-
-    def parse_unary(self) -> A.Node:
-        tok = self.peek()
-        if tok.kind == "OP" and tok.text in ("-", "+"):
-            self.next()
-            nxt = self.peek()
-            if nxt.kind == "OP" and nxt.text in ("-", "+"):
-                raise self.fail(
-                    "E011",
-                    f"expected an expression after '{tok.text}' but found {nxt.describe()}",
-                    nxt.span,
-                    expected="a number, name or '('",
-                    hint="a sign cannot follow another sign; write -(-x)",
-                )
-            operand = self.parse_power()
-            if tok.text == "+":
-                return operand
-            return A.Neg(operand, self.span_from(tok.span))
-        return self.parse_power()
-
-    def parse_power(self) -> A.Node:
-        base = self.parse_atom()
-        if self.at("**"):
-            op = self.next()
-            self.depth += 1
-            try:
-                if self.depth > MAX_NESTING:
-                    raise self.fail(
-                        "E070",
-                        f"expression nested deeper than {MAX_NESTING} levels",
-                        op.span,
-                        expected="a shallower expression",
-                    )
-                exp = self.parse_unary()
-            finally:
-                self.depth -= 1
-            return A.BinOp("**", base, exp, _join(base, exp, op.span))
-        return base
-
-    def parse_atom(self) -> A.Node:
-        tok = self.peek()
-        if tok.kind == "NUM":
-            self.next()
-            return A.Num(tok.value, tok.span)  # type: ignore[arg-type]
-        if tok.kind == "STR":
-            self.next()
-            return A.Str(str(tok.value), tok.span)
-        if tok.kind == "OP" and tok.text == "(":
-            self.next()
-            inner = self.parse_expr()
-            self.expect(")", "to close '('")
-            return inner
-        if tok.kind == "IDENT":
-            if self.at("(", 1):
-                return self.parse_call()
-            return self.parse_name()
-        if tok.kind == "EOF":
-            raise self.fail(
-                "E011",
-                "expected an expression but found end of input",
-                tok.span,
-                expected="a number, name, call or '('",
-                hint="the program ends early; check for unclosed parentheses",
-            )
-        hint = "an argument is missing" if tok.text in (",", ")") else None
-        if tok.text == ".":
-            hint = "write numbers with a digit after the point, e.g. 0.5"
-        raise self.fail(
-            "E011",
-            f"expected an expression but found {tok.describe()}",
-            tok.span,
-            expected="a number, name, call or '('",
-            hint=hint,
-        )
-
-    def parse_name(self) -> A.Node:
-        tok = self.next()
-        name = tok.text
-        if name in LITERALS:
-            return A.Lit(LITERALS[name], tok.span)
-        if name in CONSTANTS:
-            return A.Const(name, tok.span)
-        if name in FUNCTIONS:
-            self.diag(
-                "E035",
-                f"'{name}' is a function — call it as {name}()",
-                tok.span,
-                expected=f"{name}(...)",
-            )
-            return A.Ref(name, tok.span)
-        if name in self.defined or name in self.broken_defines:
-            return A.Ref(name, tok.span)
-        current = getattr(self, "current_define", None)
-        if name == current:
-            self.diag(
-                "E060",
-                f"Define '{name}' refers to itself",
-                tok.span,
-                expected="only earlier Defines",
-                hint="Defines form an acyclic graph",
-            )
-        elif name in self.all_define_names:
-            self.diag(
-                "E060",
-                f"'{name}' is used before its Define",
-                tok.span,
-                expected="only Defines that appear earlier in the program",
-                hint=f"move Define({name}, ...) above this line",
-            )
-        else:
-            hint = hint_for(name, [*self.defined, *CONSTANTS]) or name_alias(name)
-            if hint is None and name in _STATEMENTS:
-                hint = f"{name}(...) is a statement, not an expression"
-            self.diag(
-                "E036",
-                f"unknown name '{name}'",
-                tok.span,
-                expected="an earlier Define, pi, e, or a function call",
-                hint=hint,
-            )
-        return A.Ref(name, tok.span)
-
-    def parse_call(self) -> A.Node:
-        from matloom.lang.binding import bind_call
-
-        name_tok = self.next()
-        self.next()  # '('
-        raw: list[tuple[Token | None, A.Node, Span]] = []
-        if not self.at(")"):
-            while True:
-                start = self.peek().span
-                key: Token | None = None
-                if self.peek().kind == "IDENT" and self.at("=", 1):
-                    key = self.next()
-                    self.next()
-                value = self.parse_expr()
-                raw.append((key, value, self.span_from(start)))
-                if self.at(","):
-                    comma = self.next()
-                    if self.at(")"):
-                        raise self.fail(
-                            "E013",
-                            "trailing comma in argument list",
-                            comma.span,
-                            expected="another argument or no comma",
-                        )
-                    continue
-                break
-        self.expect(")", f"to close {name_tok.text}(...)")
-        span = self.span_from(name_tok.span)
-        return bind_call(self, name_tok, raw, span)
-
-
-def _tree_depth(node: A.Node) -> int:
-    """Depth of an expression tree, computed without recursion."""
-    deepest, stack = 0, [(node, 1)]
-    while stack:
-        cur, d = stack.pop()
-        deepest = max(deepest, d)
-        stack.extend((c, d + 1) for c in A.children(cur))
-    return deepest
-
-
-def node_span(node: A.Node, fallback: Span) -> Span:
-    s = getattr(node, "span", None)
-    return s if s is not None and s.end > s.start else fallback
-
-
-def _join(left: A.Node, right: A.Node, op: Span) -> Span:
-    ls, rs = node_span(left, op), node_span(right, op)
-    return Span(ls.start, max(rs.end, op.end), ls.line, ls.col)
+def _is_close(tok: Token) -> bool:
+    return tok.kind == "OP" and tok.text == ")"
 
 
 def parse_source(source: str) -> tuple[A.Program | None, list[Diagnostic]]:
