@@ -21,7 +21,8 @@ and can be named in a ``matloom.toml`` file::
     extra_body = { reasoning = { enabled = true } }
 
 The file is looked up at ``$MATLOOM_CONFIG``, ``./matloom.toml``, then
-``~/.config/matloom/matloom.toml``.
+``~/.config/matloom/matloom.toml``. It can also name settings presets (``[settings.NAME]``,
+``[matloom] settings``; :mod:`matloom.author.settings_presets`).
 """
 
 from __future__ import annotations
@@ -39,6 +40,12 @@ CRITIC_SIGNALS: tuple[str, ...] = ("render", "stats", "code")
 TEXT_ONLY_MODEL_HINTS: tuple[str, ...] = ("deepseek", "glm")
 #: Default reply-size cap in characters (``AuthorConfig.max_reply_chars``, ``--max-reply-chars``).
 DEFAULT_MAX_REPLY_CHARS = 1_000_000
+#: Preview layouts a critic can be shown (``--critic-views``): "both" sends flat, then lit.
+CRITIC_VIEWS: dict[str, tuple[str, ...]] = {
+    "flat": ("flat",),
+    "lit": ("lit",),
+    "both": ("flat", "lit"),
+}
 
 
 class ConfigError(ValueError):
@@ -92,6 +99,18 @@ class AuthorConfig(BaseModel):
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS
+    #: Which preview layouts the critic sees (one image each): the paper's head-on ``flat``
+    #: swatch, the ``lit`` studio layout, or ``both``.
+    critic_views: Literal["flat", "lit", "both"] = "flat"
+    #: From round 1 on, the critic also sees the previous round's preview(s) and score and says
+    #: whether this round is better (the paper's critic is stateless: off).
+    critic_history: bool = False
+    #: The critic's statistics: the paper's 28 statistics on a ``stats_grid`` grid, or the
+    #: ``visible`` statistics computed at the critique resolution.
+    critic_stats: Literal["paper", "visible"] = "paper"
+    #: Attach the preview(s) of the program being revised to the revision turn when the
+    #: generator accepts images.
+    revision_images: bool = True
     critic_retries: int = Field(3, ge=0)
     #: Longest model reply read, in characters: a longer one is refused like any bad answer
     #: (the generator is asked again, the critic retried) and stored clipped to its start.
@@ -112,6 +131,8 @@ class AuthorConfig(BaseModel):
     seed: int = 0
     #: Make the final program tileable (``View(..., tileable=True)``) before it is exported.
     tileable: bool = False
+    #: The named settings preset these settings started from (``--settings``; recorded only).
+    settings_preset: str | None = None
 
     @field_validator("critic_signals", mode="before")
     @classmethod
@@ -140,6 +161,11 @@ class AuthorConfig(BaseModel):
     def effective_signals(self) -> tuple[str, ...]:
         """The signals actually sent: the render is dropped for a text-only critic."""
         return tuple(s for s in self.critic_signals if s != "render" or self.critic_sees_render())
+
+    @property
+    def views(self) -> tuple[str, ...]:
+        """The preview layouts of ``critic_views``, in the order the images are sent."""
+        return CRITIC_VIEWS[self.critic_views]
 
 
 # --------------------------------------------------------------------------- matloom.toml

@@ -1,10 +1,11 @@
 """Run records: the pydantic schema of ``record.json`` and its incremental, atomic storage.
 
 One folder per run holds ``record.json`` (everything: prompt, settings, model ids, per-stage
-durations, every message, every program, critiques, scores, selection, seed-search log), the
-critic renders under ``renders/``, and at the end ``material.mat``, ``preview.png`` and
-``maps/``. The record is rewritten atomically after every step, so a crash or a kill keeps every
-finished step and ``--resume`` continues from there.
+durations, every message, every program, critiques, scores, selection, seed-search log) and the
+critic renders under ``renders/``; at the end the final material is installed beside them in
+the layout ``matloom render`` writes (``material.mat``, ``preview.png``, the maps and
+``material.json``, as one staged batch). The record is rewritten atomically after every step, so
+a crash or a kill keeps every finished step and ``--resume`` continues from there.
 """
 
 from __future__ import annotations
@@ -81,6 +82,28 @@ class ProgramRecord(_Model):
     authored: str
     source: Literal["generator", "builtin"]
     program_seed: int
+    #: The seeds given to noise calls the author left unseeded (told to the model in the
+    #: revision turn, since its own text, which it sees again, lacks them).
+    added_seeds: list[str] = Field(default_factory=list)
+
+
+class EditRecord(_Model):
+    """One concrete edit proposed by the critic."""
+
+    layer: int | None = None
+    channel: str | None = None
+    define: str | None = None
+    change: str
+
+
+class HistoryRecord(_Model):
+    """What a critic with ``critic_history`` saw of the previous round, and its verdict."""
+
+    previous_index: int
+    previous_score: int | None = None
+    previous_renders: list[str] = Field(default_factory=list)
+    #: The critic's answer to "is this version better than the previous one?".
+    better: bool | None = None
 
 
 class CritiqueRecord(_Model):
@@ -91,8 +114,14 @@ class CritiqueRecord(_Model):
     match_score: int | None = None
     differences: list[str] = Field(default_factory=list)
     suggestions: list[str] = Field(default_factory=list)
+    edits: list[EditRecord] = Field(default_factory=list)
     signals: list[str]
+    #: The first image shown (this round's first view), for older readers of the record.
     render: str | None = None
+    #: The preview layouts shown and their images (this round's), in order.
+    views: list[str] = Field(default_factory=list)
+    renders: list[str] = Field(default_factory=list)
+    history: HistoryRecord | None = None
     model: str
     attempts: int
     seconds: float
@@ -182,8 +211,8 @@ class RunRecord(_Model):
     settings: AuthorConfig
     models: ModelIds = Field(default_factory=ModelIds)
     system_prompt: str | None = None
-    #: The generator conversation up to the last accepted program (accepted turns rewritten to
-    #: show the canonical program).
+    #: The generator conversation up to the last accepted program: the model's own replies (the
+    #: canonical programs are in ``programs``); images by path, sent only with their own turn.
     conversation: list[MessageRecord] = Field(default_factory=list)
     turns: list[TurnRecord] = Field(default_factory=list)
     programs: list[ProgramRecord] = Field(default_factory=list)
@@ -216,8 +245,11 @@ class RecordStore:
         return self.folder / RECORD_NAME
 
     def attach(self, out: OutputFolder) -> None:
-        """Write through ``out`` (locked, never replacing a foreign file) from now on."""
-        out.check_writable([RECORD_NAME, "material.mat", "preview.png"])
+        """Write through ``out`` (locked, never replacing a foreign file) from now on; fail at
+        once when the record or the final material would replace a foreign file."""
+        from matloom.io.export import planned_files
+
+        out.check_writable([RECORD_NAME, *planned_files(None, "png", preview=True)])
         self.out = out
 
     def redactor(self) -> Redactor:

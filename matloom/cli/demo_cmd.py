@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sys
 import time
 from pathlib import Path
@@ -101,7 +102,8 @@ def _timings(program: Any, size: int, first_run: float, compiling: bool) -> str:
 
 
 def _generate_offline(root: Path, size: int) -> list[str]:
-    """Run the `matloom generate` pipeline with no model (the built-in offline author)."""
+    """Run the `matloom generate` pipeline with no model (the built-in offline author); each
+    run folder holds the final material in the layout `matloom render` writes."""
     from matloom.author.config import AuthorConfig
     from matloom.author.pipeline import author_material
 
@@ -121,9 +123,10 @@ def _generate_offline(root: Path, size: int) -> list[str]:
         result = author_material(prompt, dest, config)
         files = result.record.final.files if result.record.final else {}
         folder = result.folder
+        manifest = json.loads((folder / files["manifest"]).read_text(encoding="utf-8"))
         out.append(f'"{prompt}" ({time.perf_counter() - t0:.2f} s):')
-        out.append(f"  program  {folder / files.get('program', 'material.mat')}")
-        out.append(f"  maps     {folder / files.get('maps', 'maps')}/")
-        out.append(f"  preview  {folder / files.get('preview', 'preview.png')}")
+        out.append(f"  program  {folder / files['program']}")
+        out.append(f"  maps     {folder}/ ({len(manifest['maps'])} maps + material.json)")
+        out.append(f"  preview  {folder / files['preview']}")
         out.append(f"  record   {folder / 'record.json'}")
     return out

@@ -12,209 +12,15 @@ from pathlib import Path
 from typing import Any
 
 import click
-from click.core import ParameterSource
 
-from matloom.author.config import AuthorConfig, ConfigError, ModelSettings
-
-#: Flags that map 1:1 onto AuthorConfig fields.
-_CONFIG_FLAGS: dict[str, str] = {
-    "rounds": "rounds",
-    "variants": "variants",
-    "scorer": "scorer",
-    "scorer_weights": "scorer_weights",
-    "critic_signals": "critic_signals",
-    "seed": "seed",
-    "repair_turns": "repair_turns",
-    "sweep_jobs": "sweep_jobs",
-    "critique_size": "critique_size",
-    "select_size": "select_size",
-    "sweep_size": "sweep_size",
-    "export_size": "export_size",
-    "stats_grid": "stats_grid",
-    "playbook": "playbook",
-    "few_shot": "few_shot",
-    "start": "start",
-    "max_reply_chars": "max_reply_chars",
-    "tileable": "tileable",
-}
-#: Flags that override generator model settings.
-_MODEL_FLAGS: dict[str, str] = {
-    "model": "model",
-    "base_url": "base_url",
-    "temperature": "temperature",
-    "reasoning_effort": "reasoning_effort",
-    "timeout": "timeout_s",
-    "max_retries": "max_retries",
-    "images": "images",
-    "retry_backoff": "backoff_s",
-}
-
-
-def _explicit(ctx: click.Context) -> set[str]:
-    """Names of the options the user actually gave on the command line."""
-    return {
-        name
-        for name in ctx.params
-        if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)
-    }
-
-
-def _generator_settings(
-    params: dict[str, Any], given: set[str], base: ModelSettings | None
-) -> ModelSettings | None:
-    from matloom.author.config import load_config_file, resolve_profile, with_overrides
-
-    data = load_config_file(params["config_file"])
-    if "profile" in given or (base is None and "model" not in given):
-        base = resolve_profile(data, params["profile"]) or base
-    updates = {_MODEL_FLAGS[k]: params[k] for k in _MODEL_FLAGS if k in given}
-    if params.get("extra_body"):
-        updates["extra_body"] = json.loads(params["extra_body"])
-    return with_overrides(base, **updates)
-
-
-def _critic_settings(
-    params: dict[str, Any],
-    given: set[str],
-    generator: ModelSettings | None,
-    base: ModelSettings | None,
-) -> ModelSettings | None:
-    from matloom.author.config import load_config_file, resolve_profile, with_overrides
-
-    if "critic_profile" in given:
-        base = resolve_profile(load_config_file(params["config_file"]), params["critic_profile"])
-    if "critic_model" in given and generator is not None and base is None:
-        base = generator.model_copy(update={"images": None})
-    updates: dict[str, Any] = {}
-    if "critic_model" in given:
-        updates["model"] = params["critic_model"]
-    if "critic_base_url" in given:
-        updates["base_url"] = params["critic_base_url"]
-    if "critic_images" in given:
-        updates["images"] = params["critic_images"]
-    return with_overrides(base, **updates)
-
-
-def build_config(
-    params: dict[str, Any], given: set[str], base: AuthorConfig | None = None
-) -> AuthorConfig:
-    """The frozen config from flags: explicit flags override ``base`` (a resumed run's
-    settings) or the defaults; model access comes from the profile and model flags."""
-    fresh = base is None
-    base = base or AuthorConfig()
-    update: dict[str, Any] = {
-        field: params[flag] for flag, field in _CONFIG_FLAGS.items() if fresh or flag in given
-    }
-    generator = _generator_settings(params, given, base.generator)
-    critic = _critic_settings(params, given, generator, base.critic)
-    data = {**base.model_dump(), **update, "generator": generator, "critic": critic}
-    return AuthorConfig.model_validate(data)
-
-
-def _model_options(f: Any) -> Any:
-    options = [
-        click.option("--profile", help="Model profile from matloom.toml."),
-        click.option(
-            "--config",
-            "config_file",
-            type=click.Path(dir_okay=False),
-            help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
-            "~/.config/matloom/matloom.toml).",
-        ),
-        click.option("--model", help="Generator model id (OpenAI-compatible)."),
-        click.option(
-            "--base-url", help="Chat Completions endpoint, e.g. http://localhost:8000/v1."
-        ),
-        click.option("--temperature", type=float),
-        click.option("--reasoning-effort"),
-        click.option("--extra-body", help="JSON object merged into each request body."),
-        click.option("--timeout", type=float, help="Seconds per model request."),
-        click.option("--max-retries", type=int, help="Retries on 429/5xx/timeouts."),
-        click.option(
-            "--retry-backoff",
-            type=float,
-            help="First retry delay in seconds (grows 1.5x per retry).",
-        ),
-        click.option(
-            "--images/--no-images",
-            default=None,
-            help="Whether the generator model accepts images (default: guessed).",
-        ),
-        click.option("--critic-model", help="Critic model (default: the generator's)."),
-        click.option("--critic-profile", help="Critic model profile from matloom.toml."),
-        click.option("--critic-base-url"),
-        click.option(
-            "--critic-images/--no-critic-images",
-            default=None,
-            help="Whether the critic accepts images; text-only critics get no render.",
-        ),
-    ]
-    for option in reversed(options):
-        f = option(f)
-    return f
-
-
-def _pipeline_options(f: Any) -> Any:
-    d = AuthorConfig()
-    options = [
-        click.option(
-            "--start",
-            type=click.Choice(["model", "builtin"]),
-            default=d.start,
-            show_default=True,
-            help="Who writes P0 when a model is configured: the model, or the built-in offline "
-            "author (the model then critiques and revises it).",
-        ),
-        click.option("--rounds", type=int, default=d.rounds, show_default=True),
-        click.option(
-            "--variants",
-            type=int,
-            default=d.variants,
-            show_default=True,
-            help="Seed variants per candidate in the seed search.",
-        ),
-        click.option(
-            "--scorer",
-            default=d.scorer,
-            show_default=True,
-            help="auto, none, mobileclip2, open_clip:MODEL:WEIGHTS, test-colour, ...",
-        ),
-        click.option("--scorer-weights", help="Local MobileCLIP2-S2 weights file."),
-        click.option("--critic-signals", default=",".join(d.critic_signals), show_default=True),
-        click.option("--seed", type=int, default=d.seed, show_default=True),
-        click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),
-        click.option(
-            "--sweep-jobs",
-            type=int,
-            default=d.sweep_jobs,
-            show_default=True,
-            help="Render processes per sweep (0 = all cores).",
-        ),
-        click.option("--critique-size", type=int, default=d.critique_size, show_default=True),
-        click.option("--select-size", type=int, default=d.select_size, show_default=True),
-        click.option("--sweep-size", type=int, default=d.sweep_size, show_default=True),
-        click.option("--export-size", type=int, default=d.export_size, show_default=True),
-        click.option("--stats-grid", type=int, default=d.stats_grid, show_default=True),
-        click.option(
-            "--max-reply-chars",
-            type=int,
-            default=d.max_reply_chars,
-            show_default=True,
-            help="Longest model reply read; a longer one is refused as a bad answer.",
-        ),
-        click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
-        click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
-        click.option(
-            "--tileable",
-            is_flag=True,
-            default=d.tileable,
-            help="Make the final material tileable (View(..., tileable=True)); the offline "
-            "author already does where the material allows it.",
-        ),
-    ]
-    for option in reversed(options):
-        f = option(f)
-    return f
+from matloom.author.config import AuthorConfig, ConfigError
+from matloom.cli.generate_options import (
+    SEARCH_FLAGS,
+    build_config,
+    explicit_flags,
+    model_options,
+    pipeline_options,
+)
 
 
 class ProgressView:
@@ -289,8 +95,8 @@ class ProgressView:
     is_flag=True,
     help="Print (on stderr) which built-in recipe, slots and modifiers were chosen and why.",
 )
-@_model_options
-@_pipeline_options
+@model_options
+@pipeline_options
 @click.pass_context
 def generate_cmd(
     ctx: click.Context,
@@ -309,7 +115,7 @@ def generate_cmd(
     With no model configured (no --model, --profile or default profile) the built-in offline
     author is used.
     """
-    given = _explicit(ctx)
+    given = explicit_flags(ctx)
     try:
         base = _resumed_settings(out_dir) if resume and not prompts_file else None
         config = build_config(ctx.params, given, base)
@@ -328,7 +134,10 @@ def generate_cmd(
     if prompts_file:
         _run_batch(prompts_file, out_dir, config, jobs, resume, as_json, view)
     else:
-        _run_single(prompt, out_dir, config, resume, as_json, view, explain)
+        asked = bool(SEARCH_FLAGS & given) and not (
+            "variants" not in given and config.scorer == "none"
+        )
+        _run_single(prompt, out_dir, config, resume, as_json, view, explain, asked)
 
 
 def _resumed_settings(out_dir: str) -> AuthorConfig | None:
@@ -347,12 +156,16 @@ def _run_single(
     as_json: bool,
     view: ProgressView,
     explain: bool = False,
+    search_asked: bool = False,
 ) -> None:
     from matloom.author.pipeline import AuthoringError, author_material
+    from matloom.io.outdir import OutputError
 
     try:
         with view:
             result = author_material(prompt, out_dir, config, resume=resume, progress=view.update)
+    except OutputError as err:  # the folder cannot be used: nothing was done
+        raise click.ClickException(str(err)) from None
     except AuthoringError as err:
         raise click.ClickException(
             f"{err}\n(the record is kept in {Path(err.folder) / 'record.json'}; "
@@ -371,7 +184,8 @@ def _run_single(
         click.echo(json.dumps(result.summary(), indent=2))
     else:
         click.echo(result.program)
-    _say_scorer_note(result.record)
+    if search_asked:
+        _say_scorer_note(result.record)
     _say_warnings(result.record)
 
 
@@ -395,6 +209,8 @@ def _say_warnings(record: Any, prefix: str = "matloom") -> None:
 
 
 def _say_scorer_note(record: Any) -> None:
+    """Why the seed search was skipped (only said when the user asked for a scorer or a
+    search: otherwise the record keeps it)."""
     search = record.seed_search
     if search is not None and search.skipped:
         click.echo(f"matloom: seed search skipped: {search.skipped}", err=True)
@@ -459,17 +275,44 @@ def _run_batch(
     default=None,
     help="Print the critic system prompt for these signals instead (e.g. render,code).",
 )
-def prompt_cmd(do_print: bool, playbook: bool, few_shot: bool, critic_signals: str | None) -> None:
+@click.option(
+    "--views",
+    type=click.Choice(["flat", "lit", "both"]),
+    default="flat",
+    show_default=True,
+    help="The preview layouts the critic sees (as --critic-views of generate).",
+)
+@click.option(
+    "--size",
+    type=int,
+    default=AuthorConfig().critique_size,
+    show_default=True,
+    help="The render size the prompt states (--critique-size of generate).",
+)
+@click.option("--history", is_flag=True, help="With --critic: the critic sees the previous round.")
+def prompt_cmd(  # noqa: PLR0913 - one flag each
+    do_print: bool,
+    playbook: bool,
+    few_shot: bool,
+    critic_signals: str | None,
+    views: str,
+    size: int,
+    history: bool,
+) -> None:
     """Print the generator system prompt (rendered from the vocabulary registry)."""
+    from matloom.author.config import CRITIC_VIEWS
+
+    shown = CRITIC_VIEWS[views]
     if critic_signals is not None:
         from matloom.author.prompts.critic import critic_system_prompt
 
         signals = [s.strip() for s in critic_signals.split(",") if s.strip()]
-        click.echo(critic_system_prompt(signals), nl=False)
+        click.echo(critic_system_prompt(signals, shown, history=history), nl=False)
         return
     from matloom.author.prompts.system import system_prompt
 
-    click.echo(system_prompt(playbook=playbook, few_shot=few_shot), nl=False)
+    text = system_prompt(playbook=playbook, few_shot=few_shot, render_size=size, views=shown)
+    click.echo(text, nl=False)
 
 
 @click.group("scorer")

@@ -73,12 +73,16 @@ def test_full_run_with_repair_critique_selection_and_seed_search(
     repair = text_of(generator_requests(server)[1]["messages"][-1])
     assert re.search(r"program:5:6: error E\d+: unknown layer channel", repair)
     assert "^^^" in repair and "hint: did you mean `roughness`?" in repair
-    # Accepted programs are canonicalised with explicit seeds and shown to the model that way.
+    # Accepted programs are canonicalised with explicit seeds for rendering and the record; the
+    # conversation keeps the model's own reply, and the revision turn lists the added seeds.
     record = validate_record_file(tmp_path / "run" / "record.json")
     assert all("seed=" in p.text for p in record.programs)
     later = generator_requests(server)[2]["messages"]
     shown = [text_of(m) for m in later if m["role"] == "assistant"][-1]
-    assert record.programs[0].text in shown and "<material>" in shown
+    assert shown == record.turns[0].attempts[1].reply == record.programs[0].authored
+    assert record.programs[0].text not in shown and record.programs[0].added_seeds
+    seeds = text_of(later[-1]).split("## Seeds\n", 1)[1]
+    assert all(note in seeds for note in record.programs[0].added_seeds)
 
     # Stage II: five rounds -> P0..P5, one critique each, images for a multimodal critic.
     assert len(record.programs) == 6 and len(record.critiques) == 6
@@ -88,7 +92,9 @@ def test_full_run_with_repair_critique_selection_and_seed_search(
         (part,) = image_parts(request["messages"][1])
         assert part["image_url"]["url"].startswith("data:image/jpeg;base64,")
     revision = text_of(generator_requests(server)[2]["messages"][-1])
-    assert "scored the match" in revision and "including any seed= values" in revision
+    for heading in ("## Score", "## What differs", "## What to change", "## Answer"):
+        assert heading in revision
+    assert "including any seed= values" in revision and "the last one is used" in revision
 
     # Stage III: selection over the trajectory, sweeps over distinct {0, j, 5}.
     assert record.selection.method == "scorer" and len(record.selection.scores) == 6
@@ -106,7 +112,7 @@ def test_full_run_with_repair_critique_selection_and_seed_search(
     assert matloom.check(record.final.program) == [] or all(
         not d.is_error for d in matloom.check(record.final.program)
     )
-    assert (run / "preview.png").exists() and (run / "maps" / "basecolor.png").exists()
+    assert (run / "preview.png").exists() and (run / "basecolor.png").exists()
     assert summary["program"] == record.final.program and summary["status"] == "finished"
     d = record.durations
     assert len(d.generation) == 6 and len(d.critique) == 6 and d.select is not None

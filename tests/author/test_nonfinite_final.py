@@ -44,7 +44,7 @@ def test_nan_last_round_falls_back_to_the_best_finite_round(
     assert f"warning: {warning}" in result.stderr
     assert record.final.program_index == 0 and record.final.nonfinite_texels == 0
     assert (tmp_path / "run" / "material.mat").read_text().strip() == record.programs[0].text
-    manifest = json.loads((tmp_path / "run" / "maps" / "material.json").read_text())
+    manifest = json.loads((tmp_path / "run" / "material.json").read_text())
     assert manifest["nonfinite_values"] == {}
 
 

@@ -107,7 +107,7 @@ def test_revision_turn_shows_p0_as_the_models_previous_answer(
     assert request["role"] == "user" and text_of(request) == request_message(PROMPT)
     assert answer["role"] == "assistant"
     assert text_of(answer) == _material_block(author(PROMPT, seed=0).program)
-    assert critique_turn["role"] == "user" and "scored the match" in text_of(critique_turn)
+    assert critique_turn["role"] == "user" and "## Score\n" in text_of(critique_turn)
 
 
 def test_start_builtin_uses_the_run_seed(server: ChatServer, tmp_path: Path) -> None:

@@ -1,30 +1,80 @@
 """Critic prompts (reference-engine.md §8.4): a system prompt and a CO-STAR user message whose
-content depends on which signals (render, stats, code) the critic receives."""
+content depends on which signals (render, stats, code) the critic receives, which preview
+layouts it is shown (``flat``, ``lit``) and whether it also sees the previous round.
+
+The answer schema shows ``match_score`` as a number, ``edits`` (concrete changes naming a layer
+and a channel, or a Define) when the critic reads the code, and ``better_than_previous`` when it
+sees the previous round.
+"""
 
 from __future__ import annotations
 
 import json
-from collections.abc import Collection
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
 
 from matloom.author.prompts.system import dsl_reference
 
-#: Field descriptions of the critic's JSON answer (paper appendix, verbatim).
+#: Field descriptions of the critic's JSON answer (the first three: paper appendix, verbatim).
 CRITIQUE_FIELDS: dict[str, str] = {
     "match_score": "0-100, how well the image matches the description",
     "differences": "Concrete visual mismatches between image and description",
     "suggestions": "Concrete appearance changes that would improve the match",
+    "edits": "optional concrete program edits; each names a layer (0 = bottom) and a channel, "
+    "or a Define, and the exact change",
+    "better_than_previous": "true if this version matches the description better than the "
+    "previous one, else false",
 }
 
-_LAYOUT_NOTE = (
+_FLAT_NOTE = (
     "The render is a flat, head-on swatch under one fixed light: little relief, reflectance or "
     "transmission is visible in this layout, so do not over-penalise those."
 )
+_BOTH_NOTE = (
+    "The flat render shows colour and pattern under one fixed light, with little relief, "
+    "reflectance or transmission; judge gloss, metal, sheen, coat, transmission and relief from "
+    "the lit render."
+)
 
 
-def _shown_list(signals: Collection[str]) -> str:
+def module_layout_note(view: str) -> str | None:
+    """What the preview module says of layout ``view`` (``LIT_LAYOUT_NOTE`` of
+    :mod:`matloom.render.lit`, without its "lit preview: " lead), or None when it says
+    nothing."""
+    if view != "lit":
+        return None
+    try:
+        from matloom.render.lit import LIT_LAYOUT_NOTE
+    except ImportError:
+        return None
+    note = str(LIT_LAYOUT_NOTE).strip()
+    prefix = f"{view} preview: "
+    return note[len(prefix) :] if note.lower().startswith(prefix) else note
+
+
+def layout_notes(views: Sequence[str]) -> str:
+    """What the critic should know about the preview layouts it is shown."""
+    if tuple(views) == ("flat",):
+        return _FLAT_NOTE
+    notes = [_BOTH_NOTE] if "flat" in views else []
+    lit = module_layout_note("lit")
+    notes.append(f"About the lit render: {lit}" if lit else "The lit render is shaded physically.")
+    return " ".join(notes)
+
+
+def _render_line(views: Sequence[str]) -> str:
+    if tuple(views) == ("flat",):
+        return "- a single render of the material on a flat plane seen head-on"
+    if tuple(views) == ("lit",):
+        return "- a single render of the material on a flat plane in the lit studio layout"
+    names = " and ".join(f"the {v}" for v in views)
+    return f"- {len(views)} renders of the same material on a flat plane: {names} layout"
+
+
+def _shown_list(signals: Collection[str], views: Sequence[str], history: bool) -> str:
     items = ["- the target description"]
     if "render" in signals:
-        items.append("- a single render of the material on a flat plane seen head-on")
+        items.append(_render_line(views))
     if "code" in signals:
         items.append("- the program source in the layered-material DSL")
     if "stats" in signals:
@@ -32,23 +82,27 @@ def _shown_list(signals: Collection[str]) -> str:
         if "render" not in signals:
             line += " (no render is shown)"
         items.append(line)
+    if history:
+        seen = "render(s) and score" if "render" in signals else "score"
+        items.append(f"- from the second round on, the previous version's {seen}")
     return "You are shown:\n" + "\n".join(items)
 
 
-def _judge_clause(signals: Collection[str]) -> str:
+def _judge_clause(signals: Collection[str], views: Sequence[str]) -> str:
     render, code, stats = "render" in signals, "code" in signals, "stats" in signals
+    matches = "render matches" if len(views) == 1 else "renders match"
     if render and code:
         return (
-            "Judge how well the render matches the description, then give the smallest set of "
+            f"Judge how well the {matches} the description, then give the smallest set of "
             "line-targeted numeric edits: name the layer index in source order (0 = bottom "
             "substrate), the channel, and the exact value change. Do not rewrite the whole "
-            "program. " + _LAYOUT_NOTE
+            "program. " + layout_notes(views)
         )
     if render:
         return (
             "Judge only from visible appearance (colour, gloss, pattern and structure, scale, "
             "relief, special qualities); never assume anything about the code. Be specific. "
-            + _LAYOUT_NOTE
+            + layout_notes(views)
         )
     if code and stats:
         return (
@@ -66,17 +120,25 @@ def _judge_clause(signals: Collection[str]) -> str:
     return "Judge whether the scalars suit the description and suggest concrete changes."
 
 
-def critic_system_prompt(signals: Collection[str]) -> str:
-    """System prompt of the stateless critic for the given signal subset."""
+def critic_system_prompt(
+    signals: Collection[str], views: Sequence[str] = ("flat",), *, history: bool = False
+) -> str:
+    """System prompt of the critic for the given signals, preview layouts and history."""
     parts = [
         "You are a meticulous material-appearance critic.",
-        _shown_list(signals),
-        _judge_clause(signals),
+        _shown_list(signals, views, history),
+        _judge_clause(signals, views),
     ]
     if "render" in signals and "stats" in signals:
         parts.append(
             "The scalars are objective measurements of the maps; use them to ground your visual "
             "judgment."
+        )
+    if history:
+        parts.append(
+            "When the previous version is shown, score this version on its own merits, then say "
+            "whether it matches the description better than the previous one; name any "
+            "regression in the differences."
         )
     if "code" in signals:
         parts.append("The DSL the program is written in:\n\n" + dsl_reference())
@@ -89,34 +151,103 @@ def _configuration_name(signals: Collection[str]) -> str:
     return " and ".join(given) if given else "the description only"
 
 
-def response_skeleton() -> str:
-    """The JSON skeleton shown to the critic (field descriptions as values)."""
-    skeleton = {
-        "match_score": f"<integer {CRITIQUE_FIELDS['match_score']}>",
-        "differences": [f"<{CRITIQUE_FIELDS['differences']}>"],
-        "suggestions": [f"<{CRITIQUE_FIELDS['suggestions']}>"],
-    }
-    return json.dumps(skeleton, indent=2)
+def response_skeleton(*, edits: bool = True, history: bool = False) -> str:
+    """The answer structure shown to the critic: JSON with descriptions in angle brackets
+    (``match_score`` and ``layer`` unquoted: they are numbers)."""
+    lines = [
+        f'  "match_score": <number {CRITIQUE_FIELDS["match_score"]}>',
+        f'  "differences": [{json.dumps("<" + CRITIQUE_FIELDS["differences"] + ">")}]',
+        f'  "suggestions": [{json.dumps("<" + CRITIQUE_FIELDS["suggestions"] + ">")}]',
+    ]
+    if edits:
+        lines.append(
+            '  "edits": [{"layer": <layer index, 0 = bottom>, "channel": "<channel name>", '
+            '"change": "<exact change, e.g. 0.6 -> 0.3>"}, {"define": "<Define name>", '
+            '"change": "<exact change>"}]'
+        )
+    if history:
+        lines.append('  "better_than_previous": <true or false>')
+    return "{\n" + ",\n".join(lines) + "\n}"
+
+
+def _response_notes(*, edits: bool, history: bool) -> str:
+    notes = ["match_score is a number, not a string."]
+    if edits:
+        notes.append(f"edits: {CRITIQUE_FIELDS['edits']}; leave the list empty if none.")
+    if history:
+        notes.append(
+            f"better_than_previous: {CRITIQUE_FIELDS['better_than_previous']} "
+            "(omit it when no previous version is shown)."
+        )
+    return " ".join(notes)
+
+
+@dataclass(frozen=True)
+class PreviousView:
+    """What the critic is told about the previous round (its images go after this round's)."""
+
+    index: int
+    score: int | None
+    images: int
+
+
+def _images_line(views: Sequence[str], previous: PreviousView | None) -> str:
+    shown = [f"this version, {v} layout" for v in views]
+    if previous is not None:
+        shown += [f"the previous version, {v} layout" for v in views][: previous.images]
+    if len(shown) == 1:
+        return ""
+    listed = "; ".join(f"{i}. {what}" for i, what in enumerate(shown, 1))
+    return f"\nThe attached images, in order: {listed}."
+
+
+def _previous_text(previous: PreviousView) -> str:
+    score = f"{previous.score}/100" if previous.score is not None else "no usable score"
+    seen = ""
+    if previous.images:
+        seen = " (its render is" if previous.images == 1 else " (its renders are"
+        seen += " attached after this version's)"
+    return (
+        f"\n\nThe previous version{seen} scored {score}. Say in better_than_previous whether "
+        "this version matches the description better."
+    )
 
 
 def critic_user_message(
-    description: str, signals: Collection[str], *, program: str | None, stats: str | None
+    description: str,
+    signals: Collection[str],
+    *,
+    program: str | None,
+    stats: str | None,
+    views: Sequence[str] = ("flat",),
+    previous: PreviousView | None = None,
+    history: bool = False,
 ) -> str:
-    """The CO-STAR user message; the render (if any) is attached as an image after this text."""
+    """The CO-STAR user message; the render(s), if any, are attached as images after this text.
+
+    ``history`` says that the critic is asked about history (the schema then has
+    ``better_than_previous``); ``previous`` is the previous round, when there is one.
+    """
     if "render" in signals:
+        noun = "render" if len(views) == 1 else "renders"
         objective = (
-            "Compare the attached render against the description "
+            f"Compare the attached {noun} against the description "
             f"<description>{description}</description>."
         )
+        objective += _images_line(views, previous)
     else:
         objective = f"Judge how well the material suits <description>{description}</description>."
-    if "code" in signals and program is not None:
+    if previous is not None:
+        objective += _previous_text(previous)
+    code = "code" in signals and program is not None
+    if code:
         objective += (
             f"\n\nThe program:\n<program>\n{program}\n</program>\n"
             "Suggest minimal, line-targeted edits to it."
         )
     if "stats" in signals and stats is not None:
         objective += "\n\n" + stats.strip()
+    edits = "code" in signals
     sections = [
         ("Context", f"You review one material using {_configuration_name(signals)}."),
         ("Objective", objective),
@@ -127,14 +258,21 @@ def critic_user_message(
         ),
         ("Tone", "Neutral."),
         ("Audience", "A program that will strictly parse your JSON."),
-        ("Response", "Answer with exactly this structure:\n" + response_skeleton()),
+        (
+            "Response",
+            "Answer with exactly this structure:\n"
+            + response_skeleton(edits=edits, history=history)
+            + "\n"
+            + _response_notes(edits=edits, history=history),
+        ),
     ]
     return "\n\n".join(f"## {title}\n{body}" for title, body in sections)
 
 
-def critic_retry_message(error: str) -> str:
+def critic_retry_message(error: str, *, edits: bool = True, history: bool = False) -> str:
     """Follow-up sent when an answer could not be parsed as the critique JSON."""
     return (
         "Your answer could not be parsed as the required JSON "
-        f"({error}). Reply again with only the JSON object:\n{response_skeleton()}"
+        f"({error}). Reply again with only the JSON object:\n"
+        f"{response_skeleton(edits=edits, history=history)}"
     )

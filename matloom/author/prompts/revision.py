@@ -1,9 +1,15 @@
-"""Generator-side user turns: the request, the repair turns and the revision turn (§8.3, §8.4)."""
+"""Generator-side user turns: the request, the repair turns and the revision turn (§8.3, §8.4).
+
+Every turn asks for the same answer format (:data:`~matloom.author.prompts.system.ANSWER_FORMAT`):
+thinking is allowed, and the last ``<material>...</material>`` block of the reply is used.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
+from matloom.author.prompts.system import ANSWER_FORMAT
+from matloom.author.records import EditRecord
 from matloom.lang.diagnostics import Diagnostic
 
 #: At most this many diagnostics are sent in one repair turn (the first errors matter most).
@@ -20,18 +26,14 @@ def request_message(description: str) -> str:
 
 def missing_program_message() -> str:
     """Repair turn when no program could be found in the reply."""
-    return (
-        "I could not find a program in your reply. Reply with only the complete program inside "
-        "a single <material>...</material> pair."
-    )
+    return f"I could not find a program in your reply. {ANSWER_FORMAT}"
 
 
 def reply_too_large_message(length: int, limit: int) -> str:
     """Repair turn when the reply was over the reply-size cap (only its start is shown)."""
     return (
         f"Your reply was {length:,} characters long, over the limit of {limit:,}; only its start "
-        "is shown above and it was not read. Reply with only the complete program inside a "
-        "single <material>...</material> pair."
+        f"is shown above and it was not read. Keep it shorter. {ANSWER_FORMAT}"
     )
 
 
@@ -50,25 +52,89 @@ def diagnostics_message(program: str, diagnostics: Sequence[Diagnostic]) -> str:
         "under the problem, what was expected and a hint:\n"
         f"<error>\n{body}\n</error>\n"
         f"The program as read:\n<material>\n{program}\n</material>\n"
-        "Fix every error and reply with only the corrected <material>...</material> block."
+        f"Fix every error. {ANSWER_FORMAT}"
+    )
+
+
+def _bullets(items: Sequence[str], empty: str) -> str:
+    return "\n".join(f"- {item}" for item in items) or f"- ({empty})"
+
+
+def edit_line(edit: EditRecord) -> str:
+    """One edit as a bullet text: ``layer 1 .roughness: 0.6 -> 0.3``, ``Define grain: ...``."""
+    where = []
+    if edit.define:
+        where.append(f"Define {edit.define}")
+    if edit.layer is not None:
+        where.append(f"layer {edit.layer}")
+    if edit.channel:
+        where.append(f".{edit.channel}")
+    head = " ".join(where)
+    return f"{head}: {edit.change}" if head else edit.change
+
+
+def _score_line(match_score: int, previous_score: int | None) -> str:
+    line = f"{match_score}/100"
+    if previous_score is not None:
+        line += f" (the previous version scored {previous_score}/100)"
+    return line
+
+
+def _views_text(views: Sequence[str]) -> str:
+    names = " and ".join(f"the {v}" for v in views)
+    noun = "preview" if len(views) == 1 else "previews"
+    return (
+        f"Attached: {names} {noun} of the program you are revising, as the critic saw "
+        f"{'it' if len(views) == 1 else 'them'}."
     )
 
 
 def revision_message(
-    match_score: int, differences: Sequence[str], suggestions: Sequence[str]
+    match_score: int,
+    differences: Sequence[str],
+    suggestions: Sequence[str],
+    *,
+    edits: Sequence[EditRecord] = (),
+    views: Sequence[str] = (),
+    added_seeds: Sequence[str] = (),
+    previous_score: int | None = None,
 ) -> str:
-    """The revision turn (paper appendix, verbatim wording with the notes as bullets)."""
-    notes = "\n".join(f"- {n}" for n in [*differences, *suggestions]) or "- (no notes)"
-    return (
-        "A critic reviewed your material against the original description and scored the match "
-        f"{match_score}/100. Their notes:\n{notes}\n"
-        "Revise the material to address these and reply with ONLY the updated "
-        "<material>...</material>. When keeping a layer unchanged, copy it exactly, including "
-        "any seed= values, so its noise stays the same."
+    """The revision turn: the critic's score, what differs, what to change and its concrete
+    edits under their own headings; the attached previews (``views``, when images go with the
+    turn); the seeds the render gave to noise the model left unseeded; the answer format."""
+    sections = [
+        ("Score", _score_line(match_score, previous_score)),
+        ("What differs", _bullets(differences, "none noted")),
+        ("What to change", _bullets(suggestions, "no suggestions")),
+    ]
+    if edits:
+        sections.append(("Concrete edits", _bullets([edit_line(e) for e in edits], "")))
+    if views:
+        sections.append(("Preview", _views_text(views)))
+    if added_seeds:
+        sections.append(
+            (
+                "Seeds",
+                "Your program left these noise seeds out (positions in your program); the render "
+                "used:\n"
+                + _bullets(added_seeds, "")
+                + "\nWrite them as seed= values to keep that noise unchanged.",
+            )
+        )
+    sections.append(
+        (
+            "Answer",
+            "Revise the material to fix what differs, following what to change. When keeping "
+            "a layer unchanged, copy it exactly, including any seed= values, so its noise stays "
+            f"the same. {ANSWER_FORMAT}",
+        )
     )
+    body = "\n\n".join(f"## {title}\n{text}" for title, text in sections)
+    return "A critic reviewed your material against the original description.\n\n" + body
 
 
 def canonical_assistant_turn(preamble: str, canonical: str) -> str:
-    """The rewritten assistant turn after acceptance: reasoning, then the canonical program."""
+    """An assistant turn showing a program: reasoning, then the program in a material block
+    (used for a P0 written by the offline author, which has no reply of its own)."""
     head = f"{preamble.strip()}\n\n" if preamble.strip() else ""
     return f"{head}<material>\n{canonical.strip()}\n</material>"

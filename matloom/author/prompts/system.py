@@ -239,10 +239,16 @@ EXAMPLES_PREAMBLE = (
     "add weathering, dirt or layers that were not asked for."
 )
 
+#: The answer format every generator turn asks for (request, repairs, revisions).
+ANSWER_FORMAT = (
+    "Think as much as you need, then give the complete program in a <material>...</material> "
+    "block; when a reply holds several, the last one is used."
+)
+
 OUTPUT_FORMAT = """# Output format
-Think first about structure, scale, colours and relief. Then output the complete program in a \
-single <material>...</material> pair, with nothing after the closing tag. The program must \
-parse. Prefer few, well-chosen layers."""
+Think first about structure, scale, colours and relief, then give the complete program in a \
+<material>...</material> block; when a reply holds several, the last one is used. The program \
+must parse. Prefer few, well-chosen layers."""
 
 
 def examples_section() -> str:
@@ -267,9 +273,21 @@ def dsl_reference() -> str:
 
 
 @cache
-def system_prompt(*, playbook: bool = True, few_shot: bool = True) -> str:
-    """The full generator system prompt (the API and the CLI both default to everything on)."""
-    parts = [ROLE, dsl_reference()]
+def system_prompt(
+    *,
+    playbook: bool = True,
+    few_shot: bool = True,
+    render_size: int = 512,
+    views: tuple[str, ...] = ("flat",),
+) -> str:
+    """The full generator system prompt (the API and the CLI both default to everything on).
+
+    ``render_size`` is the size the critic's previews are rendered at and ``views`` their
+    layouts (:mod:`matloom.author.prompts.previews`).
+    """
+    from matloom.author.prompts.previews import previews_section
+
+    parts = [ROLE, dsl_reference(), previews_section(render_size, views)]
     if playbook:
         parts += [PLAYBOOK, IDIOMS]
     if few_shot:

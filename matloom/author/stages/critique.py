@@ -1,131 +1,59 @@
-"""Stage II: the stateless critic and robust parsing of its JSON answer (reference §8.4).
+"""Stage II: the critic (reference §8.4), with robust parsing and retries.
 
 The critic sees a fresh conversation per program (so its scores stay comparable across rounds)
-with any subset of: the preview render (only if the model takes images), the 28 statistics,
-the source. Its answer is parsed tolerantly: ``//`` comments outside strings are removed, the
-first brace-balanced object is taken, ``json.loads`` then the bounded repair of
-:mod:`~matloom.author.stages.jsonfix` are tried, and the result is validated; a failure is
-retried with a follow-up message up to ``retries`` times. Every way an answer can be wrong
-(too long, not JSON, nested too deep, wrong fields) is a :class:`CritiqueParseError`, so a bad
-critic answer ends as a failed critique in the record, never as a failed run. All parsing is
-linear in the answer's length.
+with any subset of: the preview render(s) in the configured layouts (only if the model takes
+images), the statistics, the source. With ``critic_history`` it also sees the previous round's
+render(s) and score and says whether this round is better. Its answer is parsed tolerantly
+(:mod:`~matloom.author.stages.critique_parse`); a failure is retried with a follow-up message up
+to ``retries`` times, so a bad critic answer ends as a failed critique in the record, never as
+a failed run.
 """
 
 from __future__ import annotations
 
-import json
-import math
-import re
 import time
-from collections.abc import Collection
-
-from pydantic import BaseModel, Field, ValidationError, field_validator
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
 
 from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
 from matloom.author.llm.base import ChatMessage, ChatModel, ImageInput
 from matloom.author.prompts.critic import (
+    PreviousView,
     critic_retry_message,
     critic_system_prompt,
     critic_user_message,
 )
-from matloom.author.records import CritiqueRecord, MessageRecord
-from matloom.author.replies import clean_text, clip_reply, oversize_error
-from matloom.author.stages.jsonfix import JsonRepairError, repair_json
+from matloom.author.records import CritiqueRecord, EditRecord, HistoryRecord, MessageRecord
+from matloom.author.replies import clip_reply, oversize_error
+from matloom.author.stages.critique_parse import (
+    Critique,
+    CritiqueParseError,
+    first_json_object,
+    parse_critique,
+    strip_line_comments,
+)
 
-#: A JSON string (possibly never closed: the rest of the text is then inside it).
-_STRING = r'"[^"\\]*(?:\\.[^"\\]*)*(?:"|\\?\Z)'
-_STRING_OR_COMMENT = re.compile(_STRING + r"|//[^\n]*", re.DOTALL)
-_STRING_OR_BRACE = re.compile(_STRING + r"|[{}]", re.DOTALL)
+__all__ = [
+    "Critique",
+    "CritiqueParseError",
+    "PreviousRound",
+    "critique_program",
+    "first_json_object",
+    "parse_critique",
+    "strip_line_comments",
+]
+
 #: An unusable answer is quoted back to the critic (in the retry) up to this many characters.
 ECHO_MAX_CHARS = 8_000
 
 
-class Critique(BaseModel):
-    """The critic's answer."""
+@dataclass(frozen=True)
+class PreviousRound:
+    """The previous round as a critic with history sees it."""
 
-    match_score: int = Field(ge=0, le=100)
-    differences: list[str] = Field(default_factory=list)
-    suggestions: list[str] = Field(default_factory=list)
-
-    @field_validator("match_score", mode="before")
-    @classmethod
-    def _round_score(cls, value: object) -> object:
-        """Accept 72.5 or "72" (models do that) and clamp into 0..100."""
-        if isinstance(value, str):
-            value = value.strip().split("/")[0].strip()
-            try:
-                value = float(value)
-            except ValueError:
-                return value
-        if isinstance(value, float) and math.isfinite(value):
-            value = round(value)
-        if isinstance(value, int) and not isinstance(value, bool):
-            return min(100, max(0, value))
-        return value
-
-    @field_validator("differences", "suggestions", mode="before")
-    @classmethod
-    def _listify(cls, value: object) -> object:
-        if isinstance(value, str):
-            return [clean_text(value)] if value.strip() else []
-        if isinstance(value, list):
-            return [clean_text(str(v)) for v in value]
-        return value
-
-
-class CritiqueParseError(ValueError):
-    """The answer is not a usable critique."""
-
-
-def strip_line_comments(text: str) -> str:
-    """Remove ``// ...`` comments that are outside JSON strings."""
-    return _STRING_OR_COMMENT.sub(lambda m: m.group() if m.group().startswith('"') else "", text)
-
-
-def first_json_object(text: str) -> str | None:
-    """The first brace-balanced ``{...}`` (braces in strings ignored), or the tail from ``{``."""
-    start = text.find("{")
-    if start < 0:
-        return None
-    depth = 0
-    for m in _STRING_OR_BRACE.finditer(text, start):
-        token = m.group()
-        if token == "{":
-            depth += 1
-        elif token == "}":
-            depth -= 1
-            if depth == 0:
-                return text[start : m.end()]
-    return text[start:]
-
-
-def _load(candidate: str) -> object:
-    """``json.loads``, else the bounded lenient repair; every failure a CritiqueParseError."""
-    try:
-        return json.loads(candidate, strict=False)
-    except (ValueError, RecursionError):  # JSONDecodeError, too many digits, nested too deep
-        pass
-    try:
-        return repair_json(candidate)
-    except JsonRepairError as err:
-        raise CritiqueParseError(str(err)) from None
-
-
-def parse_critique(text: str) -> Critique:
-    """Parse a critic answer; raise :class:`CritiqueParseError` saying what was wrong."""
-    candidate = first_json_object(strip_line_comments(text))
-    if candidate is None:
-        raise CritiqueParseError("no JSON object found")
-    data = _load(candidate)
-    if not isinstance(data, dict):
-        raise CritiqueParseError("the answer is not a JSON object")
-    try:
-        return Critique.model_validate(data)
-    except ValidationError as err:
-        problems = "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in err.errors())
-        raise CritiqueParseError(problems) from None
-    except RecursionError:  # a list entry nested deeply enough to exhaust str()
-        raise CritiqueParseError("the answer is nested too deeply") from None
+    index: int
+    score: int | None
+    images: tuple[ImageInput, ...] = ()
 
 
 def _read_answer(text: str, max_reply_chars: int) -> Critique:
@@ -142,22 +70,41 @@ def critique_program(
     program: str,
     *,
     signals: Collection[str],
-    render: ImageInput | None,
+    renders: Sequence[ImageInput] = (),
+    views: Sequence[str] = ("flat",),
     stats: str | None,
     retries: int,
+    history: bool = False,
+    previous: PreviousRound | None = None,
     max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
 ) -> CritiqueRecord:
-    """Run the stateless critic on one program; never raises on a bad answer (``ok=False``)."""
-    if "render" in signals and (render is None or not model.accepts_images):
+    """Run the critic on one program; never raises on a bad answer (``ok=False``).
+
+    ``renders`` are this program's images in the layouts ``views``; ``history`` asks the
+    better-or-worse question (from round 1 on, ``previous`` holds the previous round).
+    """
+    if "render" in signals and (not renders or not model.accepts_images):
         signals = [s for s in signals if s != "render"]
+    sees = "render" in signals
+    shown_previous = None
+    if previous is not None:
+        count = len(previous.images) if sees else 0
+        shown_previous = PreviousView(previous.index, previous.score, count)
+    images = (*renders, *(previous.images if previous and sees else ())) if sees else ()
+    user = critic_user_message(
+        description,
+        signals,
+        program=program,
+        stats=stats,
+        views=views,
+        previous=shown_previous,
+        history=history and previous is not None,
+    )
     messages = [
-        ChatMessage(role="system", text=critic_system_prompt(signals)),
-        ChatMessage(
-            role="user",
-            text=critic_user_message(description, signals, program=program, stats=stats),
-            images=(render,) if "render" in signals and render is not None else (),
-        ),
+        ChatMessage(role="system", text=critic_system_prompt(signals, views, history=history)),
+        ChatMessage(role="user", text=user, images=tuple(images)),
     ]
+    ask = {"edits": "code" in signals, "history": history and previous is not None}
     start = time.perf_counter()
     replies: list[str] = []
     error = "no answer"
@@ -171,14 +118,31 @@ def critique_program(
             messages = [
                 *messages,
                 ChatMessage(role="assistant", text=clip_reply(reply.text, ECHO_MAX_CHARS)),
-                ChatMessage(role="user", text=critic_retry_message(error)),
+                ChatMessage(role="user", text=critic_retry_message(error, **ask)),
             ]
             continue
-        return _record(program_index, signals, model, messages, replies, start, critique=critique)
-    return _record(program_index, signals, model, messages, replies, start, error=error)
+        return _record(
+            program_index, signals, model, messages, replies, start, critique=critique,
+            views=views if sees else (), renders=renders if sees else (), previous=previous,
+        )  # fmt: skip
+    return _record(
+        program_index, signals, model, messages, replies, start, error=error,
+        views=views if sees else (), renders=renders if sees else (), previous=previous,
+    )  # fmt: skip
 
 
-def _record(
+def _history(previous: PreviousRound | None, critique: Critique | None) -> HistoryRecord | None:
+    if previous is None:
+        return None
+    return HistoryRecord(
+        previous_index=previous.index,
+        previous_score=previous.score,
+        previous_renders=[img.path for img in previous.images if img.path],
+        better=critique.better_than_previous if critique else None,
+    )
+
+
+def _record(  # noqa: PLR0913 - one record from everything a critique produced
     program_index: int,
     signals: Collection[str],
     model: ChatModel,
@@ -186,18 +150,25 @@ def _record(
     replies: list[str],
     start: float,
     *,
+    views: Sequence[str],
+    renders: Sequence[ImageInput],
+    previous: PreviousRound | None,
     critique: Critique | None = None,
     error: str | None = None,
 ) -> CritiqueRecord:
-    render_path = next((img.path for m in messages for img in m.images if img.path), None)
+    paths = [img.path for img in renders if img.path]
     return CritiqueRecord(
         program_index=program_index,
         ok=critique is not None,
         match_score=critique.match_score if critique else None,
         differences=critique.differences if critique else [],
         suggestions=critique.suggestions if critique else [],
+        edits=[EditRecord(**e.model_dump()) for e in critique.edits] if critique else [],
         signals=list(signals),
-        render=render_path,
+        render=paths[0] if paths else None,
+        views=list(views),
+        renders=paths,
+        history=_history(previous, critique),
         model=model.model_id,
         attempts=len(replies),
         seconds=time.perf_counter() - start,

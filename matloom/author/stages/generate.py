@@ -1,25 +1,30 @@
 """Stage I: one generator turn with parser-guided repair (reference-engine.md §8.3).
 
-A turn sends the committed conversation plus a new user message, then up to ``repair_turns``
-corrective turns carrying the parser's structured diagnostics (code, line:column, caret excerpt,
-expectation, hint). An accepted program gets explicit seeds, and the last assistant turn is
-rewritten to show the model its canonical text. The conversation in the record only grows when
-a program is accepted, so a resumed run restarts an interrupted turn from a clean state. A reply
-over the reply-size cap (:mod:`matloom.author.replies`) is not parsed: the attempt is recorded
-as ``too_large`` with the reply clipped, and the model is asked again like after any bad reply.
+A turn sends the committed conversation plus a new user message (with images, when it has
+any), then up to ``repair_turns`` corrective turns carrying the parser's structured diagnostics
+(code, line:column, caret excerpt, expectation, hint). The program of a reply is its last
+``<material>...</material>`` block (thinking before it is welcome), else what
+:func:`matloom.lang.extract.extract_program` finds. An accepted program gets explicit seeds in
+its canonical text, which is what is rendered and recorded; the conversation keeps the model's
+own reply, so the model goes on editing the text it wrote, and the seeds given to the noise it
+left unseeded are recorded for the revision turn to tell it. The conversation in the record
+only grows when a program is accepted, so a resumed run restarts an interrupted turn from a
+clean state. A reply over the reply-size cap (:mod:`matloom.author.replies`) is not parsed: the
+attempt is recorded as ``too_large`` with the reply clipped, and the model is asked again like
+after any bad reply.
 """
 
 from __future__ import annotations
 
+import re
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
 from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
-from matloom.author.llm.base import ChatMessage, ChatModel
+from matloom.author.llm.base import ChatMessage, ChatModel, ImageInput
 from matloom.author.prompts.revision import (
-    canonical_assistant_turn,
     diagnostics_message,
     missing_program_message,
     reply_too_large_message,
@@ -32,10 +37,15 @@ from matloom.author.records import (
     TurnRecord,
 )
 from matloom.author.replies import clip_reply, oversize_error
+from matloom.lang import ast as A
 from matloom.lang.api import analyse
 from matloom.lang.extract import extract_program
 from matloom.lang.printer import format_program
-from matloom.lang.seeds import canonicalize_seeds
+from matloom.lang.rewrite import map_program
+from matloom.lang.seeds import canonicalize_seeds, derive_seed, uses_seed
+
+_OPEN_TAG = re.compile(r"<material>", re.IGNORECASE)
+_CLOSE_TAG = re.compile(r"</material>", re.IGNORECASE)
 
 
 class NoParseableProgramError(RuntimeError):
@@ -45,8 +55,55 @@ class NoParseableProgramError(RuntimeError):
 Notify = Callable[[str], None]
 
 
+def extract_answer(reply: str) -> tuple[str | None, str]:
+    """``(program_text, preamble)`` of a reply: its last ``<material>...</material>`` block
+    (the text before it is the preamble), else :func:`extract_program` of the whole reply.
+    Linear in the reply's length."""
+    last_close = None
+    for last_close in _CLOSE_TAG.finditer(reply):  # noqa: B007 - the last one is wanted
+        pass
+    if last_close is not None:
+        last_open = None
+        for match in _OPEN_TAG.finditer(reply, 0, last_close.start()):
+            last_open = match
+        if last_open is not None:
+            program, preamble = extract_program(reply[last_open.start() :])
+            return program, reply[: last_open.start()] + preamble
+    return extract_program(reply)
+
+
+def _seedless_calls(program: A.Program) -> list[A.Call]:
+    """The noise calls without a seed, in the order :func:`canonicalize_seeds` numbers them."""
+    calls: list[A.Call] = []
+
+    def visit(node: A.Node) -> A.Node:
+        if isinstance(node, A.Call) and uses_seed(node) and node.arg("seed") is None:
+            calls.append(node)
+        return node
+
+    map_program(program, visit)
+    return calls
+
+
+def added_seed_notes(source: str, canonical: str, program_seed: int) -> list[str]:
+    """The seeds :func:`canonicalize_seeds` gives the seedless noise calls of the model's
+    program ``source`` (whose canonical text is ``canonical``), each as
+    ``fBm at line 3, column 15: seed=123`` (positions in ``source``)."""
+    from matloom.lang.api import parse
+
+    numbered = _seedless_calls(parse(canonical))
+    written = _seedless_calls(parse(source))
+    same = [c.func for c in written] == [c.func for c in numbered]
+    notes = []
+    for n, call in enumerate(numbered):
+        where = f" at line {written[n].span.line}, column {written[n].span.col}" if same else ""
+        notes.append(f"{call.func}{where}: seed={derive_seed(program_seed, n)}")
+    return notes
+
+
 def committed_messages(store: RecordStore) -> list[ChatMessage]:
-    """System prompt plus the committed generator conversation, as chat messages."""
+    """System prompt plus the committed generator conversation, as chat messages (text only:
+    images went with their own turn)."""
     system = store.record.system_prompt or ""
     history = [ChatMessage(role=m.role, text=m.text) for m in store.record.conversation]
     return [ChatMessage(role="system", text=system), *history]
@@ -71,6 +128,8 @@ class _Outcome:
     errors: list[dict[str, object]] = field(default_factory=list)
     repair: str = ""
     error: str | None = None
+    #: The program text as the model wrote it (accepted replies).
+    source: str = ""
 
 
 def _read_reply(text: str, max_reply_chars: int) -> _Outcome:
@@ -81,13 +140,13 @@ def _read_reply(text: str, max_reply_chars: int) -> _Outcome:
             repair=reply_too_large_message(len(text), max_reply_chars),
             error=oversize_error(len(text), max_reply_chars),
         )
-    program_text, preamble = extract_program(text)
+    program_text, preamble = extract_answer(text)
     if program_text is None:
         return _Outcome("no_program", preamble=preamble, repair=missing_program_message())
     canonical, errors, repair = _check(program_text)
     if canonical is None:
         return _Outcome("parse_error", preamble=preamble, errors=errors, repair=repair or "")
-    return _Outcome("accepted", canonical=canonical, preamble=preamble)
+    return _Outcome("accepted", canonical=canonical, preamble=preamble, source=program_text)
 
 
 def run_turn(
@@ -100,14 +159,17 @@ def run_turn(
     repair_turns: int,
     notify: Notify | None = None,
     max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
+    images: Sequence[ImageInput] = (),
 ) -> ProgramRecord:
-    """Run one generation/revision turn to an accepted program; record every attempt."""
+    """Run one generation/revision turn to an accepted program; record every attempt.
+
+    ``images`` go with the new user message (and its repairs), not with later turns."""
     record = store.record
     index = len(record.programs)
     turn = TurnRecord(program_index=index, kind="initial" if index == 0 else "revision")
     record.turns.append(turn)
     store.save()  # the record shows the turn in flight
-    user = ChatMessage(role="user", text=user_text)
+    user = ChatMessage(role="user", text=user_text, images=tuple(images))
     working = [*committed_messages(store), user]
     start = time.perf_counter()
     for attempt in range(1, repair_turns + 2):
@@ -129,9 +191,7 @@ def run_turn(
             )
         )
         if read.canonical is not None:
-            return _accept(
-                store, turn, working, read.preamble, read.canonical, reply.text, program_seed, start
-            )
+            return _accept(store, turn, working, read, reply.text, program_seed, start)
         working += [
             ChatMessage(role="assistant", text=shown),
             ChatMessage(role="user", text=read.repair or missing_program_message()),
@@ -148,20 +208,22 @@ def _accept(
     store: RecordStore,
     turn: TurnRecord,
     working: list[ChatMessage],
-    preamble: str,
-    canonical: str,
+    read: _Outcome,
     authored: str,
     program_seed: int,
     start: float,
 ) -> ProgramRecord:
-    """Pin seeds, commit the conversation with the canonical assistant turn, store P_k."""
+    """Pin seeds, commit the conversation with the model's own reply, store P_k."""
     from matloom.lang.api import parse
 
-    pinned = format_program(canonicalize_seeds(parse(canonical), program_seed))
+    assert read.canonical is not None
+    pinned = format_program(canonicalize_seeds(parse(read.canonical), program_seed))
     record = store.record
-    shown = canonical_assistant_turn(preamble, pinned)
-    record.conversation = [MessageRecord(role=m.role, text=m.text) for m in working[1:]] + [
-        MessageRecord(role="assistant", text=shown)
+    turn_messages = working[1 + len(record.conversation) :]  # earlier turns keep their images
+    record.conversation = [
+        *record.conversation,
+        *(MessageRecord(**m.to_record()) for m in turn_messages),
+        MessageRecord(role="assistant", text=authored),
     ]
     program = ProgramRecord(
         index=turn.program_index,
@@ -169,6 +231,7 @@ def _accept(
         authored=authored,
         source="generator",
         program_seed=program_seed,
+        added_seeds=added_seed_notes(read.source, read.canonical, program_seed),
     )
     record.programs.append(program)
     turn.accepted = True

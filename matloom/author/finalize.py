@@ -1,0 +1,60 @@
+"""The final material of a run, installed in the folder layout ``matloom render`` writes.
+
+``material.mat``, ``preview.png`` (the flat preview of the exported maps), the maps and
+``material.json`` (listing every one of those files with its SHA-256) are staged and installed
+as one batch of the run folder's :class:`~matloom.io.outdir.OutputFolder`, so the run folder is
+also a render folder (``matloom blender RUN`` reads it): a folder without ``material.json`` is
+one whose export did not finish, and files MatLoom did not write are never replaced or deleted.
+The run's own files (``record.json``, ``renders/``) stay beside the batch.
+"""
+
+from __future__ import annotations
+
+from matloom.author.records import RecordStore
+from matloom.author.views import RENDER_LOCK
+
+#: The batch group of the final material (the group ``matloom render`` writes).
+EXPORT_GROUP = "render"
+
+
+def export_final(store: RecordStore, program: str, size: int) -> dict[str, str]:
+    """Install the final ``program`` (evaluated at ``size``) into the run folder; return the
+    written files by role, relative to the folder (``program``, ``preview``, ``manifest`` and
+    one per map)."""
+    from matloom.engine.evaluate import evaluate
+    from matloom.engine.limits import Usage
+    from matloom.io.atomic import atomic_write_bytes
+    from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
+    from matloom.io.png import save_png
+    from matloom.render.preview import shade
+
+    out = store.out
+    if out is None:
+        raise RuntimeError("the run folder is not open (RecordStore.attach)")
+    with RENDER_LOCK:
+        maps = evaluate(program, size, size, usage=Usage(preview_tile=1))  # shading counted
+        preview = shade(maps)
+    text = store.redactor().text(program + "\n")
+    with out.batch(EXPORT_GROUP, marker=MANIFEST_NAME) as staging:
+        result = write_maps(
+            maps,
+            staging,
+            final_dir=out.path,
+            program_text=program,
+            extra_meta={"source": "matloom generate", "prompt": store.record.prompt},
+        )
+        atomic_write_bytes(staging / "material.mat", text.encode("utf-8"))
+        save_png(staging / "preview.png", preview)
+        write_manifest(result, staging)
+    files = {"program": "material.mat", "preview": "preview.png"}
+    for role, path in result.files.items():
+        files[role] = path.relative_to(out.path).as_posix()
+    return files
+
+
+def tileable_text(program: str) -> str:
+    """``program`` with ``View(..., tileable=True)`` (canonical text)."""
+    import matloom
+    from matloom.lang.tileable import make_tileable
+
+    return matloom.format(make_tileable(matloom.parse(program)))

@@ -1,0 +1,136 @@
+"""The system prompt's "Resolution and previews" section: facts measured, not written down.
+
+What a generator must know to be judged fairly from a preview: the render size and the size of
+one pixel in View units (features under about 2 px alias), how much relief shows, and which
+channels a preview layout cannot show. The pixel facts come from the run's render size. The
+preview facts are measured once per process by shading small probe materials with the preview
+itself (:func:`matloom.author.views.shade_view`): a mid-grey swatch with each single-value
+channel of the registry at the low end, middle and high end of its search range, and tilted
+planes of known slope. So the text always describes the shading that will be used, whatever
+the preview modules do, and a new channel in the registry is measured without a change here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cache
+
+import numpy as np
+
+from matloom.vocab import CHANNELS
+from matloom.vocab.spec import ChannelSpec
+
+#: The probe swatch: mid-grey, fairly glossy, half anisotropic (so that the anisotropy
+#: direction can show); every other channel at its default.
+PROBE_BASE = "Layer(1).basecolor(128, 128, 128).roughness(0.3).anisotropy(0.5)"
+#: A channel whose range changes the probe by fewer levels (of 255) "cannot show".
+VISIBLE_LEVELS = 16
+#: Slopes (height units per coordinate unit) whose brightness change is reported.
+PROBE_SLOPES = (0.05, 0.2, 1.0)
+#: A relief the text converts into a slope at the render size, as an example.
+EXAMPLE_STEP = 0.0012
+_PROBE_SIZE = 32
+_NOT_PROBED = frozenset({"alpha", "height"})
+
+
+def _probed_channels() -> list[ChannelSpec]:
+    """The single-value channels with a search range (colours are visible by construction)."""
+    return [
+        c
+        for c in CHANNELS.values()
+        if c.name not in _NOT_PROBED and c.arity == 1 and not c.colour_args and c.search
+    ]
+
+
+@cache
+def _image(view: str, layer: str) -> np.ndarray:
+    """A probe material shaded in preview layout ``view`` (float, to take differences)."""
+    import matloom
+    from matloom.author.views import shade_view
+
+    maps = matloom.evaluate(f"Material({layer})", _PROBE_SIZE, _PROBE_SIZE, backend="numpy")
+    try:
+        image = shade_view(maps, view, backend="numpy")
+    except ValueError:  # a layout without a numpy path
+        image = shade_view(maps, view)
+    return image.astype(np.float64)
+
+
+def _difference(view: str, a: str, b: str) -> int:
+    """How much two probe materials differ in ``view``: the 95th percentile of the per-pixel
+    difference in levels of 255 (a highlight band counts, a stray pixel does not)."""
+    return round(float(np.percentile(np.abs(_image(view, a) - _image(view, b)), 95)))
+
+
+@cache
+def channel_changes(view: str) -> dict[str, int]:
+    """Per probed channel: the largest :func:`_difference` between the probe swatch with the
+    channel at the low end, the middle and the high end of its search range."""
+    changes = {}
+    for channel in _probed_channels():
+        lo, hi = channel.search  # type: ignore[misc]
+        layers = [f"{PROBE_BASE}.{channel.name}({v:g})" for v in (lo, (lo + hi) / 2, hi)]
+        changes[channel.name] = max(
+            _difference(view, a, b) for i, a in enumerate(layers) for b in layers[i + 1 :]
+        )
+    return changes
+
+
+@cache
+def slope_changes(view: str) -> dict[float, int]:
+    """Per probe slope: the largest :func:`_difference` from the flat swatch when it is tilted
+    in one of the four axis directions."""
+    changes = {}
+    for slope in PROBE_SLOPES:
+        tilts = [f"{sign}{axis}() * {slope:g}" for axis in ("X", "Y") for sign in ("", "-")]
+        changes[slope] = max(
+            _difference(view, PROBE_BASE, f"{PROBE_BASE}.height({t})") for t in tilts
+        )
+    return changes
+
+
+def _layout_description(view: str) -> str:
+    """The layout in words: the preview module's note (``<VIEW>_LAYOUT_NOTE``) when it has one."""
+    if view == "flat":
+        return "a head-on plane under one fixed light, with no environment to reflect"
+    from matloom.author.prompts.critic import module_layout_note
+
+    return (module_layout_note(view) or f"the {view} layout").rstrip(".")
+
+
+def _view_lines(view: str) -> list[str]:
+    changes = channel_changes(view)
+    listed = ", ".join(f"{name} {levels}" for name, levels in changes.items())
+    hidden = [name for name, levels in changes.items() if levels < VISIBLE_LEVELS]
+    slopes = " / ".join(str(v) for v in slope_changes(view).values())
+    lines = [
+        f"- The {view} preview ({_layout_description(view)}). Over its range each channel "
+        "changes a mid-grey swatch by (levels of 255, in its most changed 5 % of pixels) "
+        f"{listed}; a slope of {' / '.join(f'{s:g}' for s in PROBE_SLOPES)} by {slopes}."
+    ]
+    if hidden:
+        lines.append(
+            f"  It cannot show {', '.join(hidden)} (under {VISIBLE_LEVELS} levels): set them "
+            "from the description, not to please the preview."
+        )
+    return lines
+
+
+def previews_section(size: int, views: Sequence[str] = ("flat",)) -> str:
+    """The section for renders of ``size`` x ``size`` px judged in preview layouts ``views``."""
+    pixel = 1.0 / size
+    return "\n".join(
+        [
+            "# Resolution and previews",
+            f"- Programs are rendered at {size} x {size} px: one pixel is (x2 - x1) / {size} View "
+            f"units ({pixel:.5f} for View(0, 0, 1, 1), {6 * pixel:.4f} for View(0, 0, 6, 6)). "
+            "Features thinner than about 2 px alias into noise or vanish: keep lines, grout, "
+            f"fibres and threads at least 2 px wide, at most about {size // 4} repeats across "
+            "the View (base_freq x View width for noise).",
+            "- Relief shows only through slopes (height change / distance), never through the "
+            "height itself, so a tall smooth bump shows less than a low sharp edge. A hard edge "
+            f"rises within one pixel: at View(0, 0, 1, 1) a step of {EXAMPLE_STEP:g} units is a "
+            f"slope of {EXAMPLE_STEP * size:.2f}.",
+            *(line for view in views for line in _view_lines(view)),
+        ]
+    )

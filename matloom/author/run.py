@@ -1,0 +1,382 @@
+"""One authoring run's stages over its record: generate, critique/revise, select, seed search,
+export.
+
+Every stage first looks at what the record already holds and only does what is missing, so a
+resumed run continues without redoing finished stages (an interrupted model turn restarts from
+the last committed conversation). :mod:`matloom.author.pipeline` opens the run folder, builds
+the models and drives these stages.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from matloom.author.finalize import export_final, tileable_text
+from matloom.author.llm.base import ChatModel, ImageInput
+from matloom.author.prompts.revision import (
+    canonical_assistant_turn,
+    request_message,
+    revision_message,
+)
+from matloom.author.records import (
+    CritiqueRecord,
+    FinalRecord,
+    MessageRecord,
+    ProgramRecord,
+    RecordStore,
+    SeedSearchRecord,
+)
+from matloom.author.scorers.base import TextImageScorer
+from matloom.author.stages.critique import PreviousRound, critique_program
+from matloom.author.stages.finite import finite_final, nonfinite_texels
+from matloom.author.stages.generate import run_turn
+from matloom.author.stages.seedsearch import best_of_sweeps, candidate_indices, run_candidate_sweep
+from matloom.author.stages.select import select_program
+from matloom.author.views import (
+    RENDER_LOCK,
+    Renderer,
+    ViewUnavailableError,
+    available_views,
+    image_input,
+    png_bytes,
+    view_file,
+)
+from matloom.lang.seeds import derive_seed
+
+
+@dataclass(frozen=True)
+class ProgressEvent:
+    """One progress report: which stage, which round, how far, and an ETA when known."""
+
+    run: str
+    stage: str
+    message: str
+    round: int | None = None
+    done: int | None = None
+    total: int | None = None
+    eta_s: float | None = None
+
+
+Progress = Callable[[ProgressEvent], None]
+
+
+class Run:
+    """One run's state: store, models, scorer, renderer, progress."""
+
+    def __init__(
+        self,
+        store: RecordStore,
+        *,
+        generator: ChatModel | None,
+        critic: ChatModel | None,
+        scorer: TextImageScorer | None,
+        progress: Progress | None,
+    ) -> None:
+        self.store = store
+        self.record = store.record
+        self.config = store.record.settings
+        self.generator = generator
+        self.critic = critic
+        self.scorer = scorer
+        self._progress = progress
+        self.renderer = Renderer()
+        self._written: set[str] = set()
+        self.views: tuple[str, ...] = ("flat",)
+        if self.record.author == "llm":  # the offline author has no critic to show views to
+            self.views, missing = available_views(self.config.views)
+            if missing:
+                self.warn(missing)
+
+    def notify(self, stage: str, message: str, **extra: Any) -> None:
+        if self._progress is not None:
+            self._progress(
+                ProgressEvent(run=self.store.folder.name, stage=stage, message=message, **extra)
+            )
+
+    def warn(self, message: str) -> None:
+        """Record a warning once (the CLI prints the record's warnings when the run ends)."""
+        if message not in self.record.warnings:
+            self.record.warnings.append(message)
+
+    def render(self, program: str, size: int) -> np.ndarray:
+        """The flat preview (selection, sweeps)."""
+        return self.renderer.image(program, size, "flat")
+
+    def view_inputs(self, k: int) -> list[ImageInput]:
+        """P_k's previews at the critique size in the run's layouts, stored under renders/."""
+        program, size = self.record.programs[k].text, self.config.critique_size
+        inputs = []
+        for view in self.views:
+            image = self.renderer.image(program, size, view)
+            path = view_file(k, view)
+            if path not in self._written:
+                self.store.write_file(path, png_bytes(image))
+                self._written.add(path)
+            inputs.append(image_input(image, path))
+        return inputs
+
+    def critic_stats(self, program: str) -> str:
+        cfg = self.config
+        kind = cfg.critic_stats
+        try:
+            return self.renderer.stats(program, kind, grid=cfg.stats_grid, size=cfg.critique_size)
+        except ViewUnavailableError as err:
+            self.warn(f"{err}; the critic got the 28 statistics instead")
+            return self.renderer.stats(
+                program, "paper", grid=cfg.stats_grid, size=cfg.critique_size
+            )
+
+    # ------------------------------------------------------------------ stage I / II
+
+    def generate_initial(self) -> None:
+        if self.record.programs:
+            return
+        if self.config.start == "builtin":
+            self.start_from_builtin()
+            return
+        assert self.generator is not None
+        self.notify("generate", "generating P0", round=0)
+        run_turn(
+            self.generator,
+            self.store,
+            kind="generate",
+            user_text=request_message(self.record.prompt),
+            program_seed=derive_seed(self.config.seed, 0),
+            repair_turns=self.config.repair_turns,
+            notify=lambda m: self.notify("generate", m, round=0),
+            max_reply_chars=self.config.max_reply_chars,
+        )
+
+    def start_from_builtin(self) -> None:
+        """P0 from the offline author, committed as the model's first answer to the request.
+
+        The conversation becomes (request, assistant turn with P0), exactly as if the generator
+        had written P0, so the first revision turn has its context. Program and conversation
+        are saved together: a resumed run either has both or redoes both.
+        """
+        self.notify("generate", "P0 from the built-in offline author", round=0)
+        program = append_builtin_program(self)
+        self.record.conversation = [
+            MessageRecord(role="user", text=request_message(self.record.prompt)),
+            MessageRecord(role="assistant", text=canonical_assistant_turn("", program.text)),
+        ]
+        self.store.save()
+
+    def refine(self) -> None:
+        """Critique P_k and revise into P_{k+1} for k = 0..rounds-1, then critique P_rounds."""
+        if self.config.rounds == 0 or self.record.stop_reason:
+            return
+        if not self.config.effective_signals():
+            self.record.stop_reason = "no critic signals available"
+            self.store.save()
+            return
+        for k in range(self.config.rounds + 1):
+            if k >= len(self.record.programs):
+                return
+            critique = self.record.critique_of(k) or self.critique(k)
+            if not critique.ok:
+                self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
+                self.store.save()
+                return
+            if k < self.config.rounds and k + 1 >= len(self.record.programs):
+                self.revise(k, critique)
+
+    def _previous_round(self, k: int, sees_render: bool) -> PreviousRound | None:
+        if not self.config.critic_history or k == 0:
+            return None
+        before = self.record.critique_of(k - 1)
+        score = before.match_score if before is not None and before.ok else None
+        images = tuple(self.view_inputs(k - 1)) if sees_render else ()
+        return PreviousRound(index=k - 1, score=score, images=images)
+
+    def critique(self, k: int) -> CritiqueRecord:
+        assert self.critic is not None
+        cfg = self.config
+        program = self.record.programs[k].text
+        signals = cfg.effective_signals()
+        self.notify("critique", f"critiquing P{k}", round=k)
+        start = time.perf_counter()
+        sees_render = "render" in signals and self.critic.accepts_images
+        renders = self.view_inputs(k) if sees_render else []
+        stats = self.critic_stats(program) if "stats" in signals else None
+        result = critique_program(
+            self.critic,
+            self.record.prompt,
+            k,
+            program,
+            signals=signals,
+            renders=renders,
+            views=self.views,
+            stats=stats,
+            retries=cfg.critic_retries,
+            history=cfg.critic_history,
+            previous=self._previous_round(k, sees_render),
+            max_reply_chars=cfg.max_reply_chars,
+        )
+        result.seconds = time.perf_counter() - start  # renders + statistics + model calls
+        self.record.critiques.append(result)
+        self.record.durations.critique.append(result.seconds)
+        self.store.save()
+        return result
+
+    def revise(self, k: int, critique: CritiqueRecord) -> None:
+        assert self.generator is not None
+        cfg = self.config
+        self.notify("revise", f"revising P{k} -> P{k + 1}", round=k + 1)
+        images = []
+        if cfg.revision_images and self.generator.accepts_images:
+            images = self.view_inputs(k)
+        before = self.record.critique_of(k - 1) if cfg.critic_history and k > 0 else None
+        text = revision_message(
+            critique.match_score or 0,
+            critique.differences,
+            critique.suggestions,
+            edits=critique.edits,
+            views=self.views if images else (),
+            added_seeds=self.record.programs[k].added_seeds,
+            previous_score=before.match_score if before is not None and before.ok else None,
+        )
+        run_turn(
+            self.generator,
+            self.store,
+            kind="revise",
+            user_text=text,
+            program_seed=derive_seed(cfg.seed, k + 1),
+            repair_turns=cfg.repair_turns,
+            notify=lambda m: self.notify("revise", m, round=k + 1),
+            max_reply_chars=cfg.max_reply_chars,
+            images=images,
+        )
+
+    # ------------------------------------------------------------------ stage III
+
+    def select(self) -> None:
+        if self.record.selection is not None:
+            return
+        programs = [p.text for p in self.record.programs]
+        self.notify("select", f"selecting among {len(programs)} program(s)")
+        size = self.config.select_size
+        self.record.selection = select_program(
+            len(programs),
+            prompt=self.record.prompt,
+            critiques=self.record.critiques,
+            scorer=self.scorer,
+            render=lambda k: self.render(programs[k], size),
+            size=size,
+        )
+        self.record.durations.select = self.record.selection.seconds
+        self.store.save()
+
+    def seed_search(self, skip_reason: str | None) -> None:
+        record, cfg = self.record, self.config
+        assert record.selection is not None
+        if record.seed_search is None:
+            last = len(record.programs) - 1
+            record.seed_search = SeedSearchRecord(
+                candidates=candidate_indices(0, record.selection.index, last)
+            )
+        search = record.seed_search
+        if search.done:
+            return
+        if self.scorer is None or cfg.variants == 0:
+            search.skipped = skip_reason or "variants = 0"
+        else:
+            self._sweep_candidates(search)
+        search.done = True
+        self.store.save()
+
+    def _sweep_candidates(self, search: SeedSearchRecord) -> None:
+        assert self.scorer is not None
+        done = {s.program_index for s in search.sweeps}
+        for n, index in enumerate(search.candidates):
+            if index in done:
+                continue
+            start = time.perf_counter()
+
+            def progress(
+                finished: int, total: int, n: int = n, start: float = start, index: int = index
+            ) -> None:
+                elapsed = time.perf_counter() - start
+                eta = elapsed / finished * (total - finished) if finished else None
+                self.notify(
+                    "seed-search",
+                    f"sweep {n + 1}/{len(search.candidates)} (P{index})",
+                    done=finished,
+                    total=total,
+                    eta_s=eta,
+                )
+
+            with RENDER_LOCK:
+                sweep = run_candidate_sweep(
+                    index,
+                    self.record.programs[index].text,
+                    prompt=self.record.prompt,
+                    scorer=self.scorer,
+                    variants=self.config.variants,
+                    size=self.config.sweep_size,
+                    seed=self.config.seed,
+                    jobs=self.config.sweep_jobs,
+                    progress=progress,
+                )
+            search.sweeps.append(sweep)
+            self.record.durations.seed_search.append(sweep.seconds)
+            self.store.save()
+
+    def finalize(self) -> None:
+        record = self.record
+        if record.final is not None and record.final.files:
+            return
+        start = time.perf_counter()
+        assert record.seed_search is not None and record.selection is not None
+        final = best_of_sweeps(record.seed_search)
+        if final is None:
+            j = record.selection.index
+            score = record.selection.scores[j] if record.selection.scores else None
+            final = FinalRecord(
+                program=record.programs[j].text, program_index=j, variant=0, score=score
+            )
+        final, warning = finite_final(
+            record, final, self._nonfinite_texels, self.config.export_size
+        )
+        if warning:
+            self.warn(warning)
+        if self.config.tileable:
+            final.program = tileable_text(final.program)
+        self.notify("export", "writing material.mat, preview.png, the maps and material.json")
+        final.files = export_final(self.store, final.program, self.config.export_size)
+        record.final = final
+        record.durations.export = time.perf_counter() - start
+        self.store.save()
+
+    def _nonfinite_texels(self, program: str) -> int:
+        import matloom
+
+        size = self.config.export_size
+        with RENDER_LOCK:
+            return nonfinite_texels(matloom.evaluate(program, size, size))
+
+
+def append_builtin_program(run: Run) -> ProgramRecord:
+    """Record the offline author's program as P0 (canonical, seeds explicit) and its
+    explanation; the caller saves."""
+    from matloom.author.builtin import author
+    from matloom.lang.api import parse
+    from matloom.lang.printer import format_program
+    from matloom.lang.seeds import canonicalize_seeds
+
+    start = time.perf_counter()
+    result = author(run.record.prompt, seed=run.config.seed)
+    # The offline author already pins every seed; this only guarantees the canonical form.
+    text = format_program(canonicalize_seeds(parse(result.program), run.config.seed))
+    program = ProgramRecord(
+        index=0, text=text, authored=result.program, source="builtin", program_seed=run.config.seed
+    )
+    run.record.programs.append(program)
+    run.record.builtin_explanation = result.explanation
+    run.record.durations.generation.append(time.perf_counter() - start)
+    return program

@@ -1,0 +1,274 @@
+"""The options of `matloom generate` and how they become one frozen :class:`AuthorConfig`.
+
+Precedence, lowest first: the defaults (the paper's settings) or a resumed run's recorded
+settings, the settings preset (``--settings``, or ``[matloom] settings`` in matloom.toml for a
+new run), then the flags given on the command line. Model access comes from the model profile
+(``--profile`` or matloom.toml's default) and the model flags.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import click
+from click.core import ParameterSource
+
+from matloom.author.config import AuthorConfig, ModelSettings
+
+#: Flags that map 1:1 onto AuthorConfig fields.
+_CONFIG_FLAGS: dict[str, str] = {
+    "rounds": "rounds",
+    "variants": "variants",
+    "scorer": "scorer",
+    "scorer_weights": "scorer_weights",
+    "critic_signals": "critic_signals",
+    "seed": "seed",
+    "repair_turns": "repair_turns",
+    "sweep_jobs": "sweep_jobs",
+    "critique_size": "critique_size",
+    "select_size": "select_size",
+    "sweep_size": "sweep_size",
+    "export_size": "export_size",
+    "stats_grid": "stats_grid",
+    "playbook": "playbook",
+    "few_shot": "few_shot",
+    "start": "start",
+    "max_reply_chars": "max_reply_chars",
+    "tileable": "tileable",
+    "critic_views": "critic_views",
+    "critic_history": "critic_history",
+    "critic_stats": "critic_stats",
+    "revision_images": "revision_images",
+}
+#: Flags saying that the user asked for a scorer or a seed search (a skipped search is then
+#: reported on stderr; otherwise it is only recorded).
+SEARCH_FLAGS = frozenset({"scorer", "scorer_weights", "variants"})
+#: Flags that override generator model settings.
+_MODEL_FLAGS: dict[str, str] = {
+    "model": "model",
+    "base_url": "base_url",
+    "temperature": "temperature",
+    "reasoning_effort": "reasoning_effort",
+    "timeout": "timeout_s",
+    "max_retries": "max_retries",
+    "images": "images",
+    "retry_backoff": "backoff_s",
+}
+
+
+def explicit_flags(ctx: click.Context) -> set[str]:
+    """Names of the options the user actually gave on the command line."""
+    return {
+        name
+        for name in ctx.params
+        if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)
+    }
+
+
+def _generator_settings(
+    params: dict[str, Any], given: set[str], base: ModelSettings | None
+) -> ModelSettings | None:
+    from matloom.author.config import load_config_file, resolve_profile, with_overrides
+
+    data = load_config_file(params["config_file"])
+    if "profile" in given or (base is None and "model" not in given):
+        base = resolve_profile(data, params["profile"]) or base
+    updates = {_MODEL_FLAGS[k]: params[k] for k in _MODEL_FLAGS if k in given}
+    if params.get("extra_body"):
+        updates["extra_body"] = json.loads(params["extra_body"])
+    return with_overrides(base, **updates)
+
+
+def _critic_settings(
+    params: dict[str, Any],
+    given: set[str],
+    generator: ModelSettings | None,
+    base: ModelSettings | None,
+) -> ModelSettings | None:
+    from matloom.author.config import load_config_file, resolve_profile, with_overrides
+
+    if "critic_profile" in given:
+        base = resolve_profile(load_config_file(params["config_file"]), params["critic_profile"])
+    if "critic_model" in given and generator is not None and base is None:
+        base = generator.model_copy(update={"images": None})
+    updates: dict[str, Any] = {}
+    if "critic_model" in given:
+        updates["model"] = params["critic_model"]
+    if "critic_base_url" in given:
+        updates["base_url"] = params["critic_base_url"]
+    if "critic_images" in given:
+        updates["images"] = params["critic_images"]
+    return with_overrides(base, **updates)
+
+
+def _preset_values(params: dict[str, Any], given: set[str], fresh: bool) -> dict[str, Any]:
+    """The AuthorConfig values of the settings preset: ``--settings``, else (for a new run) the
+    config file's default; {} when neither names one."""
+    from matloom.author.config import load_config_file
+    from matloom.author.settings_presets import default_preset, preset_values
+
+    data = load_config_file(params["config_file"])
+    name = params.get("settings") if "settings" in given else None
+    if name is None and fresh:
+        name = default_preset(data)
+    return preset_values(name, data) if name is not None else {}
+
+
+def build_config(
+    params: dict[str, Any], given: set[str], base: AuthorConfig | None = None
+) -> AuthorConfig:
+    """The frozen config: the defaults (or ``base``, a resumed run's settings), then the
+    settings preset (``--settings`` or matloom.toml's default), then the explicit flags; model
+    access comes from the profile and model flags."""
+    fresh = base is None
+    base = base or AuthorConfig()
+    preset = _preset_values(params, given, fresh)
+    update: dict[str, Any] = {
+        field: params[flag] for flag, field in _CONFIG_FLAGS.items() if flag in given
+    }
+    generator = _generator_settings(params, given, base.generator)
+    critic = _critic_settings(params, given, generator, base.critic)
+    data = {**base.model_dump(), **preset, **update, "generator": generator, "critic": critic}
+    return AuthorConfig.model_validate(data)
+
+
+def model_options(f: Any) -> Any:
+    options = [
+        click.option("--profile", help="Model profile from matloom.toml."),
+        click.option(
+            "--config",
+            "config_file",
+            type=click.Path(dir_okay=False),
+            help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
+            "~/.config/matloom/matloom.toml).",
+        ),
+        click.option("--model", help="Generator model id (OpenAI-compatible)."),
+        click.option(
+            "--base-url", help="Chat Completions endpoint, e.g. http://localhost:8000/v1."
+        ),
+        click.option("--temperature", type=float),
+        click.option("--reasoning-effort"),
+        click.option("--extra-body", help="JSON object merged into each request body."),
+        click.option("--timeout", type=float, help="Seconds per model request."),
+        click.option("--max-retries", type=int, help="Retries on 429/5xx/timeouts."),
+        click.option(
+            "--retry-backoff",
+            type=float,
+            help="First retry delay in seconds (grows 1.5x per retry).",
+        ),
+        click.option(
+            "--images/--no-images",
+            default=None,
+            help="Whether the generator model accepts images (default: guessed).",
+        ),
+        click.option("--critic-model", help="Critic model (default: the generator's)."),
+        click.option("--critic-profile", help="Critic model profile from matloom.toml."),
+        click.option("--critic-base-url"),
+        click.option(
+            "--critic-images/--no-critic-images",
+            default=None,
+            help="Whether the critic accepts images; text-only critics get no render.",
+        ),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+def pipeline_options(f: Any) -> Any:
+    d = AuthorConfig()
+    options = [
+        click.option(
+            "--settings",
+            help="Named settings preset: recommended (both previews, critic history, visible "
+            "statistics), paper (the paper's settings, the defaults) or one from matloom.toml; "
+            "other flags override it.",
+        ),
+        click.option(
+            "--start",
+            type=click.Choice(["model", "builtin"]),
+            default=d.start,
+            show_default=True,
+            help="Who writes P0 when a model is configured: the model, or the built-in offline "
+            "author (the model then critiques and revises it).",
+        ),
+        click.option("--rounds", type=int, default=d.rounds, show_default=True),
+        click.option(
+            "--variants",
+            type=int,
+            default=d.variants,
+            show_default=True,
+            help="Seed variants per candidate in the seed search.",
+        ),
+        click.option(
+            "--scorer",
+            default=d.scorer,
+            show_default=True,
+            help="auto, none, mobileclip2, open_clip:MODEL:WEIGHTS, test-colour, ...",
+        ),
+        click.option("--scorer-weights", help="Local MobileCLIP2-S2 weights file."),
+        click.option("--critic-signals", default=",".join(d.critic_signals), show_default=True),
+        click.option(
+            "--critic-views",
+            type=click.Choice(["flat", "lit", "both"]),
+            default=d.critic_views,
+            show_default=True,
+            help="Preview layouts the critic sees: the flat head-on swatch, the lit studio "
+            "layout, or both (two images).",
+        ),
+        click.option(
+            "--critic-history/--no-critic-history",
+            default=d.critic_history,
+            show_default=True,
+            help="The critic also sees the previous round's preview and score and says whether "
+            "this round is better.",
+        ),
+        click.option(
+            "--critic-stats",
+            type=click.Choice(["paper", "visible"]),
+            default=d.critic_stats,
+            show_default=True,
+            help="The critic's statistics: the paper's 28 on --stats-grid, or those of what is "
+            "visible at --critique-size.",
+        ),
+        click.option(
+            "--revision-images/--no-revision-images",
+            default=d.revision_images,
+            show_default=True,
+            help="Attach the previews to the revision turn when the generator takes images.",
+        ),
+        click.option("--seed", type=int, default=d.seed, show_default=True),
+        click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),
+        click.option(
+            "--sweep-jobs",
+            type=int,
+            default=d.sweep_jobs,
+            show_default=True,
+            help="Render processes per sweep (0 = all cores).",
+        ),
+        click.option("--critique-size", type=int, default=d.critique_size, show_default=True),
+        click.option("--select-size", type=int, default=d.select_size, show_default=True),
+        click.option("--sweep-size", type=int, default=d.sweep_size, show_default=True),
+        click.option("--export-size", type=int, default=d.export_size, show_default=True),
+        click.option("--stats-grid", type=int, default=d.stats_grid, show_default=True),
+        click.option(
+            "--max-reply-chars",
+            type=int,
+            default=d.max_reply_chars,
+            show_default=True,
+            help="Longest model reply read; a longer one is refused as a bad answer.",
+        ),
+        click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
+        click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
+        click.option(
+            "--tileable",
+            is_flag=True,
+            default=d.tileable,
+            help="Make the final material tileable (View(..., tileable=True)); the offline "
+            "author already does where the material allows it.",
+        ),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
