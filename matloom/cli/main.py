@@ -23,6 +23,7 @@ COMMANDS: dict[str, str] = {
     "demo": "matloom.cli.demo_cmd:demo_cmd",
     "scorer": "matloom.cli.generate_cmd:scorer_cmd",
     "blender": "matloom.cli.blender_cmd:blender_cmd",
+    "library": "matloom.cli.library_cmd:library_cmd",
 }
 
 

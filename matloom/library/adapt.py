@@ -1,0 +1,286 @@
+"""Adaptation: change an entry's slot Defines and View to fit a request (AST level).
+
+Order (later wins): word presets ("walnut" sets the ``wood`` colour), finish words (roughness,
+relief, gloss slots), the amount of overlays the entry already shows ("rusty" on rusted metal
+raises its wear slot), stated percentages (cover slot), scale words / sizes / counts (the
+View), then explicit colours. Colours go to the slot whose role a nearby noun names ("white
+grout", "gold veins"), else to the free slots in order, main colour first; plain colour words
+("red") on natural materials are pulled toward the entry's own colour so "red brick" still looks
+like brick. Every change is described in a short note for the explanation.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field, replace
+
+from matloom.lang import ast as A
+from matloom.lang.parser import parse_source
+from matloom.library import colour as C
+from matloom.library.data import Words
+from matloom.library.entry import Entry, PresetValue
+from matloom.library.overlay import constant, define_value, view_width
+from matloom.library.query import ColourMention, Request, plural_stem
+
+#: categories whose colours are natural material colours ("red brick" stays brick-like).
+NATURAL = frozenset(
+    {"wood", "stone", "masonry", "concrete", "metal", "ground", "leather", "organic", "natural"}
+)
+BASIC = frozenset("red green blue brown yellow orange grey gray purple pink white black".split())
+VIEW_RANGE = (0.25, 4.0)
+_ROLE_OF_NOUN = {
+    "mortar": "grout",
+    "grout": "grout",
+    "joint": "grout",
+    "background": "base",
+    "base": "base",
+    "frame": "frame",
+    "stripe": "accent",
+    "dot": "accent",
+    "vein": "accent",
+}
+_GLOSSY = {"glossy": 0.8, "polished": 0.9, "shiny": 0.6, "satin": 0.3, "matte": 0.0}
+
+
+@dataclass
+class Adapted:
+    """The adapted program and what changed."""
+
+    program: A.Program
+    view: float
+    scale: float
+    notes: list[str] = field(default_factory=list)
+    used: set[int] = field(default_factory=set)
+
+
+@functools.cache
+def parse_expression(text: str) -> A.Node:
+    """Parse one expression (a preset value such as ``X()``)."""
+    program, diags = parse_source(f"Define(value, {text})\nMaterial(Layer(1).roughness(value))")
+    if program is None or not program.defines:
+        raise ValueError(f"not an expression: {text!r} ({diags[0] if diags else ''})")
+    return program.defines[0].expr
+
+
+def colour_slots(program: A.Program, entry: Entry) -> tuple[list[str], list[str]]:
+    """(primary slots, derived slots): primaries are plain numbers, derived ones expressions."""
+    primary, derived = [], []
+    for slot in entry.colours:
+        (primary if constant(program, f"{slot}_r") is not None else derived).append(slot)
+    return primary, derived
+
+
+def slot_colour(program: A.Program, slot: str) -> C.RGB | None:
+    values = [constant(program, f"{slot}_{ch}") for ch in "rgb"]
+    if any(v is None for v in values):
+        return None
+    return C.clamp_rgb(tuple(values))  # type: ignore[arg-type]
+
+
+def set_colour(program: A.Program, slot: str, rgb: C.RGB) -> A.Program:
+    for ch, v in zip("rgb", rgb, strict=True):
+        program = define_value(program, f"{slot}_{ch}", int(v))
+    return program
+
+
+def find_phrase(req: Request, phrase: str) -> list[int] | None:
+    """Token indices of the first non-negated occurrence of ``phrase`` (plurals match)."""
+    parts = [plural_stem(p) for p in phrase.lower().replace("-", " ").split()]
+    toks = [plural_stem(t) for t in req.tokens]
+    for start in range(len(toks) - len(parts) + 1):
+        idx = list(range(start, start + len(parts)))
+        if toks[start : start + len(parts)] == parts and not any(i in req.negated for i in idx):
+            return idx
+    return None
+
+
+class Adapter:
+    """Applies one request to one entry."""
+
+    def __init__(self, entry: Entry, program: A.Program, req: Request, words: Words) -> None:
+        self.entry = entry
+        self.req = req
+        self.w = words
+        self.out = Adapted(program, view_width(program), 1.0)
+
+    @property
+    def program(self) -> A.Program:
+        return self.out.program
+
+    def note(self, text: str) -> None:
+        self.out.notes.append(text)
+
+    def scalar_slots(self, kind: str) -> list[str]:
+        return [n for n, k in self.entry.scalars.items() if k == kind]
+
+    # ------------------------------------------------------------------ presets
+    def presets(self, presets: dict[str, dict[str, PresetValue]]) -> set[str]:
+        explicit: set[str] = set()
+        for word in sorted(presets, key=lambda w: (-len(w.split()), w)):
+            idx = find_phrase(self.req, word)
+            if idx is None or any(i in self.out.used for i in idx):
+                continue
+            self.out.used.update(idx)
+            for slot, value in presets[word].items():
+                if isinstance(value, tuple):
+                    self.out.program = set_colour(self.program, slot, value)
+                    explicit.add(slot)
+                elif isinstance(value, str):
+                    self.out.program = define_value(self.program, slot, parse_expression(value))
+                else:
+                    self.out.program = define_value(self.program, slot, value)
+            self.note(
+                f"preset '{word}': " + ", ".join(f"{k} {v}" for k, v in presets[word].items())
+            )
+        return explicit
+
+    # ------------------------------------------------------------------ scalars
+    def finishes(self) -> None:
+        rough_done = False
+        for key, word in self.req.finishes:
+            if key in self.w.finish_roughness and not rough_done:
+                for slot in self.scalar_slots("roughness"):
+                    value = self.w.finish_roughness[key]
+                    self.out.program = define_value(self.program, slot, value)
+                    self.note(f"{slot} = {value:g} (finish '{word}')")
+                    rough_done = True
+            if key in self.w.finish_relief:
+                for slot in self.scalar_slots("relief"):
+                    old = constant(self.program, slot) or 1.0
+                    value = round(old * self.w.finish_relief[key], 4)
+                    self.out.program = define_value(self.program, slot, value)
+                    self.note(f"{slot} x{self.w.finish_relief[key]:g} (finish '{word}')")
+            if key in _GLOSSY:
+                for slot in self.scalar_slots("gloss"):
+                    self.out.program = define_value(self.program, slot, _GLOSSY[key])
+                    self.note(f"{slot} = {_GLOSSY[key]:g} (finish '{word}')")
+
+    def amounts(self, absorbed: list[tuple[str, float]]) -> None:
+        for name, amount in absorbed:
+            for slot in self.scalar_slots("wear"):
+                old = constant(self.program, slot) or 0.0
+                value = round(max(old, amount), 3)
+                self.out.program = define_value(self.program, slot, value)
+                self.note(f"{slot} = {value:g} ('{name}' is part of the entry)")
+        if self.req.percents:
+            for slot in self.scalar_slots("cover"):
+                value = max(0.05, min(0.95, self.req.percents[0]))
+                self.out.program = define_value(self.program, slot, value)
+                self.note(f"{slot} = {value:g} (stated percentage)")
+
+    # ------------------------------------------------------------------ View
+    def view(self) -> None:
+        e, req = self.entry, self.req
+        view0 = self.out.view
+        scale, why = 1.0, ""
+        units = {plural_stem(u) for u in e.units}
+        for count in req.counts:
+            if count.noun in units and e.feature_m:
+                scale = e.size_m / (count.value * e.feature_m)
+                why = f"{count.value} {count.noun}s across"
+                break
+        else:
+            for size in req.sizes:
+                if e.feature_m and (not size.noun or size.noun in units or len(req.sizes) == 1):
+                    scale = size.metres / e.feature_m
+                    why = f"{size.words} {size.noun}".strip()
+                    break
+            else:
+                if req.scale != 1.0:
+                    scale, why = req.scale, "scale words " + ", ".join(req.scale_words)
+        if scale == 1.0:
+            return
+        scale = max(1 / VIEW_RANGE[1], min(1 / VIEW_RANGE[0], scale))
+        self.out.scale = scale
+        self.out.view = round(view0 / scale, 4)
+        self.note(f"View {view0:g} -> {self.out.view:g} ({why})")
+
+    # ------------------------------------------------------------------ colours
+    def colours(self, explicit: set[str]) -> None:
+        e = self.entry
+        primary, derived = colour_slots(self.program, e)
+        primary = [s for s in primary if e.role(s) != "material"]
+        secondary = [s for s in derived if e.role(s) not in {"grout", "material"}]
+        mentions = [m for m in self.req.colours if m.role != "overlay"]
+        taken: set[str] = set()
+        pending: list[ColourMention] = []
+        for m in mentions:
+            target = None
+            if m.role:
+                target = next(
+                    (s for s in primary + derived if e.role(s) == m.role and s not in taken), None
+                )
+            if target is None and m.role == "grout":
+                target = next(
+                    (s for s in e.colours if e.role(s) == "grout" and s not in taken), None
+                )
+            if target:
+                self.give(m, target, f"'{m.role}' role", taken)
+            else:
+                pending.append(m)
+        free = [s for s in primary + secondary if s not in taken]
+        for m, slot in zip(pending, free, strict=False):
+            self.give(m, slot, "prompt order", taken)
+        for m in pending[len(free) :]:
+            self.note(f"colour '{m.words}' unused: no free colour slot")
+        explicit |= taken
+        self.tones(explicit)
+
+    def give(self, m: ColourMention, slot: str, why: str, taken: set[str]) -> None:
+        rgb = m.rgb
+        default = slot_colour(self.program, slot)
+        if self.entry.category in NATURAL and m.words in BASIC and default is not None:
+            if C.saturation(default) >= 0.12 and C.hue_distance(rgb, default) <= 35:
+                rgb = C.mix(rgb, default, 0.45)
+        self.out.program = set_colour(self.program, slot, rgb)
+        taken.add(slot)
+        self.out.used.update(range(m.index, m.index + len(m.words.split())))
+        self.note(f"colour {slot} = '{m.words}' {rgb} ({why})")
+
+    def tones(self, explicit: set[str]) -> None:
+        e = self.entry
+        for modifier, noun, index in self.req.tones:
+            target = None
+            role = _ROLE_OF_NOUN.get(noun)
+            if role is not None:
+                target = next((s for s in e.colours if e.role(s) == role), None)
+            elif noun in e.tags or noun in e.name or noun in (t for t in e.synonyms):
+                target = e.colours[0] if e.colours else None
+            if target is None:
+                continue
+            current = slot_colour(self.program, target)
+            if current is None:
+                continue
+            rgb = C.apply_tone(current, modifier, self.w.tones[modifier])
+            self.out.program = set_colour(self.program, target, rgb)
+            self.out.used.add(index)
+            self.note(f"colour {target} made {modifier} ('{modifier} {noun}') {rgb}")
+
+
+def adapt(
+    entry: Entry,
+    program: A.Program,
+    req: Request,
+    words: Words,
+    presets: dict[str, dict[str, PresetValue]],
+    absorbed: list[tuple[str, float]],
+) -> Adapted:
+    """Apply ``req`` to ``entry``'s parsed ``program``; the View is resized later (tiling)."""
+    a = Adapter(entry, program, req, words)
+    explicit = a.presets(presets)
+    a.finishes()
+    a.amounts(absorbed)
+    a.view()
+    a.colours(explicit)
+    return a.out
+
+
+def resize_view(program: A.Program, side: float) -> A.Program:
+    """``program`` with a square View of ``side`` (centred windows stay centred)."""
+    view = program.view or A.ViewDecl(0.0, 0.0, 1.0, 1.0)
+    if view.x1 < 0 and math.isclose(view.x1, -view.x2):
+        return replace(
+            program, view=replace(view, x1=-side / 2, y1=-side / 2, x2=side / 2, y2=side / 2)
+        )
+    return replace(program, view=replace(view, x2=view.x1 + side, y2=view.y1 + side))

@@ -1,0 +1,242 @@
+"""Overlays: condition layers ("mossy", "rusty", "wet" ...) kept as data and composed onto an
+entry at the AST level.
+
+An overlay is a ``.mat`` file in ``matloom/library/overlays/`` with a front matter (see
+docs/library.md) and a complete program, so ``matloom check`` and ``matloom preview`` work on it.
+Its **first layer stands in for the host material** and is dropped when composing; the other
+layers, and the Defines they use, are appended on top of the entry's layers. Composition
+(:func:`compose`):
+
+* binds the overlay's ``host`` colour Defines to the entry's main colour slot (so "worn" can
+  lighten whatever the entry's colour is);
+* sets the overlay's slots (``cover`` from the amount words, its colour from the prompt);
+* rescales noise frequencies and heights from the overlay's View to the entry's, so the overlay
+  keeps the same number of features across the material;
+* renames Defines that clash with the entry's names and re-derives seeds for the user seed.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import matloom
+from matloom.lang import ast as A
+from matloom.lang.rewrite import map_expr
+from matloom.library.entry import FrontMatterReader, LibraryError, split_front_matter
+from matloom.vocab import FUNCTIONS
+
+OVERLAY_DIR = Path(__file__).resolve().parent / "overlays"
+_FREQ_PARAMS = ("base_freq", "base_freq_x", "base_freq_y")
+
+
+@dataclass(frozen=True)
+class Overlay:
+    """One overlay: what requests it, its slots and its program text."""
+
+    name: str
+    path: Path
+    description: str
+    triggers: tuple[str, ...]
+    program: str
+    colours: tuple[str, ...] = ()
+    host: str | None = None
+    cover: str | None = None
+    weak: tuple[str, ...] = ()
+    scalars: dict[str, str] = field(default_factory=dict)
+
+    @functools.cached_property
+    def ast(self) -> A.Program:
+        """The parsed program (cached)."""
+        return matloom.parse(self.program)
+
+
+def load_overlay(path: Path | str) -> Overlay:
+    """Read and validate one overlay file (errors name the file and the key)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise LibraryError(f"{path}: cannot read: {exc}") from None
+    data, program, _ = split_front_matter(text, path)
+    r = FrontMatterReader(data, path)
+    scalars = r.table("scalars")
+    cover = next((k for k, kind in scalars.items() if kind == "cover"), None)
+    host = r.get("host", None, required=False)
+    if host is not None and not (isinstance(host, str) and host):
+        raise r.fail("host", f"expected the name of a colour slot, got {host!r}")
+    overlay = Overlay(
+        name=path.stem,
+        path=path,
+        description=r.text("description"),
+        triggers=tuple(t.lower() for t in r.words("triggers", required=True)),
+        program=program,
+        colours=r.words("colours"),
+        host=host,
+        cover=cover,
+        weak=tuple(t.lower() for t in r.words("weak")),
+        scalars=dict(scalars),
+    )
+    r.finish()
+    if host is not None and host not in overlay.colours:
+        raise r.fail("host", f"{host!r} is not one of 'colours'")
+    return overlay
+
+
+# ----------------------------------------------------------------------------- AST helpers
+def define_value(program: A.Program, name: str, value: float | A.Node) -> A.Program:
+    """``program`` with Define ``name`` set to ``value`` (unchanged when there is no such Define)."""
+    node = value if not isinstance(value, (int, float)) else _num(value)
+    defines = tuple(replace(d, expr=node) if d.name == name else d for d in program.defines)
+    return replace(program, defines=defines)
+
+
+def _num(value: float) -> A.Node:
+    v: int | float = int(value) if float(value).is_integer() else round(float(value), 6)
+    return A.Num(abs(v)) if v >= 0 else A.Neg(A.Num(-v))
+
+
+def constant(program: A.Program, name: str) -> float | None:
+    """The value of Define ``name`` when it is a plain number, else None."""
+    d = program.define(name)
+    if d is None:
+        return None
+    if isinstance(d.expr, A.Num):
+        return float(d.expr.value)
+    if isinstance(d.expr, A.Neg) and isinstance(d.expr.operand, A.Num):
+        return -float(d.expr.operand.value)
+    return None
+
+
+def rename_refs(node: A.Node, names: dict[str, str]) -> A.Node:
+    """``node`` with every Ref renamed through ``names``."""
+
+    def fn(n: A.Node) -> A.Node:
+        if isinstance(n, A.Ref) and n.name in names:
+            return replace(n, name=names[n.name])
+        return n
+
+    return map_expr(node, fn)
+
+
+def scale_frequencies(node: A.Node, factor: float) -> A.Node:
+    """Multiply the frequency parameters of every noise call in ``node`` by ``factor``."""
+
+    def fn(n: A.Node) -> A.Node:
+        if not isinstance(n, A.Call) or n.func not in FUNCTIONS:
+            return n
+        params = {p.name for p in FUNCTIONS[n.func].params}
+        if "base_freq" not in params:
+            return n
+        args = []
+        seen = set()
+        for a in n.args:
+            if a.param in _FREQ_PARAMS and isinstance(a.value, A.Num):
+                a = replace(a, value=_num(a.value.value * factor))
+            seen.add(a.param)
+            args.append(a)
+        if not seen & set(_FREQ_PARAMS):
+            args.append(A.Arg("base_freq", _num(factor)))
+        return replace(n, args=tuple(args))
+
+    return map_expr(node, fn)
+
+
+def _scaled_height(layer: A.Layer, factor: float) -> A.Layer:
+    if abs(factor - 1) < 1e-9:
+        return layer
+    chans = tuple(
+        replace(c, args=tuple(A.BinOp("*", a, _num(factor)) for a in c.args))
+        if c.name == "height"
+        else c
+        for c in layer.channels
+    )
+    return replace(layer, channels=chans)
+
+
+def view_width(program: A.Program) -> float:
+    x1, _, x2, _ = program.view_tuple
+    return abs(x2 - x1) or 1.0
+
+
+def compose(
+    host: A.Program,
+    overlay: Overlay,
+    *,
+    main_colour: str | None,
+    cover: float | None = None,
+    colour: tuple[int, int, int] | None = None,
+    reseed: object = None,
+) -> A.Program:
+    """``host`` with ``overlay``'s layers (all but its first) and their Defines on top.
+
+    ``main_colour`` is the entry's main colour slot (bound to the overlay's ``host`` colour);
+    ``cover`` and ``colour`` set the overlay's slots; ``reseed`` (a callable taking and returning
+    a program) re-derives the overlay's seeds.
+    """
+    ov = overlay.ast
+    if cover is not None and overlay.cover:
+        ov = define_value(ov, overlay.cover, cover)
+    if colour is not None and overlay.colours:
+        slot = next((c for c in overlay.colours if c != overlay.host), None)
+        if slot is not None:
+            for ch, v in zip("rgb", colour, strict=True):
+                ov = define_value(ov, f"{slot}_{ch}", v)
+    names: dict[str, str] = {}
+    drop: set[str] = set()
+    if overlay.host and main_colour:
+        for ch in "rgb":
+            names[f"{overlay.host}_{ch}"] = f"{main_colour}_{ch}"
+            drop.add(f"{overlay.host}_{ch}")
+    taken = {d.name for d in host.defines}
+    for d in ov.defines:
+        if d.name in drop:
+            continue
+        new, k = d.name, 2
+        while new in taken:
+            new, k = f"{d.name}{k}", k + 1
+        if new != d.name:
+            names[d.name] = new
+        taken.add(new)
+    factor = view_width(ov) / view_width(host)
+    defines = [
+        replace(
+            d,
+            name=names.get(d.name, d.name),
+            expr=scale_frequencies(rename_refs(d.expr, names), factor),
+        )
+        for d in ov.defines
+        if d.name not in drop
+    ]
+    layers = []
+    for layer in ov.layers[1:]:
+        alpha = rename_refs(layer.alpha, names) if layer.alpha is not None else None
+        chans = tuple(
+            replace(c, args=tuple(rename_refs(a, names) for a in c.args)) for c in layer.channels
+        )
+        layers.append(_scaled_height(replace(layer, alpha=alpha, channels=chans), 1 / factor))
+    added = replace(ov, view=host.view, defines=tuple(defines), layers=tuple(layers))
+    if callable(reseed):
+        added = reseed(added)
+    return replace(host, defines=host.defines + added.defines, layers=host.layers + added.layers)
+
+
+def check_overlay(overlay: Overlay) -> None:
+    """Raise :class:`LibraryError` when the overlay's program does not fit the rules."""
+    try:
+        program = overlay.ast
+    except matloom.ProgramError as exc:
+        raise LibraryError(f"{overlay.path}: {exc}") from None
+    if len(program.layers) < 2:
+        raise LibraryError(
+            f"{overlay.path}: needs a stand-in host layer and at least one overlay layer"
+        )
+    for slot in overlay.colours:
+        for ch in "rgb":
+            if program.define(f"{slot}_{ch}") is None:
+                raise LibraryError(
+                    f"{overlay.path}: colour slot {slot!r} has no Define {slot}_{ch}"
+                )
+    if overlay.cover and program.define(overlay.cover) is None:
+        raise LibraryError(f"{overlay.path}: scalar {overlay.cover!r} has no Define")

@@ -1,0 +1,389 @@
+"""Reading a request: what the words of a prompt ask for, before any entry is chosen.
+
+:func:`read` tokenises the prompt and finds negations, colours (with tone modifiers and the
+role a nearby noun gives them: "white grout", "gold veins"), finish words, overlay words
+("mossy", "rusty", with an amount and an optional colour), scale words, explicit sizes
+("30 cm tiles"), counts ("8 planks"), percentages and tone words before other nouns ("dark
+wood"). Every rule records the tokens it used, so the author can report the words nothing used.
+Retrieval then reads the remaining words (see :mod:`matloom.library.retrieval`).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from matloom.library import colour as C
+from matloom.library.data import Words
+
+_TOKEN_RE = re.compile(r"\d+/\d+|\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[\",.;:!?()/&%]")
+_CLAUSE_END = frozenset({".", ";", ":", "!", "?", "("})
+_HEAD_END = frozenset({":", ".", ";", "(", "with", "featuring", ","})
+_LIST_JOIN = frozenset({",", "and", "or", "/", "&", "with"})
+_COLOUR_SUFFIX = frozenset({"color", "colour", "colored", "coloured", "tone", "toned", "hue"})
+#: tone words that describe a condition rather than a colour when no colour follows
+_CONDITION_TONES = frozenset({"faded", "dirty", "dusty", "burnt", "washed", "earthy"})
+#: words that end the forward search for a colour's role noun ("white marble with gold veins")
+_ROLE_STOP = frozenset({"with", "and", "or", "on", "over"})
+_SCALE_SKIP = frozenset({"shirt", "dress", "weight", "weighted"})
+
+
+@dataclass
+class ColourMention:
+    """A colour the prompt names, the words it came from and the role a nearby noun gives it."""
+
+    rgb: C.RGB
+    words: str
+    index: int
+    role: str | None = None
+
+
+@dataclass
+class OverlayMention:
+    """A request for an overlay ("mossy"): its name, the word, an amount and a colour."""
+
+    name: str
+    word: str
+    index: int
+    amount: float = 0.5
+    colour: C.RGB | None = None
+
+
+@dataclass(frozen=True)
+class Size:
+    """An explicit size ("30 cm tiles"): metres and the noun it measures (may be empty)."""
+
+    metres: float
+    noun: str
+    words: str
+
+
+@dataclass(frozen=True)
+class Count:
+    """A stated count ("8 planks")."""
+
+    value: int
+    noun: str
+
+
+@dataclass
+class Request:
+    """Everything :func:`read` recognised in one prompt; ``used`` maps token index -> rule."""
+
+    prompt: str
+    tokens: list[str]
+    head_end: int = 0
+    negated: set[int] = field(default_factory=set)
+    colours: list[ColourMention] = field(default_factory=list)
+    finishes: list[tuple[str, str]] = field(default_factory=list)
+    overlays: list[OverlayMention] = field(default_factory=list)
+    scale: float = 1.0
+    scale_words: list[str] = field(default_factory=list)
+    sizes: list[Size] = field(default_factory=list)
+    counts: list[Count] = field(default_factory=list)
+    percents: list[float] = field(default_factory=list)
+    tones: list[tuple[str, str, int]] = field(default_factory=list)
+    used: dict[int, str] = field(default_factory=dict)
+
+    def words_at(self) -> list[tuple[int, str]]:
+        """(index, word) of every non-negated word token."""
+        return [
+            (i, t) for i, t in enumerate(self.tokens) if t[:1].isalpha() and i not in self.negated
+        ]
+
+
+def tokenize(prompt: str) -> list[str]:
+    """Lower-case tokens: words (hyphens split), numbers, fractions and punctuation."""
+    text = prompt.lower().replace("\u2019", "'").replace("-", " ")
+    return [m.group(0) for m in _TOKEN_RE.finditer(text)]
+
+
+def plural_stem(word: str) -> str:
+    """A light plural stemmer for nouns: tiles -> tile, leaves -> leaf, patches -> patch."""
+    if len(word) <= 3 or not word.isalpha():
+        return word
+    if word.endswith("ies") and len(word) > 4:
+        return word[:-3] + "y"
+    if word.endswith("ves") and word not in {"waves", "grooves", "sleeves"}:
+        return word[:-3] + "f"
+    if word.endswith(("ches", "shes", "xes", "sses", "zes")):
+        return word[:-2]
+    if word.endswith("s") and not word.endswith(("ss", "us", "is", "ous")):
+        return word[:-1]
+    return word
+
+
+class _Reader:
+    def __init__(self, prompt: str, words: Words, triggers: dict[str, str], weak: set[str]):
+        self.w = words
+        self.triggers = triggers
+        self.weak = weak
+        self.t = tokenize(prompt)
+        self.out = Request(prompt=prompt, tokens=self.t)
+
+    def at(self, i: int) -> str:
+        return self.t[i] if 0 <= i < len(self.t) else ""
+
+    def use(self, rule: str, *idx: int) -> None:
+        for i in idx:
+            self.out.used.setdefault(i, rule)
+
+    def free(self, i: int) -> bool:
+        return i not in self.out.used and i not in self.out.negated
+
+    def run(self) -> Request:
+        end = next((i for i, w in enumerate(self.t) if w in _HEAD_END and i > 0), len(self.t))
+        self.out.head_end = end
+        self.negations()
+        self.colours()
+        self.overlays()
+        self.finishes()
+        self.scale()
+        self.numbers()
+        self.tones()
+        return self.out
+
+    # ------------------------------------------------------------------ negations
+    def negations(self) -> None:
+        for i, w in enumerate(self.t):
+            if w not in self.w.negations:
+                continue
+            self.use("negation", i)
+            for j in range(i + 1, min(i + 4, len(self.t))):
+                if self.t[j] in _CLAUSE_END or self.t[j] in {",", "but", "and"}:
+                    break
+                self.out.negated.add(j)
+
+    # ------------------------------------------------------------------ colours
+    def colour_word_at(self, i: int) -> bool:
+        w = self.at(i)
+        return (w in self.w.named or w in self.w.ish) and w not in self.w.materialish
+
+    def colours(self) -> None:
+        i = 0
+        found: dict[str, ColourMention] = {}
+        while i < len(self.t):
+            span = self.colour_at(i)
+            if span is None:
+                i += 1
+                continue
+            start, end, rgb, words = span
+            if start in self.out.negated:
+                i = end
+                continue
+            role = self.role_near(start, end)
+            self.use("colour", *range(start, end))
+            alternative = self.at(start - 1) in {"or", "like"}
+            if alternative and self.out.colours:
+                prev = self.out.colours[-1]
+                prev.rgb = C.mix(prev.rgb, rgb, 0.5)
+                prev.words = f"{prev.words} ~ {words}"
+            elif words in found:
+                found[words].role = found[words].role or role
+            else:
+                found[words] = ColourMention(rgb, words, start, role)
+                self.out.colours.append(found[words])
+            i = end
+
+    def colour_at(self, i: int) -> tuple[int, int, C.RGB, str] | None:
+        for n in (3, 2):
+            phrase = " ".join(self.t[i : i + n])
+            if len(self.t[i : i + n]) == n and phrase in self.w.phrases:
+                return i, i + n, self.w.phrases[phrase], phrase
+        mods: list[str] = []
+        j = i
+        while self.at(j) in self.w.tones and len(mods) < 2:
+            mods.append(self.at(j))
+            j += 1
+        tonal = [m for m in mods if m not in _CONDITION_TONES]
+        base = self.base_colour_at(j, modified=bool(tonal))
+        if base is None:
+            return None
+        end, rgb, name = base
+        for m in reversed(mods):
+            rgb = C.apply_tone(rgb, m, self.w.tones[m])
+        words = " ".join([*mods, name])
+        if self.at(end) == "/" and self.base_colour_at(end + 1) is not None:
+            end2, rgb2, name2 = self.base_colour_at(end + 1)  # type: ignore[misc]
+            return i, end2, C.mix(rgb, rgb2, 0.5), f"{words}/{name2}"
+        return i, end, rgb, words
+
+    def base_colour_at(self, j: int, modified: bool = False) -> tuple[int, C.RGB, str] | None:
+        for n in (3, 2):
+            phrase = " ".join(self.t[j : j + n])
+            if len(self.t[j : j + n]) == n and phrase in self.w.phrases:
+                return j + n, self.w.phrases[phrase], phrase
+        w = self.at(j)
+        if w in self.w.ish and self.colour_word_at(j + 1):
+            nxt = self.at(j + 1)
+            rgb = C.mix(self.w.named[self.w.ish[w]], self.w.named[nxt], 0.65)
+            return j + 2, rgb, f"{w} {nxt}"
+        if w in self.w.tones and w not in self.w.named:
+            return None
+        rgb = self.w.colour(w)
+        if rgb is None and w.endswith("s") and self.w.colour(w[:-1]) is not None:
+            near = [self.at(k) for k in (j - 2, j + 2)]
+            listed = any(self.w.colour(x) or self.w.colour(x[:-1] or "-") for x in near if x)
+            if listed and (self.at(j - 1) in _LIST_JOIN or self.at(j + 1) in _LIST_JOIN):
+                return j + 1, self.w.colour(w[:-1]), w[:-1]  # type: ignore[return-value]
+        if rgb is None or w in {"dark", "light", "pale", "deep"}:
+            return None
+        if w in self.w.materialish and not modified and not self.colour_context(j):
+            return None
+        return j + 1, rgb, w
+
+    def colour_context(self, j: int) -> bool:
+        """Is the material-ish word at ``j`` used as a colour ("slate grey", "copper colour")?"""
+        nxt, prev = self.at(j + 1), self.at(j - 1)
+        if nxt in _COLOUR_SUFFIX or self.colour_word_at(j + 1):
+            return True
+        if self.w.roles.get(nxt, "none") != "none" and nxt not in {"fabric", "body", "ground"}:
+            return True
+        if nxt in self.w.carriers or nxt in self.triggers:
+            return True
+        if prev in _LIST_JOIN and (
+            self.colour_word_at(j - 2) or self.at(j - 2) in self.w.materialish
+        ):
+            return True
+        if nxt in {",", "and", "or", "/"} and self.colour_word_at(j + 2):
+            return True
+        return nxt == "in" and self.at(j + 2) in _COLOUR_SUFFIX
+
+    def role_near(self, start: int, end: int) -> str | None:
+        forward = range(end, min(end + 4, len(self.t)))
+        for span in (forward, range(start - 1, max(start - 7, -1), -1)):
+            for k in span:
+                w = self.t[k]
+                if w in _CLAUSE_END or w == "," or (span is forward and w in _ROLE_STOP):
+                    break
+                if w in self.w.roles:
+                    role = self.w.roles[w]
+                    return None if role == "none" else role
+        return None
+
+    # ------------------------------------------------------------------ overlays
+    def overlays(self) -> None:
+        for i in range(len(self.t)):
+            if not self.free(i):
+                continue
+            for n in (3, 2, 1):
+                phrase = " ".join(self.t[i : i + n])
+                name = self.triggers.get(phrase)
+                if name is None or any(not self.free(k) for k in range(i, i + n)):
+                    continue
+                if phrase in self.weak and i >= self.out.head_end:
+                    break
+                self.add_overlay(name, phrase, i, n)
+                break
+
+    def add_overlay(self, name: str, phrase: str, i: int, n: int) -> None:
+        amount = 0.5
+        for k in range(max(0, i - 3), i):
+            w = self.t[k]
+            if w in self.w.amounts and w not in self.w.scale and self.free(k):
+                amount = self.w.amounts[w]
+                self.use("amount", k)
+        colour = None
+        for m in reversed(self.out.colours):
+            if i - 2 <= m.index < i:
+                colour, m.role = m.rgb, "overlay"
+                break
+        self.use("overlay", *range(i, i + n))
+        for existing in self.out.overlays:
+            if existing.name == name:
+                existing.amount = max(existing.amount, amount)
+                existing.colour = existing.colour or colour
+                return
+        self.out.overlays.append(OverlayMention(name, phrase, i, amount, colour))
+
+    # ------------------------------------------------------------------ finishes
+    def finishes(self) -> None:
+        for i, w in enumerate(self.t):
+            if self.free(i) and w in self.w.finishes:
+                self.out.finishes.append((self.w.finishes[w], w))
+                self.use("finish", i)
+
+    # ------------------------------------------------------------------ scale and numbers
+    def scale(self) -> None:
+        factors: list[float] = []
+        for i, w in enumerate(self.t):
+            if w not in self.w.scale or not self.free(i):
+                continue
+            target = next(
+                (
+                    self.t[k]
+                    for k in range(i + 1, min(i + 4, len(self.t)))
+                    if self.t[k].isalpha() and self.t[k] not in self.w.scale
+                ),
+                "",
+            )
+            if not target or target in _SCALE_SKIP or target in self.w.stop_words:
+                continue
+            factors.append(self.w.scale[w])
+            self.out.scale_words.append(w)
+            self.use("scale", i)
+        if factors:
+            prod = 1.0
+            for f in factors:
+                prod *= f
+            self.out.scale = prod ** (1.0 / len(factors))
+
+    def number(self, tok: str) -> float | None:
+        if re.fullmatch(r"\d+/\d+", tok):
+            num, den = tok.split("/")
+            return int(num) / int(den) if int(den) else None
+        if re.fullmatch(r"\d+(?:\.\d+)?", tok):
+            return float(tok)
+        return float(self.w.numbers[tok]) if tok in self.w.numbers else None
+
+    def numbers(self) -> None:
+        for i, w in enumerate(self.t):
+            value = self.number(w)
+            if value is None or i in self.out.negated:
+                continue
+            unit = self.at(i + 1)
+            if unit in {"%", "percent"}:
+                self.out.percents.append(value / 100.0)
+                self.use("percent", i, i + 1)
+            elif unit in self.w.units and value > 0:
+                noun = self.noun_after(i + 2) or self.noun_before(i - 1)
+                self.out.sizes.append(Size(value * self.w.units[unit], noun, f"{w} {unit}"))
+                self.use("size", i, i + 1)
+            elif value == int(value) and 1 <= value <= 64:
+                noun = self.noun_after(i + 1)
+                if noun:
+                    self.out.counts.append(Count(int(value), noun))
+                    self.use("count", i)
+
+    def noun_after(self, k: int) -> str:
+        words = [
+            self.t[j]
+            for j in range(k, min(k + 3, len(self.t)))
+            if self.t[j].isalpha() and self.t[j] not in self.w.stop_words and len(self.t[j]) > 2
+        ]
+        plural = [w for w in words if plural_stem(w) != w]
+        return plural_stem(plural[0]) if plural else (plural_stem(words[0]) if words else "")
+
+    def noun_before(self, k: int) -> str:
+        for j in range(k, max(k - 4, -1), -1):
+            if self.t[j].isalpha() and self.t[j] not in self.w.stop_words:
+                return plural_stem(self.t[j])
+        return ""
+
+    # ------------------------------------------------------------------ tones
+    def tones(self) -> None:
+        """Tone words before a non-colour noun ("pale mortar", "dark wood")."""
+        for i, w in enumerate(self.t):
+            if w in self.w.tones and self.free(i):
+                nxt = self.at(i + 1)
+                if nxt.isalpha() and nxt not in self.w.tones and nxt not in self.w.stop_words:
+                    self.out.tones.append((w, plural_stem(nxt), i))
+                    self.use("tone", i)
+
+
+def read(
+    prompt: str, words: Words, triggers: dict[str, str], weak: set[str] | None = None
+) -> Request:
+    """Read ``prompt``; ``triggers`` maps overlay words/phrases to overlay names, ``weak`` lists
+    triggers that count only in the head clause ("old" in "old brick wall")."""
+    return _Reader(prompt or "", words, triggers, weak or set()).run()

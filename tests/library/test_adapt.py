@@ -1,0 +1,112 @@
+"""Adaptation: colour, preset, finish and scale words change the entry's slots and View."""
+
+from __future__ import annotations
+
+import matloom
+from matloom.library import author, library
+from matloom.library.adapt import slot_colour
+from matloom.library.overlay import constant, view_width
+
+
+def program(prompt: str, **kw: object) -> matloom.lang.ast.Program:
+    return matloom.parse(author(prompt, **kw).program)
+
+
+def default(entry: str) -> matloom.lang.ast.Program:
+    return library().ast(entry)
+
+
+def test_first_colour_is_the_main_colour() -> None:
+    p = program("blue plastic")
+    assert slot_colour(p, "base") == (40, 80, 170)
+
+
+def test_tone_modifiers() -> None:
+    pale = slot_colour(program("pale blue plastic"), "base")
+    dark = slot_colour(program("dark blue plastic"), "base")
+    assert pale is not None and dark is not None
+    assert sum(pale) > sum((40, 80, 170)) > sum(dark)
+
+
+def test_grout_phrase_targets_the_grout_slot() -> None:
+    p = program("white square tiles with black grout")
+    assert slot_colour(p, "grout") == (22, 22, 24)
+    assert slot_colour(p, "tile") == (236, 236, 232)
+
+
+def test_veins_phrase_targets_the_vein_slot() -> None:
+    p = program("white marble with gold veins")
+    assert slot_colour(p, "vein") == (212, 168, 60)
+    assert slot_colour(p, "base") == (236, 236, 232)
+
+
+def test_natural_colours_are_pulled_toward_the_material() -> None:
+    brick = slot_colour(program("red brick wall"), "brick")
+    assert brick is not None and brick != (186, 32, 36)
+
+
+def test_preset_word_sets_the_species_colour() -> None:
+    r = author("walnut planks")
+    assert slot_colour(matloom.parse(r.program), "wood") == (112, 74, 48)
+    assert any("walnut" in a for a in r.adaptations)
+
+
+def test_preset_expression_changes_orientation() -> None:
+    p = program("vertical stripes")
+    d = p.define("axis")
+    assert d is not None and matloom.format(p).count("Define(axis, X())") == 1
+
+
+def test_finish_words_set_roughness_and_relief() -> None:
+    assert constant(program("glossy red plastic"), "rough") == 0.14
+    assert constant(program("matte red plastic"), "rough") == 0.82
+    rough = program("rough concrete")
+    assert constant(rough, "relief") == 1.6
+
+
+def test_scale_words_resize_the_view_and_unit() -> None:
+    base = author("square tiles")
+    large = author("large square tiles")
+    small = author("small square tiles")
+    w = [view_width(matloom.parse(r.program)) for r in (large, base, small)]
+    assert w[0] < w[1] < w[2]
+    assert large.unit_m > base.unit_m > small.unit_m
+    # the material always spans the entry's physical size
+    for r, side in zip((large, base, small), w):
+        assert abs(r.unit_m * side - library().entry("square-tiles").size_m) < 1e-3
+
+
+def test_explicit_size_sets_the_feature_size() -> None:
+    entry = library().entry("square-tiles")
+    assert entry.feature_m == 0.3
+    r = author("15 cm square tiles")
+    side = view_width(matloom.parse(r.program))
+    # tiles half the default size: twice as many across the View, each one unit_m * width
+    assert side == 2 * view_width(default("square-tiles"))
+    assert abs(r.unit_m * side - entry.size_m) < 1e-3
+    assert any("15 cm" in a for a in r.adaptations)
+
+
+def test_tileable_entries_stay_tileable_after_scaling() -> None:
+    for prompt in ("large square tiles", "small square tiles", "tiny checkerboard tiles"):
+        r = author(prompt)
+        assert r.tileable, (prompt, r.notes)
+        p = matloom.parse(r.program)
+        assert p.tileable
+        assert matloom.check(r.program) == []
+
+
+def test_tileable_false_leaves_the_view_plain() -> None:
+    r = author("square tiles", tileable=False)
+    assert not r.tileable
+    assert not matloom.parse(r.program).tileable
+
+
+def test_overlay_amount_and_colour() -> None:
+    r = author("heavily mossy cobblestone")
+    assert r.overlays == ["mossy"]
+    assert "amount 0.8" in r.overlay_notes[0]
+    p = matloom.parse(r.program)
+    assert constant(p, "cover") == 0.8
+    r = author("blue moss on cobblestone")
+    assert slot_colour(matloom.parse(r.program), "moss") == (40, 80, 170)

@@ -1,0 +1,96 @@
+"""Retrieval: BM25 over descriptions, tags and synonyms, with overlays for compositional
+requests and a report of the words nothing used."""
+
+from __future__ import annotations
+
+import pytest
+
+from matloom.library import author, search
+
+
+def test_cracked_desert_mud_finds_cracked_earth_and_understands_desert() -> None:
+    r = author("cracked desert mud")
+    assert r.entry == "cracked-earth"
+    assert "desert" not in r.ignored
+    assert r.ignored == []
+    assert not r.overlays  # the entry shows cracks itself
+    assert any(a.startswith("cracked") for a in r.absorbed)
+
+
+def test_cracked_dry_earth_finds_cracked_earth() -> None:
+    assert author("cracked dry earth").entry == "cracked-earth"
+
+
+def test_mossy_cobblestone_is_cobblestone_with_the_moss_overlay() -> None:
+    r = author("mossy cobblestone")
+    assert r.entry == "cobblestone"
+    assert r.overlays == ["mossy"]
+    assert "mossBlob" in r.program
+
+
+def test_rusty_corrugated_metal_is_corrugated_metal_with_rust() -> None:
+    r = author("rusty corrugated metal")
+    assert r.entry == "corrugated-metal"
+    assert r.overlays == ["rusty"]
+
+
+def test_rusty_metal_alone_is_the_rusted_entry_without_an_overlay() -> None:
+    r = author("rusty metal")
+    assert r.entry == "rusted-metal"
+    assert not r.overlays
+
+
+@pytest.mark.parametrize(
+    ("prompt", "entry"),
+    [
+        ("walnut floorboards", "wood-planks"),
+        ("herringbone parquet", "wood-herringbone"),
+        ("red brick wall", "brick-wall"),
+        ("subway tiles", "subway-tiles"),
+        ("tartan", "tartan"),
+        ("brushed aluminium", "brushed-metal"),
+        ("denim jeans fabric", "denim"),
+        ("dirty concrete", "concrete"),
+        ("fabric", "plain-weave"),
+    ],
+)
+def test_everyday_requests(prompt: str, entry: str) -> None:
+    assert author(prompt).entry == entry
+
+
+def test_overlay_words_in_several_forms() -> None:
+    for prompt, overlay in [
+        ("wet cobblestone street", "wet"),
+        ("snow covered rocks", "snowy"),
+        ("worn leather", "worn"),
+        ("dusty wooden planks", "dusty"),
+        ("painted brick wall", None),  # brick-wall has a "painted brick" preset
+    ]:
+        r = author(prompt)
+        names = r.overlays
+        assert (overlay in names) if overlay else not names, (prompt, r.overlays)
+
+
+def test_negated_words_are_not_retrieved() -> None:
+    assert author("not wood, stone wall").entry != "wood-planks"
+
+
+def test_ignored_words_are_reported() -> None:
+    r = author("cobblestone with zorblax")
+    assert r.entry == "cobblestone"
+    assert r.ignored == ["zorblax"]
+    assert "ignored: zorblax" in r.explanation
+
+
+def test_search_is_ranked_and_scored() -> None:
+    cands = search("cobblestone street")
+    assert cands[0].name == "cobblestone"
+    assert all(a.score >= b.score for a, b in zip(cands, cands[1:]))
+    assert "cobbleston" in cands[0].matched
+
+
+def test_nothing_matches_uses_the_fallback() -> None:
+    r = author("zorblax quixotic")
+    assert r.entry == "generic-surface"
+    assert r.rank == 0
+    assert set(r.ignored) == {"zorblax", "quixotic"}
