@@ -122,6 +122,8 @@ def _coeffs(
         return None if c is None else (-c[0], -c[1])
     if isinstance(node, A.BinOp):
         return _binop(node, defines, periods, depth, memo)
+    if isinstance(node, A.Num | A.Str | A.Lit | A.Const):  # literals never vary with X/Y
+        return (0.0, 0.0)
     if not isinstance(node, A.Call):
         return None
     func = node.func
