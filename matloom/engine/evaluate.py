@@ -107,6 +107,8 @@ def evaluate(
     v = view if isinstance(view, View) else View(*(view or program.view_tuple))
     if (tileable or program.tileable) and not v.tileable:
         v = replace(v, tileable=True)
+    if v.unit_m is None and program.unit_m is not None:
+        v = replace(v, unit_m=program.unit_m)
     x, y = sample_axes(v, width, height)
     if be.fused:  # same maps as below, bit for bit (see matloom.engine.schedules.banded)
         from matloom.engine.schedules.banded import evaluate_fused

@@ -37,6 +37,8 @@ class View:
     y2: float = 1.0
     #: The maps repeat seamlessly with the window's width and height (docs/tileable.md).
     tileable: bool = False
+    #: Metres per coordinate unit (``View(..., unit_m=...)``), when the program states it.
+    unit_m: float | None = None
 
     def as_tuple(self) -> tuple[float, float, float, float]:
         return (self.x1, self.y1, self.x2, self.y2)

@@ -248,10 +248,12 @@ def _json_safe(value: Any) -> Any:
 def physical_size(maps: MaterialMaps, unit_m: float | None) -> dict[str, Any] | None:
     """The real-world size of the maps for ``unit_m`` metres per coordinate unit (None when
     unknown): the View's width and height, the texel size and density, and the factor that
-    turns heights into metres."""
+    turns heights into metres; ``unit_m`` overrides the program's ``View(..., unit_m=...)``)."""
+    view = maps.view
+    if unit_m is None:
+        unit_m = view.unit_m
     if unit_m is None:
         return None
-    view = maps.view
     width_m = abs(view.x2 - view.x1) * unit_m
     height_m = abs(view.y2 - view.y1) * unit_m
     return {
@@ -289,6 +291,8 @@ def write_maps(
     :data:`matloom.io.presets.PRESETS`) writes its subfolder, named files ``<name>_...``.
     """
     enc = encoding or Encoding(float_format=float_format)
+    if unit_m is None:  # the program's View(..., unit_m=...) unless the caller overrides it
+        unit_m = maps.view.unit_m
     selected = select_maps(maps_subset)
     writers = _preset_writers(presets)
     version = engine_version if engine_version is not None else _default_engine_version()

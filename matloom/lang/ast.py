@@ -128,8 +128,9 @@ Node = Num | Str | Lit | Const | Ref | Neg | BinOp | Call
 
 @dataclass(frozen=True)
 class ViewDecl:
-    """``View(x1, y1, x2, y2[, tileable=True])``: bottom-left and top-right corners of the
-    sampling window; ``tileable``: the output repeats seamlessly with the window's size."""
+    """``View(x1, y1, x2, y2[, tileable=True][, unit_m=M])``: bottom-left and top-right corners
+    of the sampling window; ``tileable``: the output repeats seamlessly with the window's size;
+    ``unit_m``: metres per coordinate unit (the physical size exports record)."""
 
     x1: float
     y1: float
@@ -138,6 +139,7 @@ class ViewDecl:
     span: Span = _span()
     comments: tuple[Comment, ...] = _comments()
     tileable: bool = False
+    unit_m: float | None = None
 
     def as_tuple(self) -> tuple[float, float, float, float]:
         return (self.x1, self.y1, self.x2, self.y2)
@@ -204,6 +206,11 @@ class Program:
     def tileable(self) -> bool:
         """The program asks for tileable output (``View(..., tileable=True)``)."""
         return self.view is not None and self.view.tileable
+
+    @property
+    def unit_m(self) -> float | None:
+        """Metres per coordinate unit from ``View(..., unit_m=...)``, else None."""
+        return self.view.unit_m if self.view is not None else None
 
 
 Commented = ViewDecl | Define | ChannelSet | Layer | Program

@@ -1,4 +1,4 @@
-"""The ``View(x1, y1, x2, y2[, tileable=True])`` statement (called by the parser)."""
+"""The ``View(x1, y1, x2, y2[, tileable=True][, unit_m=M])`` statement (called by the parser)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ if TYPE_CHECKING:
     from matloom.lang.parser import Parser
 
 #: View's keyword arguments after the four corners.
-VIEW_KEYWORDS = ("tileable",)
+VIEW_KEYWORDS = ("tileable", "unit_m")
 
 
 def parse_view(p: Parser) -> A.ViewDecl | None:
@@ -40,29 +40,47 @@ def parse_view(p: Parser) -> A.ViewDecl | None:
             bad, v = True, 0.0
         values.append(as_float(v))  # beyond the float range: inf, E061
     tileable = False
-    if p.at(",") and p.peek(1).text in VIEW_KEYWORDS and p.at("=", 2):
+    unit_m: float | None = None
+    seen: set[str] = set()
+    while p.at(",") and p.peek(1).text in VIEW_KEYWORDS and p.at("=", 2):
         p.next()
-        p.next()
+        key = p.next().text
         p.next()
         tok = p.peek()
-        value = LITERALS.get(tok.text, 0) if tok.kind == "IDENT" else 0
-        if not isinstance(value, bool):
-            raise p.fail(
-                "E061",
-                "View's tileable must be True or False",
-                tok.span,
-                expected="View(x1, y1, x2, y2, tileable=True)",
-            )
-        p.next()
-        tileable = value
+        if key in seen:
+            raise p.fail("E027", f"View's {key} is given twice", tok.span)
+        seen.add(key)
+        if key == "tileable":
+            value = LITERALS.get(tok.text, 0) if tok.kind == "IDENT" else 0
+            if not isinstance(value, bool):
+                raise p.fail(
+                    "E061",
+                    "View's tileable must be True or False",
+                    tok.span,
+                    expected="View(x1, y1, x2, y2, tileable=True)",
+                )
+            p.next()
+            tileable = value
+        else:
+            node = p.parse_expr()
+            number = static_number(node) if is_static(node) else None
+            metres = as_float(number) if isinstance(number, int | float) else None
+            if metres is None or not 0 < metres < float("inf"):
+                raise p.fail(
+                    "E061",
+                    "View's unit_m must be a number of metres > 0",
+                    node_span(node, tok.span),
+                    expected="View(x1, y1, x2, y2, unit_m=0.5)",
+                )
+            unit_m = metres
     if p.at(","):
         raise p.fail(
             "E027",
             "View takes exactly 4 arguments",
             p.peek().span,
-            expected="View(x1, y1, x2, y2) or View(x1, y1, x2, y2, tileable=True)",
+            expected="View(x1, y1, x2, y2) or View(x1, y1, x2, y2, tileable=True, unit_m=0.5)",
         )
     p.expect(")", "to close View(...)")
     if bad:  # drop the View, so its placeholder corners cause no follow-on errors
         raise _Bail()
-    return A.ViewDecl(*values, span=p.span_from(kw.span), tileable=tileable)
+    return A.ViewDecl(*values, span=p.span_from(kw.span), tileable=tileable, unit_m=unit_m)

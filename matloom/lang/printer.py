@@ -288,6 +288,8 @@ def format_program(program: A.Program, *, comments: bool = False) -> str:
     if program.view is not None:
         corners = ", ".join(fmt_num(v) for v in program.view.as_tuple())
         tiled = ", tileable=True" if program.view.tileable else ""
+        if program.view.unit_m is not None:
+            tiled += f", unit_m={fmt_num(program.view.unit_m)}"
         out.code("", f"View({corners}{tiled})", program.view)
     for d in program.defines:
         out.code("", f"Define({d.name}, {format_expr(d.expr)})", d)

@@ -226,7 +226,8 @@ def author(
         if not is_tileable:
             notes.append("not tileable: " + warnings[0].message.removeprefix("tileable: "))
     program = resize_view(program, side)
-    program = replace(program, view=replace(program.view, tileable=is_tileable))
+    unit_m = round(entry.size_m / side, 6)
+    program = replace(program, view=replace(program.view, tileable=is_tileable, unit_m=unit_m))
     program = reseed(program, entry.name, seed)
     main = entry.colours[0] if entry.colours else None
     names = []
@@ -258,7 +259,7 @@ def author(
         entry=entry.name,
         category=entry.category,
         description=entry.description,
-        unit_m=round(entry.size_m / side, 6),
+        unit_m=unit_m,
         tileable=is_tileable,
         score=score,
         seed=seed,
