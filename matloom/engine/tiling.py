@@ -5,11 +5,14 @@ makes every map repeat with the View's width W and height H. The evaluator passe
 periods of its coordinate frame (the View's (W, 0) and (0, H) through the frame's affine map,
 see :meth:`matloom.engine.interpret.Evaluator.periods_of`); the noise kernels then make their
 lattices periodic (:mod:`matloom.engine.kernels.noise`: fBm's per-octave sublattice, Worley's
-snapped cell counts), Tile and Hash wrap their cell indices, and the relief (normals, AO) is
-computed on the height padded by wrapping, so that the borders see the opposite edge.
+snapped cell counts), Tile and Hash wrap their cell indices, shapes are drawn with their images
+one period apart (:func:`matloom.engine.ops.fields.wrapped_shape`), and the relief (normals, AO)
+is computed on the height padded by wrapping, so that the borders see the opposite edge.
 
 :func:`seam_ratio` measures the result: the mean absolute difference across the wrap edge over
-the mean absolute difference between interior neighbours (1 for a seamless map);
+the mean absolute difference between interior neighbours (1: the wrap edge differs as much as
+the average pair of neighbours; angle maps compared around their period; see docs/tileable.md
+for what one line of texels can and cannot tell);
 :func:`matloom.render.seams.seam_ratios_over_offsets` pools it over shifted renders.
 """
 
@@ -23,6 +26,7 @@ import numpy as np
 
 __all__ = [
     "manifest_entry",
+    "map_periods",
     "seam_ratio",
     "seam_ratios",
     "snap_count",
@@ -70,15 +74,17 @@ def relief_maps(
     )
 
 
-def seam_ratio(image: np.ndarray) -> float:
+def seam_ratio(image: np.ndarray, period: float | None = None) -> float:
     """Mean |difference| across the wrap edges (last column vs first, last row vs first) over
-    the mean |difference| between interior neighbours (horizontal and vertical); 1.0 for a
-    map constant up to float rounding; NaN/inf texels ignored; colour maps: all channels."""
+    the mean |difference| between interior neighbours (horizontal and vertical, the wrap pairs
+    excluded); 1.0 for a map constant up to float rounding; NaN/inf texels ignored; colour
+    maps: all channels. ``period``: the values are angles modulo it (``anisotropy_angle``: 180
+    degrees), so differences are taken around the circle (179 and 1 differ by 2)."""
     a = np.asarray(image)
     if a.ndim < 2 or a.shape[0] < 2 or a.shape[1] < 2:
         return 1.0
-    edge, inner = seam_parts(a)
-    return ratio(edge, inner, magnitude(a))
+    edge, inner = seam_parts(a, period)
+    return ratio(edge, inner, magnitude(a) if period is None else float(period))
 
 
 def magnitude(a: np.ndarray) -> float:
@@ -88,8 +94,18 @@ def magnitude(a: np.ndarray) -> float:
 
 
 def seam_ratios(arrays: dict[str, np.ndarray]) -> dict[str, float]:
-    """:func:`seam_ratio` of every map, rounded to 4 decimals (for ``material.json``)."""
-    return {name: round(seam_ratio(a), 4) for name, a in arrays.items()}
+    """:func:`seam_ratio` of every map (``MaterialMaps`` field names), rounded to 4 decimals,
+    angle maps around their period (:func:`map_periods`)."""
+    periods = map_periods()
+    return {name: round(seam_ratio(a, periods.get(name)), 4) for name, a in arrays.items()}
+
+
+def map_periods() -> dict[str, float]:
+    """``MaterialMaps`` field -> the period of its values, for the maps exported as angles
+    (the registry's export rules: ``anisotropy_angle`` repeats every 180 degrees)."""
+    from matloom.vocab.layout import LAYOUT
+
+    return {s.sources[0]: float(s.period) for s in LAYOUT.maps if s.period and s.sources}
 
 
 def manifest_entry(maps: Any, specs: Any) -> dict[str, Any]:
@@ -103,7 +119,7 @@ def manifest_entry(maps: Any, specs: Any) -> dict[str, Any]:
     for spec in specs:
         source = spec.sources[0] if spec.sources else None
         if source is not None and hasattr(maps, source):
-            ratios[spec.name] = round(seam_ratio(getattr(maps, source)), 4)
+            ratios[spec.name] = round(seam_ratio(getattr(maps, source), spec.period), 4)
     return {
         "tileable": True,
         "seam_ratio": ratios,
@@ -112,23 +128,27 @@ def manifest_entry(maps: Any, specs: Any) -> dict[str, Any]:
     }
 
 
-def seam_parts(image: np.ndarray) -> tuple[float, float]:
+def seam_parts(image: np.ndarray, period: float | None = None) -> tuple[float, float]:
     """(wrap, interior): the mean |difference| across the vertical wrap edge (last column vs
     first) plus that across the horizontal one (last row vs first), and the mean |difference|
-    of horizontal interior neighbours plus that of vertical ones: each edge is compared with
-    the neighbours across the same direction (a map of vertical stripes has no horizontal
-    seam to dilute)."""
+    of horizontal interior neighbours plus that of vertical ones (pairs inside the map only:
+    the wrap pairs are not interior). Each edge is compared with the neighbours across the same
+    direction (a map of vertical stripes has no horizontal seam to dilute). ``period``:
+    differences of angles modulo it (the shorter way round)."""
     a = np.asarray(image, dtype=np.float64)
     a = a[:, :, None] if a.ndim == 2 else a
     parts = (
-        np.abs(a[:, -1] - a[:, 0]),
-        np.abs(a[-1] - a[0]),
-        np.abs(np.diff(a, axis=1)),
-        np.abs(np.diff(a, axis=0)),
+        a[:, -1] - a[:, 0],
+        a[-1] - a[0],
+        np.diff(a, axis=1),
+        np.diff(a, axis=0),
     )
     means = []
     for part in parts:
-        values = part[np.isfinite(part)]
+        values = np.abs(part[np.isfinite(part)])
+        if period:
+            values = np.mod(values, period)
+            values = np.minimum(values, period - values)
         means.append(float(values.mean()) if values.size else 0.0)
     return means[0] + means[1], means[2] + means[3]
 

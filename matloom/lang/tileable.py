@@ -1,13 +1,14 @@
 """Tileable programs: ``make_tileable`` and the warnings of a tileable View (W009, W010).
 
-The engine makes every noise, Hash and Tile repeat with the View (see docs/tileable.md); what it
-cannot make periodic is reported here, statically, for ``View(..., tileable=True)`` (the checker)
-and for ``--tileable`` renders (the CLI):
+The engine makes every noise, Hash, Tile and shape repeat with the View (see
+docs/tileable.md); what it cannot make periodic is reported here, statically, for
+``View(..., tileable=True)`` (the checker) and for ``--tileable`` renders (the CLI):
 
-* **W009**: a noise (fBm, Worley, Hash, Tile) or pattern (Bricks, Weave) evaluated under a
-  Rotate (other than by a multiple of 180 degrees) or a domain warp other than Translate's: its
-  periods are not the View's; a pattern whose cells do not divide the View (naming the nearest
-  parameter value and the nearest View that tile); a Hash whose cells do not divide the View.
+* **W009**: a noise (fBm, Worley, Hash, Tile), pattern (Bricks, Weave) or shape (Fill,
+  Stroke) evaluated under a Rotate (other than by a multiple of 180 degrees) or a domain warp
+  other than Translate's: its periods are not the View's; a pattern whose cells do not divide
+  the View (naming the nearest parameter value and the nearest View that tile); a Hash whose
+  cells do not divide the View.
 * **W010**: X()/Y() used non-periodically: not inside Fract, Mod, Sin, Cos or Hash with a whole
   number of cycles per View period (as a term of an affine argument: ``Fract(Y() * 18 +
   noise)`` is periodic when 18 times the View's height is whole).
@@ -26,6 +27,7 @@ from matloom.lang.affine import WRAPPERS, coord_coeffs, periodic_wrap, whole, wr
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt
 from matloom.lang.static import is_static, param_value
 from matloom.vocab import FUNCTIONS
+from matloom.vocab.spec import Returns
 
 __all__ = ["make_tileable", "tileable_warnings"]
 
@@ -34,6 +36,15 @@ Frame = tuple[float, float] | str
 #: From the registry: the seeded primitives (noise, Hash, Tile) and the periodic patterns.
 _PATTERNS = tuple(name for name, spec in FUNCTIONS.items() if spec.family == "pattern")
 _NOISE = tuple(name for name, spec in FUNCTIONS.items() if spec.is_noise and name not in _PATTERNS)
+#: Shapes (Fill, Stroke): the engine draws their images one View period apart, in axis-aligned
+#: frames only.
+_SHAPES = tuple(
+    name
+    for name, spec in FUNCTIONS.items()
+    if spec.family == "shape" and spec.returns is Returns.FIELD
+)
+#: What cannot repeat under a Rotate or a Scale/Rotate warp.
+_FRAMED = _NOISE + _PATTERNS + _SHAPES
 
 
 def make_tileable(program: A.Program) -> A.Program:
@@ -114,7 +125,7 @@ class _Walker:
         if func in ("Translate", "Scale", "Rotate"):
             self.transform(node, frame)
             return
-        if isinstance(frame, str) and (func in _NOISE or func in _PATTERNS):
+        if isinstance(frame, str) and func in _FRAMED:
             self.warn(
                 "W009",
                 f"tileable: {func} under {frame} cannot repeat with the View",

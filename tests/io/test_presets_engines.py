@@ -83,13 +83,13 @@ def test_unreal_preset(render_presets) -> None:
     maps, result = render_presets("full", presets=["unreal"], unit_m=0.5)
     folder = result.out_dir / "unreal"
     names = sorted(p.name for p in folder.iterdir())
-    assert names == ["T_full_BC.png", "T_full_E.png", "T_full_H.png", "T_full_N.png",
+    assert names == ["T_full_BC.png", "T_full_E.png", "T_full_H.png", "T_full_N_dx.png",
                      "T_full_ORM.png"]  # fmt: skip
     orm = png.read_png(folder / "T_full_ORM.png").astype(int)
     np.testing.assert_array_equal(orm[..., 0], _q8(maps.ao))
     np.testing.assert_array_equal(orm[..., 1], _q8(maps.roughness))
     np.testing.assert_array_equal(orm[..., 2], _q8(maps.metallic))
-    normal = png.read_png(folder / "T_full_N.png").astype(int)
+    normal = png.read_png(folder / "T_full_N_dx.png").astype(int)
     gl = _q8(maps.normal * 0.5 + 0.5)
     np.testing.assert_array_equal(normal[..., 1], 255 - gl[..., 1])  # DirectX
     height = png.read_png(folder / "T_full_H.png")
@@ -99,6 +99,19 @@ def test_unreal_preset(render_presets) -> None:
     assert h["displacement_scale_m"] == pytest.approx((h["max"] - h["min"]) * 0.5)
     assert entry["physical_size"]["width_m"] == pytest.approx(1.0)
     assert "unreal/T_full_ORM.png" in result.manifest["files"]
+
+
+@pytest.mark.parametrize("preset", sorted(PRESETS))
+def test_every_preset_names_its_normal_convention(render_presets, preset: str) -> None:
+    """A normal map's file name carries its convention: ``normal_gl`` / ``normal_dx``, or
+    Unreal's ``_N`` suffix followed by ``_dx``."""
+    _, result = render_presets("full", presets=[preset])
+    normal = result.manifest["presets"][preset]["files"].get("normal")
+    if normal is None:  # a preset without a normal texture of its own
+        return
+    stem = Path(normal["file"]).stem
+    tag = "dx" if normal["convention"].startswith("DirectX") else "gl"
+    assert stem.endswith((f"normal_{tag}", f"_N_{tag}")), normal
 
 
 def test_unity_mask_map(render_presets) -> None:
@@ -175,7 +188,8 @@ def test_cli_presets_bits_unit_and_square_texels(tmp_path: Path) -> None:
     assert manifest["square_texels"] is True
     assert manifest["view"] == {"x1": -2.0, "y1": 0.0, "x2": 6.0, "y2": 4.0}  # widened
     assert manifest["view_adjusted"]["program_view"] == [0, 0, 4, 4]
-    assert (out / "gltf" / "bricks.glb").exists() and (out / "unreal" / "T_bricks_N.png").exists()
+    assert (out / "gltf" / "bricks.glb").exists()
+    assert (out / "unreal" / "T_bricks_N_dx.png").exists()
     assert manifest["physical_size"]["width_m"] == pytest.approx(2.0)
     assert png.read_png(out / "roughness.png").dtype == np.uint16
 

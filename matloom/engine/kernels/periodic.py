@@ -16,6 +16,9 @@ index below 2**51, so numpy and numba compute the same integers.
 
 **Worley** and the cell values use a square lattice: the frequency is snapped so that each
 period holds a whole number of cells, and cell indices are wrapped modulo those counts.
+
+**Shapes** (Fill, Stroke) repeat as the maximum over their images one period apart:
+:func:`image_shifts` lists the images that can reach a grid of samples.
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ import numpy as np
 
 from matloom.engine.kernels.opensimplex import SQUISH_CONSTANT2, STRETCH_CONSTANT2
 
-__all__ = ["simplex_octave", "simplex_tiling", "cell_counts", "snap_frequency"]
+__all__ = ["simplex_octave", "simplex_tiling", "cell_counts", "snap_frequency", "image_shifts"]
 
 
 def _stretch(v: tuple[float, float]) -> tuple[float, float]:
@@ -154,3 +157,40 @@ def course_wrap(
         return None
     k = whole(shift * across)
     return None if k is None else (along, across, k)
+
+
+#: Most images of one shape evaluated per sample grid (a shape so many Views wide that more
+#: would reach the samples is drawn unwrapped, with a note; see :func:`image_shifts`).
+MAX_IMAGES = 49
+
+
+def image_shifts(
+    box: tuple[float, float, float, float],
+    period: tuple[float, float],
+    extent: tuple[float, float, float, float],
+) -> list[tuple[float, float]] | None:
+    """The period shifts (i Px, j Py) of the images of a shape (support ``box``: its coverage
+    is exactly 0 outside it) that reach samples in ``extent`` (x0, y0, x1, y1): a tileable
+    shape is the maximum of its coverage at ``(x - i Px, y - j Py)`` over them (each other
+    image is exactly 0 there). None when there would be more than :data:`MAX_IMAGES` (a shape
+    many Views wide) or the numbers are not finite; the identity shift is always included."""
+    px, py = period
+    bx0, by0, bx1, by1 = box
+    ex0, ey0, ex1, ey1 = extent
+    values = (px, py, bx0, by0, bx1, by1, ex0, ey0, ex1, ey1)
+    if not all(math.isfinite(v) for v in values) or px <= 0 or py <= 0:
+        return None
+    # an image i reaches the samples when [bx0 + i px, bx1 + i px] meets [ex0, ex1]
+    i0, i1 = math.floor((ex0 - bx1) / px), math.ceil((ex1 - bx0) / px)
+    j0, j1 = math.floor((ey0 - by1) / py), math.ceil((ey1 - by0) / py)
+    if (i1 - i0 + 1) * (j1 - j0 + 1) > MAX_IMAGES:
+        return None
+    shifts = [(0.0, 0.0)]
+    for i in range(i0, i1 + 1):
+        for j in range(j0, j1 + 1):
+            if (i, j) == (0, 0):
+                continue
+            sx, sy = i * px, j * py
+            if bx0 + sx <= ex1 and bx1 + sx >= ex0 and by0 + sy <= ey1 and by1 + sy >= ey0:
+                shifts.append((sx, sy))
+    return shifts

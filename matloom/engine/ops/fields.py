@@ -79,16 +79,56 @@ def weave(ev: Any, call: A.Call, c: Any) -> Any:
 
 def fill(ev: Any, call: A.Call, c: Any) -> Any:
     geom = ev.shape(call.arg("shape"))
-    return ev.backend.fill(
-        geom, c[0], c[1], mode=ev.num(call, "mode"), feather=ev.num(call, "feather")
+    mode, feather = ev.num(call, "mode"), ev.num(call, "feather")
+    return wrapped_shape(
+        ev, call, c, lambda x, y: ev.backend.fill(geom, x, y, mode=mode, feather=feather)
     )
 
 
 def stroke(ev: Any, call: A.Call, c: Any) -> Any:
     geom = ev.shape(call.arg("shape"))
-    return ev.backend.stroke(
-        geom, c[0], c[1], width=ev.num(call, "width"), feather=ev.num(call, "feather")
+    width, feather = ev.num(call, "width"), ev.num(call, "feather")
+    return wrapped_shape(
+        ev, call, c, lambda x, y: ev.backend.stroke(geom, x, y, width=width, feather=feather)
     )
+
+
+def wrapped_shape(ev: Any, call: A.Call, c: Any, coverage: Callable[[Any, Any], Any]) -> Any:
+    """``coverage(x, y)`` of a Fill/Stroke; in a tileable output (an axis-aligned frame with
+    the View's periods, :meth:`~matloom.engine.interpret.Evaluator.periods_of`) the maximum
+    over the shape's images one period apart that reach the samples, so that a shape crossing
+    the View's edge comes back on the opposite side. Every other image is exactly 0 there
+    (outside the coverage's support box), so the value does not depend on which samples are
+    evaluated together (bands, Tile instances). Inside a Tile motif the instances repeat."""
+    period = ev.periods_of(c, call.func)
+    if period is None:
+        return coverage(c[0], c[1])
+    from matloom.engine.kernels.periodic import image_shifts
+
+    box, extent = ev.motif_support(call), _extent(c)
+    shifts = None if box is None or extent is None else image_shifts(box, period, extent)
+    if shifts is None:
+        note = f"tileable: a {call.func} many Views wide is not wrapped"
+        if box is not None and extent is not None and note not in ev.stats.notes:
+            ev.stats.notes.append(note)
+        return coverage(c[0], c[1])
+    out = coverage(c[0], c[1])
+    for sx, sy in shifts[1:]:
+        with np.errstate(invalid="ignore"):
+            out = np.maximum(out, coverage(c[0] - sx, c[1] - sy))
+    return out
+
+
+def _extent(c: Any) -> tuple[float, float, float, float] | None:
+    """(x0, y0, x1, y1): the finite range of the sample coordinates, None when there is none."""
+    ranges = []
+    for v in (c[0], c[1]):
+        a = np.asarray(v)
+        finite = a[np.isfinite(a)]
+        if finite.size == 0:
+            return None
+        ranges.append((float(finite.min()), float(finite.max())))
+    return ranges[0][0], ranges[1][0], ranges[0][1], ranges[1][1]
 
 
 def tile(ev: Any, call: A.Call, c: Any) -> Any:

@@ -21,18 +21,19 @@ from matloom.io.presets.common import (
 
 
 def unreal(src: PresetInput, folder: Path) -> dict[str, Any]:
-    """``T_<name>_BC`` (sRGB), ``_N`` (DirectX normal), ``_ORM`` (R AO, G roughness,
+    """``T_<name>_BC`` (sRGB), ``_N_dx`` (DirectX normal: Unreal's ``_N`` suffix with the
+    convention, as every normal map's name carries it), ``_ORM`` (R AO, G roughness,
     B metallic), ``_H`` (16-bit height), ``_E`` (emissive, when used)."""
     out = PresetFiles(folder)
     prefix = f"T_{src.name}"
     write_basecolor(src, out, f"{prefix}_BC.png", src.bits)
-    write_normal(src, out, f"{prefix}_N.png", "dx", src.bits)
+    write_normal(src, out, f"{prefix}_N_dx.png", "dx", src.bits)
     write_orm(src, out, f"{prefix}_ORM.png", src.bits)
     write_height(src, out, f"{prefix}_H.png")
     write_emissive(src, out, f"{prefix}_E.png", src.bits)
     return out.entry(
         src,
-        import_settings="_N: normal map (DirectX, no green flip); _ORM and _H: sRGB off",
+        import_settings="_N_dx: normal map (DirectX, no green flip); _ORM and _H: sRGB off",
     )
 
 
