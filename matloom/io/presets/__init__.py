@@ -6,7 +6,7 @@
 | ``gltf`` | ``<name>.gltf`` + ``.bin`` + PNGs, and ``<name>.glb`` (a textured quad) |
 | ``mtlx`` | ``<name>.mtlx`` (``open_pbr_surface`` + displacement) + PNGs |
 | ``usd`` | ``<name>.usda`` (``UsdPreviewSurface`` on a quad) + PNGs |
-| ``unreal`` | ``T_<name>_BC``, ``_N`` (DirectX), ``_ORM``, ``_H`` (16-bit), ``_E`` |
+| ``unreal`` | ``T_<name>_BC``, ``_N_dx`` (DirectX), ``_ORM``, ``_H`` (16-bit), ``_E`` |
 | ``unity`` | HDRP ``<name>_maskmap`` (R metallic, G AO, B detail mask, A smoothness), ``_normal_gl``, ... |
 | ``godot`` | ``<name>_orm``, ``_normal_gl``, ... |
 
@@ -38,7 +38,7 @@ PRESETS: dict[str, Preset] = {
         Preset("gltf", "glTF 2.0 material (.gltf + .glb quad), ORM, normal +Y", gltf.write),
         Preset("mtlx", "MaterialX open_pbr_surface with displacement", mtlx.write),
         Preset("usd", "USD (.usda) UsdPreviewSurface on a quad", usd.write),
-        Preset("unreal", "Unreal: T_<name>_BC/_N (DirectX)/_ORM/_H (16-bit)", engines.unreal),
+        Preset("unreal", "Unreal: T_<name>_BC/_N_dx (DirectX)/_ORM/_H (16-bit)", engines.unreal),
         Preset("unity", "Unity HDRP: mask map + OpenGL normal", engines.unity),
         Preset("godot", "Godot 4: ORM + OpenGL normal", engines.godot),
     )
