@@ -48,7 +48,8 @@ def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
     "--light",
     type=params.LIGHT,
     default=None,
-    help="Light AZIMUTH,ELEVATION in degrees, elevation -90..90 (default: reference).",
+    help="Light AZIMUTH,ELEVATION in degrees, elevation -90..90 (default: reference); "
+    "in the lit layout it replaces the key light (default 135,25).",
 )
 @click.option(
     "--tile",
@@ -58,6 +59,14 @@ def _save_png(path: str | Path, img) -> None:  # noqa: ANN001
     help="Tile the swatch N x N to show seams.",
 )
 @click.option("--backend", type=params.BACKEND, default="auto", show_default=True)
+@click.option(
+    "--layout",
+    type=click.Choice(("flat", "lit", "both")),
+    default="flat",
+    show_default=True,
+    help="flat: the reference's fixed-light swatch; lit: PBR shading in a small studio "
+    "(docs/preview.md); both: side by side, flat left.",
+)
 @tileable_option
 def preview_cmd(
     file: str,
@@ -68,22 +77,33 @@ def preview_cmd(
     light: tuple[float, float] | None,
     tile: int,
     backend: str,
+    layout: str,
     tileable: bool,
 ) -> None:
     """Render the quick head-on shaded preview of FILE to a PNG (--tile 2 --tileable shows
-    the repeat)."""
+    the repeat, --layout lit|both the studio-lit swatch)."""
     from matloom.render.api import preview
 
     w, h = resolve_size(size, width, height, 512)
-    if max(w, h) * tile > params.MAX_SIDE:
+    wide = 2 if layout == "both" else 1
+    if max(w * wide, h) * tile > params.MAX_SIDE:
         raise click.BadParameter(
-            f"{tile} x {max(w, h)} pixels is more than the maximum image side {params.MAX_SIDE}",
+            f"{tile} x {max(w * wide, h)} pixels is more than the maximum image side "
+            f"{params.MAX_SIDE}",
             param_hint="'--tile'",
         )
     program, text = load_program(file)
     program = apply_tileable(program, tileable, text, file)
     with _limits_as_errors():
-        img = preview(program, width=w, height=h, light=_light(light), tile=tile, backend=backend)
+        img = preview(
+            program,
+            width=w,
+            height=h,
+            light=_light(light),
+            tile=tile,
+            backend=backend,
+            layout=layout,  # type: ignore[arg-type]
+        )
     _save_png(out, img)
     click.echo(str(Path(out).resolve()))
 
