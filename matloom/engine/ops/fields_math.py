@@ -107,19 +107,26 @@ def hash_cells(ev: Any, call: A.Call, c: Any) -> Any:
 
 def hash_wrap(call: A.Call, defines: Any, period: tuple[float, float]) -> tuple[float, float]:
     """Cells per period (nx, ny) of Hash's operands for tileable output, 0 for an operand that
-    does not wrap: the x operand must be ``a X()`` plus terms that repeat with the View, with
-    a whole number ``|a| Px`` of cells per period (the y operand likewise in Y(); see
+    does not wrap. An operand ``a X() + b Y()`` plus terms that repeat with the View advances
+    ``|a| Px`` cells over a horizontal period and ``|b| Py`` over a vertical one; when those are
+    whole numbers its cells are wrapped modulo their greatest common divisor, so it repeats
+    along both axes (``Hash(x=Floor(Y() * 8))`` as well as ``Hash(x=X() * 8, y=Y() * 8)``; see
     :mod:`matloom.lang.affine`); operands without coordinates need no wrap."""
+    from math import gcd
+
     from matloom.lang.affine import coord_coeffs, whole
 
     out = []
-    for name, axis in (("x", 0), ("y", 1)):
+    for name in ("x", "y"):
         coeffs = coord_coeffs(call.arg(name), defines, period)
-        if coeffs is None or coeffs[1 - axis] != 0.0 or coeffs[axis] == 0.0:
+        if coeffs is None or coeffs == (0.0, 0.0):
             out.append(0.0)
             continue
-        cells = whole(abs(coeffs[axis] * period[axis]))
-        out.append(float(cells) if cells else 0.0)
+        steps = [whole(abs(k * p)) for k, p in zip(coeffs, period, strict=True) if k != 0.0]
+        if any(not n for n in steps):
+            out.append(0.0)
+            continue
+        out.append(float(gcd(*(n for n in steps if n))))
     return out[0], out[1]
 
 
