@@ -7,7 +7,8 @@ Quick API::
     result = author_material("weathered red brick wall", "runs/brick", config)
     print(result.program)
 
-With ``AuthorConfig()`` (no generator) the built-in offline author is used.
+With ``AuthorConfig()`` (no generator) the offline author is used: the material library
+(:func:`matloom.library.author`, see docs/library.md).
 """
 
 from __future__ import annotations

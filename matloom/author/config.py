@@ -48,6 +48,10 @@ CRITIC_VIEWS: dict[str, tuple[str, ...]] = {
 }
 
 
+#: Old names of ``AuthorConfig.start`` values, read as the new ones.
+START_ALIASES: dict[str, str] = {"builtin": "library"}
+
+
 class ConfigError(ValueError):
     """A configuration file or value is invalid; the message says what to change."""
 
@@ -88,14 +92,18 @@ class AuthorConfig(BaseModel):
 
     model_config = ConfigDict(frozen=True, extra="forbid")
 
-    #: Generator backend; ``None`` means the built-in offline author.
+    #: Generator backend; ``None`` means the offline author (the material library).
     generator: ModelSettings | None = None
     #: Critic backend; ``None`` means "same as the generator" (a fresh, stateless conversation).
     critic: ModelSettings | None = None
-    #: Who writes P0 when a generator is configured: the model (Stage I), or the built-in offline
-    #: author, whose program the model then sees as its own first answer and revises in Stage II.
-    #: Irrelevant without a generator (the offline author is used anyway).
-    start: Literal["model", "builtin"] = "model"
+    #: Who writes P0 when a generator is configured: the model (Stage I), or the material
+    #: library (:func:`matloom.library.author`), whose program the model then sees as its own
+    #: first answer and revises in Stage II. ``"builtin"`` (the name before the library) is read
+    #: as ``"library"``. Irrelevant without a generator (the library is used anyway).
+    start: Literal["model", "library"] = "model"
+    #: Take the N-th candidate of the library's ranking (1 = the best) instead of the best,
+    #: wherever the library writes P0 (``--pick``); ``None`` takes the best.
+    pick: int | None = Field(None, ge=1)
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS
@@ -129,10 +137,18 @@ class AuthorConfig(BaseModel):
     export_size: int = Field(512, ge=8)
     sweep_jobs: int = Field(0, ge=0)
     seed: int = 0
-    #: Make the final program tileable (``View(..., tileable=True)``) before it is exported.
+    #: Make the final program tileable (``View(..., tileable=True)``) before it is exported,
+    #: whatever wrote it. The library already makes its programs tileable wherever the material
+    #: allows it, so without a model this only matters for entries that do not tile.
     tileable: bool = False
     #: The named settings preset these settings started from (``--settings``; recorded only).
     settings_preset: str | None = None
+
+    @field_validator("start", mode="before")
+    @classmethod
+    def _start_alias(cls, value: Any) -> Any:
+        """``"builtin"`` (records and flags from before the library) means ``"library"``."""
+        return START_ALIASES.get(value, value) if isinstance(value, str) else value
 
     @field_validator("critic_signals", mode="before")
     @classmethod

@@ -10,19 +10,33 @@ The run's own files (``record.json``, ``renders/``) stay beside the batch.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from matloom.author.records import RecordStore
 from matloom.author.views import RENDER_LOCK
+
+if TYPE_CHECKING:
+    from matloom.engine.maps import MaterialMaps
 
 #: The batch group of the final material (the group ``matloom render`` writes).
 EXPORT_GROUP = "render"
 
 
-def export_final(store: RecordStore, program: str, size: int) -> dict[str, str]:
-    """Install the final ``program`` (evaluated at ``size``) into the run folder; return the
-    written files by role, relative to the folder (``program``, ``preview``, ``manifest`` and
-    one per map)."""
+def evaluate_for_export(program: str, size: int) -> MaterialMaps:
+    """``program``'s maps at ``size`` x ``size``, as the export evaluates them (the preview's
+    shading counted in the memory budget)."""
     from matloom.engine.evaluate import evaluate
     from matloom.engine.limits import Usage
+
+    return evaluate(program, size, size, usage=Usage(preview_tile=1))
+
+
+def export_final(
+    store: RecordStore, program: str, size: int, maps: MaterialMaps | None = None
+) -> dict[str, str]:
+    """Install the final ``program`` (evaluated at ``size``, unless its ``maps`` at that size
+    are given) into the run folder; return the written files by role, relative to the folder
+    (``program``, ``preview``, ``manifest`` and one per map)."""
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
     from matloom.io.png import save_png
@@ -32,7 +46,8 @@ def export_final(store: RecordStore, program: str, size: int) -> dict[str, str]:
     if out is None:
         raise RuntimeError("the run folder is not open (RecordStore.attach)")
     with RENDER_LOCK:
-        maps = evaluate(program, size, size, usage=Usage(preview_tile=1))  # shading counted
+        if maps is None:
+            maps = evaluate_for_export(program, size)
         preview = shade(maps)
     text = store.redactor().text(program + "\n")
     with out.batch(EXPORT_GROUP, marker=MANIFEST_NAME) as staging:

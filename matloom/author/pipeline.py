@@ -17,7 +17,7 @@ from matloom.author.config import AuthorConfig
 from matloom.author.llm.base import ChatModel, ModelError, get_model
 from matloom.author.prompts.system import system_prompt
 from matloom.author.records import RECORD_NAME, ModelIds, RecordStore, RunRecord
-from matloom.author.run import Progress, ProgressEvent, Run, append_builtin_program
+from matloom.author.run import PickError, Progress, ProgressEvent, Run, append_library_program
 from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer, get_scorer
 from matloom.author.stages.generate import NoParseableProgramError, discard_unfinished_turns
 from matloom.author.views import RENDER_LOCK
@@ -112,7 +112,7 @@ def _open_store(
         matloom_version=matloom.__version__,
         prompt=prompt,
         settings=config,
-        author="llm" if config.generator is not None else "builtin",
+        author="llm" if config.generator is not None else "library",
     )
     return RecordStore(folder, record)
 
@@ -177,7 +177,7 @@ def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed throu
         if scorer is None:
             scorer, skip = resolve_scorer(record.settings)
         record.models = ModelIds(
-            generator=gen.model_id if gen else "builtin",
+            generator=gen.model_id if gen else "library",
             critic=crit.model_id if crit else None,
             scorer=scorer.name if scorer else None,
         )
@@ -188,6 +188,7 @@ def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed throu
         ModelError,
         NoParseableProgramError,
         ScorerUnavailableError,
+        PickError,
         OSError,
         OutputError,
     ) as err:
@@ -207,8 +208,8 @@ def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed throu
 
 def _run_stages(run: Run, skip: str | None) -> None:
     record = run.record
-    if record.author == "builtin":
-        _builtin_author(run)
+    if record.offline:
+        _library_author(run)
     else:
         if record.system_prompt is None:
             cfg = record.settings
@@ -226,12 +227,12 @@ def _run_stages(run: Run, skip: str | None) -> None:
     run.finalize()
 
 
-def _builtin_author(run: Run) -> None:
-    """The offline author (no model configured): one program, no critique."""
+def _library_author(run: Run) -> None:
+    """The offline author (no model configured): one program from the library, no critique."""
     if run.record.programs:
         return
-    run.notify("generate", "built-in offline author")
-    append_builtin_program(run)
+    run.notify("generate", "material library (offline author)")
+    append_library_program(run)
     run.store.save()
 
 

@@ -16,7 +16,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AliasChoices, BaseModel, ConfigDict, Field
 
 from matloom.author.config import AuthorConfig
 from matloom.author.redact import Redactor
@@ -30,6 +30,8 @@ RECORD_VERSION = 1
 TEXT_SUFFIXES = frozenset({".mat", ".json", ".txt", ".md"})
 
 Status = Literal["running", "finished", "failed"]
+#: ``RunRecord.author`` values of a run without a model (``"builtin"``: older records).
+OFFLINE_AUTHORS = frozenset({"library", "builtin"})
 
 
 def utc_now() -> str:
@@ -80,7 +82,9 @@ class ProgramRecord(_Model):
     index: int
     text: str
     authored: str
-    source: Literal["generator", "builtin"]
+    #: Who wrote it: the model, or the material library (``"builtin"`` in records written
+    #: before the library replaced the built-in recipes).
+    source: Literal["generator", "library", "builtin"]
     program_seed: int
     #: The seeds given to noise calls the author left unseeded (told to the model in the
     #: revision turn, since its own text, which it sees again, lacks them).
@@ -207,7 +211,9 @@ class RunRecord(_Model):
     updated: str = Field(default_factory=utc_now)
     status: Status = "running"
     error: str | None = None
-    author: Literal["llm", "builtin"]
+    #: ``"llm"`` (a model writes or revises), or ``"library"``: the offline author, no model
+    #: (``"builtin"`` in records written before the library replaced the built-in recipes).
+    author: Literal["llm", "library", "builtin"]
     settings: AuthorConfig
     models: ModelIds = Field(default_factory=ModelIds)
     system_prompt: str | None = None
@@ -218,7 +224,12 @@ class RunRecord(_Model):
     programs: list[ProgramRecord] = Field(default_factory=list)
     critiques: list[CritiqueRecord] = Field(default_factory=list)
     stop_reason: str | None = None
-    builtin_explanation: str | None = None
+    #: The library's explanation of P0 (candidates, entry, adaptations, ignored words) when
+    #: the library wrote it; read from ``builtin_explanation`` in older records.
+    library_explanation: str | None = Field(
+        default=None,
+        validation_alias=AliasChoices("library_explanation", "builtin_explanation"),
+    )
     selection: SelectionRecord | None = None
     seed_search: SeedSearchRecord | None = None
     final: FinalRecord | None = None
@@ -226,6 +237,11 @@ class RunRecord(_Model):
     warnings: list[str] = Field(default_factory=list)
     durations: Durations = Field(default_factory=Durations)
     sessions: list[str] = Field(default_factory=list)
+
+    @property
+    def offline(self) -> bool:
+        """True when no model is involved: the library wrote the only program."""
+        return self.author in OFFLINE_AUTHORS
 
     def critique_of(self, index: int) -> CritiqueRecord | None:
         """The critique of program ``index``, if one was recorded."""

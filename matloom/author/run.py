@@ -46,6 +46,7 @@ from matloom.author.views import (
     png_bytes,
     view_file,
 )
+from matloom.engine.maps import MaterialMaps
 from matloom.lang.seeds import derive_seed
 
 
@@ -86,8 +87,10 @@ class Run:
         self._progress = progress
         self.renderer = Renderer()
         self._written: set[str] = set()
+        #: program text -> its maps at the export size (the finite check's, reused by export)
+        self._evaluated: dict[str, MaterialMaps] = {}
         self.views: tuple[str, ...] = ("flat",)
-        if self.record.author == "llm":  # the offline author has no critic to show views to
+        if self.record.author == "llm":  # the library author has no critic to show views to
             self.views, missing = available_views(self.config.views)
             if missing:
                 self.warn(missing)
@@ -136,8 +139,8 @@ class Run:
     def generate_initial(self) -> None:
         if self.record.programs:
             return
-        if self.config.start == "builtin":
-            self.start_from_builtin()
+        if self.config.start == "library":
+            self.start_from_library()
             return
         assert self.generator is not None
         self.notify("generate", "generating P0", round=0)
@@ -152,15 +155,15 @@ class Run:
             max_reply_chars=self.config.max_reply_chars,
         )
 
-    def start_from_builtin(self) -> None:
-        """P0 from the offline author, committed as the model's first answer to the request.
+    def start_from_library(self) -> None:
+        """P0 from the material library, committed as the model's first answer to the request.
 
         The conversation becomes (request, assistant turn with P0), exactly as if the generator
         had written P0, so the first revision turn has its context. Program and conversation
         are saved together: a resumed run either has both or redoes both.
         """
-        self.notify("generate", "P0 from the built-in offline author", round=0)
-        program = append_builtin_program(self)
+        self.notify("generate", "P0 from the material library", round=0)
+        program = append_library_program(self)
         self.record.conversation = [
             MessageRecord(role="user", text=request_message(self.record.prompt)),
             MessageRecord(role="assistant", text=canonical_assistant_turn("", program.text)),
@@ -348,35 +351,56 @@ class Run:
         if self.config.tileable:
             final.program = tileable_text(final.program)
         self.notify("export", "writing material.mat, preview.png, the maps and material.json")
-        final.files = export_final(self.store, final.program, self.config.export_size)
+        maps = self._evaluated.get(final.program)  # the finite check's maps: not evaluated twice
+        self._evaluated.clear()
+        final.files = export_final(self.store, final.program, self.config.export_size, maps)
         record.final = final
         record.durations.export = time.perf_counter() - start
         self.store.save()
 
     def _nonfinite_texels(self, program: str) -> int:
-        import matloom
+        """Non-finite texels of ``program`` at the export size; its maps are kept (the last
+        program's only) so that exporting the same program does not evaluate it again."""
+        from matloom.author.finalize import evaluate_for_export
 
-        size = self.config.export_size
+        self._evaluated.clear()
         with RENDER_LOCK:
-            return nonfinite_texels(matloom.evaluate(program, size, size))
+            maps = evaluate_for_export(program, self.config.export_size)
+        self._evaluated[program] = maps
+        return nonfinite_texels(maps)
 
 
-def append_builtin_program(run: Run) -> ProgramRecord:
-    """Record the offline author's program as P0 (canonical, seeds explicit) and its
-    explanation; the caller saves."""
-    from matloom.author.builtin import author
+class PickError(ValueError):
+    """``pick`` names a candidate past the library's ranking for the prompt."""
+
+
+def append_library_program(run: Run) -> ProgramRecord:
+    """Record the library's program for the run's prompt and seed as P0 (canonical, seeds
+    explicit, the View carrying the physical size ``unit_m``) and its explanation; the caller
+    saves.
+
+    The library makes the program tileable wherever the entry allows it (``config.tileable``
+    then forces it for the others, at export). The recorded ``authored`` text keeps the
+    library's header comments (entry, adaptations, overlays); ``text`` is the canonical form.
+    """
     from matloom.lang.api import parse
     from matloom.lang.printer import format_program
     from matloom.lang.seeds import canonicalize_seeds
+    from matloom.library import author
 
     start = time.perf_counter()
-    result = author(run.record.prompt, seed=run.config.seed)
-    # The offline author already pins every seed; this only guarantees the canonical form.
+    try:
+        result = author(
+            run.record.prompt, seed=run.config.seed, pick=run.config.pick, tileable=True
+        )
+    except ValueError as err:  # only a pick past the candidates
+        raise PickError(str(err)) from None
+    # The library already pins every seed; this only guarantees the canonical form.
     text = format_program(canonicalize_seeds(parse(result.program), run.config.seed))
     program = ProgramRecord(
-        index=0, text=text, authored=result.program, source="builtin", program_seed=run.config.seed
+        index=0, text=text, authored=result.program, source="library", program_seed=run.config.seed
     )
     run.record.programs.append(program)
-    run.record.builtin_explanation = result.explanation
+    run.record.library_explanation = result.explanation
     run.record.durations.generation.append(time.perf_counter() - start)
     return program

@@ -27,7 +27,13 @@ DEMO_PROMPTS = (
     type=click.Path(file_okay=False),
     help="Folder for all demo outputs.",
 )
-@click.option("--size", type=int, default=512, show_default=True)
+@click.option(
+    "--size",
+    type=int,
+    default=512,
+    show_default=True,
+    help="Render and export size of every demo material.",
+)
 def demo_cmd(out_dir: str, size: int) -> None:
     """Render the paper's tile program and generate three materials offline."""
     from matloom.engine.evaluate import evaluate, prepare
@@ -102,15 +108,13 @@ def _timings(program: Any, size: int, first_run: float, compiling: bool) -> str:
 
 
 def _generate_offline(root: Path, size: int) -> list[str]:
-    """Run the `matloom generate` pipeline with no model (the built-in offline author); each
+    """Run the `matloom generate` pipeline with no model (the material library); each
     run folder holds the final material in the layout `matloom render` writes."""
     from matloom.author.config import AuthorConfig
     from matloom.author.pipeline import author_material
 
-    config = AuthorConfig(scorer="none")
-    out = [
-        "text to material with `matloom generate` (no model configured: built-in offline author):"
-    ]
+    config = AuthorConfig(scorer="none", export_size=size)
+    out = ["text to material with `matloom generate` (no model configured: the material library):"]
     for prompt in DEMO_PROMPTS:
         t0 = time.perf_counter()
         slug = "".join(c if c.isalnum() else "_" for c in prompt.lower()).strip("_")[:48]

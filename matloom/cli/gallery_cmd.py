@@ -1,13 +1,18 @@
-"""`matloom gallery PROMPTS.json -o DIR`: author every prompt offline and write a gallery."""
+"""`matloom gallery PROMPTS.json -o DIR`: author every prompt from the material library (offline)
+and write a gallery."""
 
 from __future__ import annotations
 
 import statistics
 import sys
+from typing import TYPE_CHECKING
 
 import click
 
 from matloom.cli import params
+
+if TYPE_CHECKING:
+    from matloom.library.author import LibraryResult
 
 
 @click.command("gallery")
@@ -25,7 +30,7 @@ from matloom.cli import params
     type=int,
     default=0,
     show_default=True,
-    help="Author seed (noise seeds derive from prompt and seed).",
+    help="Author seed (0 keeps each entry's own noise seeds; others re-derive them).",
 )
 @click.option(
     "--size", type=params.GALLERY_SIZE, default=256, show_default=True, help="Preview size."
@@ -34,15 +39,21 @@ from matloom.cli import params
     "--columns", type=params.COLUMNS, default=8, show_default=True, help="Contact-sheet columns."
 )
 def gallery_cmd(prompts_file: str, out_dir: str, seed: int, size: int, columns: int) -> None:
-    """Author each prompt of PROMPTS_FILE with the built-in author and write a gallery.
+    """Author each prompt of PROMPTS_FILE from the material library and write a gallery.
 
     PROMPTS_FILE is JSON: {"prompts": [{"id", "source", "text"}, ...]} or a list of strings.
-    Each row of the page shows the preview, a 2x2 tiled preview and the program. Ids become
+    Each row of the page shows the preview, a 2x2 tiled preview, the program and the library's
+    explanation (candidates, entry, adaptations, ignored words). Ids become
     file names: unsafe characters are replaced by "_", and an id whose files would collide
     with an earlier one's (a/b and a_b) gets a short hash suffix; an id given twice is an error.
     """
-    from matloom.author.builtin.gallery import PromptFileError, build_gallery, load_prompts
     from matloom.engine.limits import LimitError
+    from matloom.library.gallery import (
+        PromptFileError,
+        build_gallery,
+        library_author,
+        load_prompts,
+    )
 
     try:
         prompts = load_prompts(prompts_file)
@@ -52,11 +63,9 @@ def gallery_cmd(prompts_file: str, out_dir: str, seed: int, size: int, columns: 
         raise click.BadParameter(f"no prompts found in {prompts_file}", param_hint="PROMPTS_FILE")
     with click.progressbar(length=len(prompts), label="authoring", file=sys.stderr) as bar:
 
-        def counted(text: str, s: int):  # noqa: ANN202 - thin wrapper
-            from matloom.author.builtin import author
-
+        def counted(text: str, s: int) -> LibraryResult:
             bar.update(1)
-            return author(text, s)
+            return library_author(text, s)
 
         try:
             entries = build_gallery(

@@ -93,7 +93,8 @@ class ProgressView:
 @click.option(
     "--explain",
     is_flag=True,
-    help="Print (on stderr) which built-in recipe, slots and modifiers were chosen and why.",
+    help="Print (on stderr) how the library chose the program: the top candidates with "
+    "scores, the chosen entry, the adaptations applied and the words it ignored.",
 )
 @model_options
 @pipeline_options
@@ -112,8 +113,8 @@ def generate_cmd(
 ) -> None:
     """Author a material program for PROMPT (text -> program -> critique -> selection -> seeds).
 
-    With no model configured (no --model, --profile or default profile) the built-in offline
-    author is used.
+    With no model configured (no --model, --profile or default profile) the program comes from
+    the material library (offline, deterministic): see --explain and --pick.
     """
     given = explicit_flags(ctx)
     try:
@@ -125,11 +126,15 @@ def generate_cmd(
         raise click.UsageError("give a PROMPT, --prompts FILE, or --resume an existing run")
     if config.generator is None:
         click.echo(
-            "matloom: no model configured (--model/--profile); using the built-in offline author",
+            "matloom: no model configured (--model/--profile); using the material library",
             err=True,
         )
         if "start" in given:
             click.echo("matloom: --start is irrelevant without a model; ignored", err=True)
+    elif "pick" in given and config.start != "library":
+        click.echo("matloom: --pick applies only with --start library; ignored", err=True)
+    if prompt is not None and not prompts_file and base is None:
+        _check_pick(prompt, config)
     view = ProgressView(enabled=not quiet)
     if prompts_file:
         _run_batch(prompts_file, out_dir, config, jobs, resume, as_json, view)
@@ -138,6 +143,21 @@ def generate_cmd(
             "variants" not in given and config.scorer == "none"
         )
         _run_single(prompt, out_dir, config, resume, as_json, view, explain, asked)
+
+
+def _check_pick(prompt: str, config: AuthorConfig) -> None:
+    """Refuse a --pick past the library's candidates before anything is written."""
+    if config.pick is None or (config.generator is not None and config.start != "library"):
+        return
+    from matloom.library import search
+
+    count = len(search(prompt))
+    if config.pick > count:
+        found = f"only {count} candidate{'s' if count != 1 else ''}" if count else "no entry"
+        raise click.ClickException(
+            f"--pick {config.pick}: {found} matched the prompt "
+            "(`matloom library search PROMPT` lists them)"
+        )
 
 
 def _resumed_settings(out_dir: str) -> AuthorConfig | None:
@@ -190,13 +210,13 @@ def _run_single(
 
 
 def _say_explanation(record: Any) -> None:
-    """The built-in author's explanation on stderr (of P0 when a model revised it)."""
-    explanation = record.builtin_explanation
+    """The library's explanation on stderr (of P0 when a model revised it)."""
+    explanation = record.library_explanation
     if explanation is None:
-        explanation = "(no built-in author explanation: an LLM wrote this program)"
+        explanation = "(no library explanation: an LLM wrote this program)"
     elif record.author == "llm" and record.final is not None:
         explanation = (
-            "P0 came from the built-in offline author; the result is "
+            "P0 came from the material library; the result is "
             f"P{record.final.program_index}. P0's explanation:\n{explanation}"
         )
     click.echo(explanation, err=True)

@@ -34,6 +34,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "playbook": "playbook",
     "few_shot": "few_shot",
     "start": "start",
+    "pick": "pick",
     "max_reply_chars": "max_reply_chars",
     "tileable": "tileable",
     "critic_views": "critic_views",
@@ -187,11 +188,18 @@ def pipeline_options(f: Any) -> Any:
         ),
         click.option(
             "--start",
-            type=click.Choice(["model", "builtin"]),
+            type=click.Choice(["model", "library", "builtin"]),
             default=d.start,
             show_default=True,
-            help="Who writes P0 when a model is configured: the model, or the built-in offline "
-            "author (the model then critiques and revises it).",
+            help="Who writes P0 when a model is configured: the model, or the material library "
+            "(the model then critiques and revises it); builtin is the old name of library.",
+        ),
+        click.option(
+            "--pick",
+            type=click.IntRange(min=1),
+            default=None,
+            help="Take the N-th library candidate instead of the best (see --explain for the "
+            "ranking); wherever the library writes the program.",
         ),
         click.option("--rounds", type=int, default=d.rounds, show_default=True),
         click.option(
@@ -265,8 +273,8 @@ def pipeline_options(f: Any) -> Any:
             "--tileable",
             is_flag=True,
             default=d.tileable,
-            help="Make the final material tileable (View(..., tileable=True)); the offline "
-            "author already does where the material allows it.",
+            help="Make the final material tileable (View(..., tileable=True)); the library "
+            "already does where the material allows it.",
         ),
     ]
     for option in reversed(options):

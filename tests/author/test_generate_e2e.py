@@ -255,9 +255,9 @@ def test_offline_author_without_a_model(tmp_path: Path) -> None:
         ],
     )
     assert result.exit_code == 0, result.stderr
-    assert "built-in offline author" in result.stderr
+    assert "using the material library" in result.stderr
     record = validate_record_file(tmp_path / "run" / "record.json")
-    assert record.author == "builtin" and record.programs[0].source == "builtin"
+    assert record.author == "library" and record.programs[0].source == "library"
     assert matloom.parse(result.stdout)  # stdout is just the program
     assert len(record.seed_search.sweeps) == 1
 

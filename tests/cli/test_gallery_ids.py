@@ -7,13 +7,12 @@ took 20 s because its contact-sheet label was shortened one character at a time.
 from __future__ import annotations
 
 import json
-import time
 from pathlib import Path
 
 from click.testing import CliRunner
 
-from matloom.author.builtin.gallery import GalleryEntry, _sheet_label, assign_file_ids
 from matloom.cli.main import cli
+from matloom.library.gallery import GalleryEntry, _sheet_label, assign_file_ids
 
 
 def _files(stem: str) -> set[str]:
@@ -75,12 +74,14 @@ def test_sheet_label_is_bounded_before_fitting() -> None:
     assert _sheet_label(_entry("oak  planks\n"), 192) == "p000: oak planks"
 
 
-def test_huge_prompt_label_fits_quickly() -> None:
+def test_huge_prompt_label_is_cut_before_the_sheet_fits_it() -> None:
     import numpy as np
 
     from matloom.render.sheet import contact_sheet
 
-    text = "x" * 200_000
-    start = time.perf_counter()
-    contact_sheet([np.zeros((8, 8, 3), np.uint8)], [_sheet_label(_entry(text), 192)], 1, 192)
-    assert time.perf_counter() - start < 2.0  # was ~10 s for the unbounded label
+    label = _sheet_label(_entry("x" * 200_000), 192)
+    # fitting shortens one character at a time: a bounded label keeps it linear and cheap
+    # (the unbounded 200 KB label took ~10 s)
+    assert len(label) <= 192 + 3
+    sheet = contact_sheet([np.zeros((8, 8, 3), np.uint8)], [label], 1, 192)
+    assert sheet.shape[1] >= 8

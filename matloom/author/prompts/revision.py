@@ -135,6 +135,6 @@ def revision_message(
 
 def canonical_assistant_turn(preamble: str, canonical: str) -> str:
     """An assistant turn showing a program: reasoning, then the program in a material block
-    (used for a P0 written by the offline author, which has no reply of its own)."""
+    (used for a P0 written by the material library, which has no reply of its own)."""
     head = f"{preamble.strip()}\n\n" if preamble.strip() else ""
     return f"{head}<material>\n{canonical.strip()}\n</material>"

@@ -1,5 +1,8 @@
-"""Gallery of authored materials: previews, 2x2 tiled previews, programs, one HTML page and a
-PNG contact sheet, so results can be judged at a glance without running anything.
+"""Gallery of library-authored materials: previews, 2x2 tiled previews, programs, one HTML page
+and a PNG contact sheet, so results can be judged at a glance without running anything.
+
+Every prompt goes through :func:`matloom.library.author` (the offline author of
+``matloom generate``); each row shows the chosen entry, the overlays and the explanation.
 
 Layout of the output folder::
 
@@ -8,7 +11,7 @@ Layout of the output folder::
     previews/<id>.png     head-on preview (``size`` px)
     previews/<id>_tiled.png  2x2 tiling of a half-size preview (same pixel size), shows seams
     programs/<id>.mat     the canonical program
-    gallery.json          prompt, source, recipe, modifiers, timing and line count per entry
+    gallery.json          prompt, source, entry, overlays, timing and line count per prompt
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from matloom.author.builtin.compose import AuthorResult, author
+from matloom.library.author import LibraryResult, author
 
 
 @dataclass(frozen=True)
@@ -42,8 +45,9 @@ class GalleryEntry:
     id: str
     source: str
     text: str
-    recipe: str
-    modifiers: list[str]
+    #: The library entry the program came from, and the overlays composed on it.
+    entry: str
+    overlays: list[str]
     lines: int
     author_ms: float
     preview: str
@@ -193,15 +197,15 @@ def _sheet_label(entry: GalleryEntry, cell: int) -> str:
     return label if len(label) <= limit else label[:limit] + "..."
 
 
-def _row_html(entry: GalleryEntry, result: AuthorResult) -> str:
+def _row_html(entry: GalleryEntry, result: LibraryResult) -> str:
     program = html.escape(result.program)
     explanation = html.escape(result.explanation)
     return (
         "<tr>"
         f"<td class='prompt'><b>{html.escape(entry.prompt_id or entry.id)}</b>"
         f"<br><i>{html.escape(entry.source)}</i>"
-        f"<p>{html.escape(entry.text)}</p><p>recipe: <code>{html.escape(entry.recipe)}</code>"
-        f"<br>modifiers: {html.escape(', '.join(entry.modifiers) or 'none')}"
+        f"<p>{html.escape(entry.text)}</p><p>entry: <code>{html.escape(entry.entry)}</code>"
+        f"<br>overlays: {html.escape(', '.join(entry.overlays) or 'none')}"
         f"<br>{entry.lines} lines, {entry.author_ms:.0f} ms</p></td>"
         f"<td><img src='{entry.preview}' width='256' height='256' alt='preview'></td>"
         f"<td><img src='{entry.tiled}' width='256' height='256' alt='tiled 2x2'></td>"
@@ -211,7 +215,7 @@ def _row_html(entry: GalleryEntry, result: AuthorResult) -> str:
 
 
 _PAGE = """<!doctype html>
-<html lang="en"><head><meta charset="utf-8"><title>MatLoom built-in author gallery</title>
+<html lang="en"><head><meta charset="utf-8"><title>MatLoom library author gallery</title>
 <style>
 body {{ font-family: sans-serif; margin: 1em; background: #fafafa; }}
 table {{ border-collapse: collapse; }}
@@ -219,10 +223,10 @@ td {{ border-top: 1px solid #ccc; vertical-align: top; padding: 6px; }}
 td.prompt {{ width: 260px; font-size: 13px; }}
 pre {{ font-size: 11px; max-width: 640px; overflow-x: auto; white-space: pre; }}
 </style></head><body>
-<h1>MatLoom built-in (offline) author: gallery</h1>
+<h1>MatLoom material library (offline author): gallery</h1>
 <p>{count} prompts, seed {seed}. Each row: the prompt, the head-on preview ({size} px), a 2&times;2
 tiling of the same material (seams show where it does not tile), and the program with the
-author's explanation. <a href="contact_sheet.png">Contact sheet</a>.</p>
+library's explanation (candidates, entry, adaptations, ignored words). <a href="contact_sheet.png">Contact sheet</a>.</p>
 <table><tr><th>prompt</th><th>preview</th><th>2&times;2 tiled</th><th>program</th></tr>
 {rows}
 </table></body></html>
@@ -237,9 +241,10 @@ def build_gallery(
     size: int = 256,
     columns: int = 8,
     sheet_cell: int = 192,
-    author_fn: Callable[[str, int], AuthorResult] = author,
+    author_fn: Callable[[str, int], LibraryResult] | None = None,
 ) -> list[GalleryEntry]:
-    """Author, render and write the gallery for ``prompts`` into ``out_dir``.
+    """Author (``author_fn(text, seed)``, default :func:`matloom.library.author`), render and
+    write the gallery for ``prompts`` into ``out_dir``.
 
     The whole gallery is staged and installed at the end (``index.html`` last); files in
     ``out_dir`` that MatLoom did not write are never touched.
@@ -247,7 +252,14 @@ def build_gallery(
     from matloom.io.outdir import OutputFolder
 
     with OutputFolder(out_dir) as folder, folder.batch("gallery", marker="index.html") as staging:
-        return _write_gallery(prompts, staging, seed, size, columns, sheet_cell, author_fn)
+        return _write_gallery(
+            prompts, staging, seed, size, columns, sheet_cell, author_fn or library_author
+        )
+
+
+def library_author(text: str, seed: int) -> LibraryResult:
+    """The library's program for ``text`` (tileable wherever the entry allows it)."""
+    return author(text, seed=seed)
 
 
 def _write_gallery(  # noqa: PLR0913 - build_gallery's options, passed through
@@ -257,7 +269,7 @@ def _write_gallery(  # noqa: PLR0913 - build_gallery's options, passed through
     size: int,
     columns: int,
     sheet_cell: int,
-    author_fn: Callable[[str, int], AuthorResult],
+    author_fn: Callable[[str, int], LibraryResult],
 ) -> list[GalleryEntry]:
     from matloom.render.api import preview
     from matloom.render.sheet import contact_sheet, save_png
@@ -280,8 +292,8 @@ def _write_gallery(  # noqa: PLR0913 - build_gallery's options, passed through
             pid,
             prompt.source,
             prompt.text,
-            result.recipe,
-            result.modifiers,
+            result.entry,
+            list(result.overlays),
             result.program.count("\n") + 1,
             elapsed,
             f"previews/{pid}.png",
