@@ -113,6 +113,9 @@ class AuthorConfig(BaseModel):
     #: From round 1 on, the critic also sees the previous round's preview(s) and score and says
     #: whether this round is better (the paper's critic is stateless: off).
     critic_history: bool = False
+    #: Stop revising once the critic asks for no changes (no suggestions, no edits); the
+    #: paper always runs every round.
+    stop_when_satisfied: bool = False
     #: The critic's statistics: the paper's 28 statistics on a ``stats_grid`` grid, or the
     #: ``visible`` statistics computed at the critique resolution.
     critic_stats: Literal["paper", "visible"] = "paper"

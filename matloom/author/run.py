@@ -34,7 +34,7 @@ from matloom.author.records import (
 from matloom.author.scorers.base import TextImageScorer
 from matloom.author.stages.critique import PreviousRound, critique_program
 from matloom.author.stages.finite import finite_final, nonfinite_texels
-from matloom.author.stages.generate import run_turn
+from matloom.author.stages.generate import extract_answer, run_turn
 from matloom.author.stages.seedsearch import best_of_sweeps, candidate_indices, run_candidate_sweep
 from matloom.author.stages.select import select_program
 from matloom.author.views import (
@@ -186,8 +186,15 @@ class Run:
                 self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
                 self.store.save()
                 return
+            satisfied = not (critique.suggestions or critique.edits)
+            if k < self.config.rounds and self.config.stop_when_satisfied and satisfied:
+                self.record.stop_reason = f"the critic asked for no changes to P{k}"
+                self.store.save()
+                return
             if k < self.config.rounds and k + 1 >= len(self.record.programs):
                 self.revise(k, critique)
+        self.record.stop_reason = f"all {self.config.rounds} revision rounds used"
+        self.store.save()
 
     def _previous_round(self, k: int, sees_render: bool) -> PreviousRound | None:
         if not self.config.critic_history or k == 0:
@@ -200,7 +207,13 @@ class Run:
     def critique(self, k: int) -> CritiqueRecord:
         assert self.critic is not None
         cfg = self.config
-        program = self.record.programs[k].text
+        record = self.record.programs[k]
+        program = record.text
+        # The critic quotes the program the generator wrote (its own text, as the generator's
+        # conversation holds it), so its edits name lines the generator can find.
+        shown = program
+        if record.source == "generator" and record.authored:
+            shown = (extract_answer(record.authored)[0] or program).strip()
         signals = cfg.effective_signals()
         self.notify("critique", f"critiquing P{k}", round=k)
         start = time.perf_counter()
@@ -211,7 +224,7 @@ class Run:
             self.critic,
             self.record.prompt,
             k,
-            program,
+            shown,
             signals=signals,
             renders=renders,
             views=self.views,

@@ -36,6 +36,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "critic_views": "both",
         "critic_history": True,
         "critic_stats": "visible",
+        "stop_when_satisfied": True,
         "rounds": 5,
         "scorer": "auto",
     },

@@ -39,6 +39,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "tileable": "tileable",
     "critic_views": "critic_views",
     "critic_history": "critic_history",
+    "stop_when_satisfied": "stop_when_satisfied",
     "critic_stats": "critic_stats",
     "revision_images": "revision_images",
 }
@@ -231,6 +232,14 @@ def pipeline_options(f: Any) -> Any:
             show_default=True,
             help="The critic also sees the previous round's preview and score and says whether "
             "this round is better.",
+        ),
+        click.option(
+            "--stop-when-satisfied/--all-rounds",
+            "stop_when_satisfied",
+            default=d.stop_when_satisfied,
+            show_default=True,
+            help="Stop revising once the critic asks for no changes (recommended), or run every "
+            "round (the paper).",
         ),
         click.option(
             "--critic-stats",
