@@ -2,9 +2,10 @@
 
 A job names the maps (absolute paths, Blender colour spaces, constants), the surface geometry
 (plane size and displacement scale, in metres when the manifest has a physical size), the
-layouts from :mod:`matloom.blender.layouts` with their cameras already placed, and the output
-paths. Sources are a program file (rendered here with the core into a temporary staged folder
-that :meth:`Source.cleanup` removes) or a folder exported by ``matloom render``.
+layouts from :mod:`matloom.blender.layouts` with their cameras already placed, the packed
+ORM / mask map a preset wrote (:mod:`matloom.blender.packed`), and the output paths. Sources
+are a program file (rendered here with the core into a temporary staged folder that
+:meth:`Source.cleanup` removes) or a folder exported by ``matloom render``.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from matloom.blender.layouts import COMMON, LAYOUTS, camera_for_view, layout_json
+from matloom.blender.packed import PackedTextureError, packed_texture
 from matloom.io.atomic import atomic_write_bytes
 
 JOB_FORMAT = "matloom-blender-job"
@@ -312,6 +314,10 @@ def planned_files(options: RenderOptions) -> list[str]:
 def build_job(source: Source, options: RenderOptions, out_dir: Path) -> dict[str, Any]:
     """The JSON job for ``source``: every output goes into ``out_dir``."""
     options.validate()
+    try:
+        packed = packed_texture(source.manifest, source.maps_dir)
+    except PackedTextureError as err:
+        raise BlenderJobError(str(err)) from None
     geometry = surface(source.manifest)
     half_extent = max(geometry["size"]) / 2.0 * geometry["object_scale"]
     layouts = {}
@@ -339,6 +345,7 @@ def build_job(source: Source, options: RenderOptions, out_dir: Path) -> dict[str
         "source": source.path,
         "maps_dir": str(source.maps_dir),
         "maps": material_maps(source.manifest, source.maps_dir),
+        "packed": packed,
         "defaults": {"ior": DEFAULT_IOR},
         "scalar_inputs": SCALAR_INPUTS,
         "surface": geometry,

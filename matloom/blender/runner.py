@@ -35,6 +35,8 @@ _VERSION = re.compile(r"Blender\s+(\d+)\.(\d+)(?:\.(\d+))?")
 #: Blender processes running now (``--jobs N``): :func:`stop_all` ends them on Ctrl-C.
 _RUNNING: set[subprocess.Popen[str]] = set()
 _RUNNING_LOCK = threading.Lock()
+#: Set by :func:`stop_all`: no new Blender starts once the command is being stopped.
+_STOPPING = threading.Event()
 
 
 class BlenderError(Exception):
@@ -167,22 +169,25 @@ def run_worker(
     other: list[str] = []
     env = dict(os.environ)
     env.setdefault("PYTHONUNBUFFERED", "1")
-    try:
-        proc = subprocess.Popen(
-            blender.command(job_path),
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            stdin=subprocess.DEVNULL,
-            text=True,
-            errors="replace",
-            env=env,
-            start_new_session=True,  # Ctrl-C reaches us; we stop Blender ourselves
-        )
-    except OSError as err:
-        raise BlenderError(
-            f"cannot run {blender.path}: {err.strerror or err}; {HOW_TO_GET}"
-        ) from None
-    with _RUNNING_LOCK:
+    env["MATLOOM_PARENT_PID"] = str(os.getpid())  # the worker ends itself if we are gone
+    with _RUNNING_LOCK:  # checked and registered together: stop_all() misses no process
+        if _STOPPING.is_set():
+            raise BlenderError("stopped before Blender started (MatLoom is being stopped)")
+        try:
+            proc = subprocess.Popen(
+                blender.command(job_path),
+                stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT,
+                stdin=subprocess.DEVNULL,
+                text=True,
+                errors="replace",
+                env=env,
+                start_new_session=True,  # Ctrl-C reaches us; we stop Blender ourselves
+            )
+        except OSError as err:
+            raise BlenderError(
+                f"cannot run {blender.path}: {err.strerror or err}; {HOW_TO_GET}"
+            ) from None
         _RUNNING.add(proc)
     try:
         assert proc.stdout is not None
@@ -239,7 +244,9 @@ def _stop(proc: subprocess.Popen[str]) -> None:
 
 
 def stop_all() -> None:
-    """Stop every Blender process this MatLoom process started and that is still running."""
+    """Stop every Blender process this MatLoom process started and that is still running, and
+    start no new one (the command is ending: Ctrl-C or SIGTERM)."""
+    _STOPPING.set()
     with _RUNNING_LOCK:
         running = list(_RUNNING)
     for proc in running:

@@ -9,8 +9,9 @@ alone (``save_material``). Every file is written under a temporary name and rena
 so a killed render never leaves a half-written file under its final name.
 
 Progress and errors are JSON lines on stdout prefixed with ``MATLOOM-JSON `` (Blender prints its
-own lines there too): ``start``, ``device``, ``render`` (per view), ``saved``, ``warning``,
-``error`` and ``done``.
+own lines there too): ``start``, ``device``, ``render_start`` and ``render`` (per view),
+``saved``, ``warning``, ``error`` and ``done``. The material's node graph is built by
+``worker_material.py`` and the helpers are in ``worker_common.py`` (siblings of this file).
 """
 
 from __future__ import annotations
@@ -21,23 +22,26 @@ import os
 import sys
 import time
 import traceback
-import uuid
 from typing import Any
 
-PREFIX = "MATLOOM-JSON "
-MIN_VERSION = (4, 2)
-#: linear Rec.709 -> linear Rec.2020 (greys unchanged); used when that is the working space
-_709_TO_2020 = (
-    (0.627404, 0.329283, 0.043313),
-    (0.069097, 0.919540, 0.011362),
-    (0.016391, 0.088013, 0.895595),
+# Blender's own Python does not put the script's folder on sys.path; the sibling worker_*
+# modules live there (appended, so nothing of Blender's is shadowed)
+_HERE = os.path.dirname(os.path.abspath(__file__))
+if _HERE not in sys.path:
+    sys.path.append(_HERE)
+
+from worker_common import (  # noqa: E402
+    emit,
+    exit_with_parent,
+    srgb8,
+    state,
+    temp_name,
+    try_set,
+    try_use_nodes,
 )
-_state: dict[str, Any] = {"working_space": "Linear Rec.709"}
+from worker_material import build_material  # noqa: E402
 
-
-def emit(event: str, **data: Any) -> None:
-    sys.stdout.write(PREFIX + json.dumps({"event": event, **data}) + "\n")
-    sys.stdout.flush()
+MIN_VERSION = (4, 2)
 
 
 def job_path(argv: list[str]) -> str:
@@ -47,43 +51,6 @@ def job_path(argv: list[str]) -> str:
             "usage: worker.py job.json  (or: blender -b --python worker.py -- job.json)"
         )
     return rest[0]
-
-
-def temp_name(path: str) -> str:
-    head, tail = os.path.split(path)
-    return os.path.join(head, f".{tail}.tmp-{uuid.uuid4().hex[:12]}")
-
-
-def try_set(obj: Any, attr: str, value: Any) -> bool:
-    """Set a setting that some Blender versions lack; report it instead of failing."""
-    try:
-        setattr(obj, attr, value)
-        return True
-    except (AttributeError, TypeError, ValueError) as err:
-        emit("warning", message=f"cannot set {attr}={value!r}: {err}")
-        return False
-
-
-def try_use_nodes(datablock: Any) -> None:
-    """Node trees are always on from Blender 5.0 (``use_nodes`` is deprecated there)."""
-    if tuple(__import__("bpy").app.version[:2]) < (5, 0):
-        datablock.use_nodes = True
-
-
-def srgb8(colour: list[int]) -> tuple[float, float, float]:
-    def one(c: float) -> float:
-        v = c / 255.0
-        return v / 12.92 if v <= 0.04045 else ((v + 0.055) / 1.055) ** 2.4
-
-    return working(tuple(one(c) for c in colour[:3]))
-
-
-def working(rgb: Any) -> tuple[float, float, float]:
-    """A linear Rec.709 colour in the file's working space."""
-    r, g, b = (float(c) for c in list(rgb)[:3])
-    if _state["working_space"] != "Linear Rec.2020":
-        return (r, g, b)
-    return tuple(m[0] * r + m[1] * g + m[2] * b for m in _709_TO_2020)  # type: ignore[return-value]
 
 
 # ------------------------------------------------------------------------ settings
@@ -100,7 +67,7 @@ def setup_common(bpy: Any, common: dict[str, Any]) -> None:
         bpy.ops.wm.set_working_color_space(working_space=space, convert_colors=False)
     except (RuntimeError, TypeError) as err:
         emit("warning", message=f"cannot set the working colour space {space}: {err}")
-    _state["working_space"] = colorspace.working_space
+    state["working_space"] = colorspace.working_space
 
 
 def setup_scene(bpy: Any, scene: Any, common: dict[str, Any], layout: dict[str, Any]) -> None:
@@ -242,139 +209,6 @@ def simple_material(bpy: Any, name: str, colour: list[int], roughness: float) ->
     bsdf.inputs["Base Color"].default_value = (*srgb8(colour), 1.0)
     bsdf.inputs["Roughness"].default_value = roughness
     return mat
-
-
-# ------------------------------------------------------------------------ the material
-
-
-def build_material(bpy: Any, job: dict[str, Any]) -> Any:
-    """Principled BSDF wired the way an artist would: named nodes in frames."""
-    mat = bpy.data.materials.new(job["name"])
-    try_use_nodes(mat)
-    tree = mat.node_tree
-    nodes, links = tree.nodes, tree.links
-    for node in list(nodes):
-        nodes.remove(node)
-    frames = {}
-    for label in ("Maps", "Surface", "Relief"):
-        frame = nodes.new("NodeFrame")
-        frame.name = frame.label = label
-        frames[label] = frame
-
-    def add(kind: str, name: str, frame: str, x: float, y: float) -> Any:
-        node = nodes.new(kind)
-        node.name = node.label = name
-        node.location = (x, y)
-        node.parent = frames[frame]
-        return node
-
-    out = add("ShaderNodeOutputMaterial", "Material Output", "Surface", 400, 0)
-    bsdf = add("ShaderNodeBsdfPrincipled", "Principled BSDF", "Surface", 0, 0)
-    links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
-    maps = job["maps"]
-    textures: dict[str, Any] = {}
-    y = 600.0
-    for name, item in maps.items():
-        if item.get("file") is None:
-            continue
-        tex = add("ShaderNodeTexImage", f"{name} map", "Maps", -900, y)
-        y -= 300
-        image = bpy.data.images.load(item["file"], check_existing=True)
-        image.colorspace_settings.name = item["colour_space"]
-        if item.get("alpha"):
-            image.alpha_mode = "CHANNEL_PACKED"
-        tex.image = image
-        textures[name] = tex
-
-    def constant(name: str) -> Any:
-        return maps.get(name, {}).get("constant")
-
-    # base colour (x AO, like the reference) and, fixed, the coverage alpha
-    base = textures.get("basecolor")
-    if base is not None:
-        colour_out = base.outputs["Color"]
-        if "ao" in textures:
-            mix = add("ShaderNodeMix", "Base x AO", "Surface", -400, 400)
-            mix.data_type = "RGBA"
-            mix.blend_type = "MULTIPLY"
-            mix.inputs["Factor"].default_value = 1.0
-            links.new(colour_out, mix.inputs[6])
-            links.new(textures["ao"].outputs["Color"], mix.inputs[7])
-            colour_out = mix.outputs[2]
-        links.new(colour_out, bsdf.inputs["Base Color"])
-        if maps["basecolor"].get("alpha"):
-            links.new(base.outputs["Alpha"], bsdf.inputs["Alpha"])
-    elif isinstance(constant("basecolor"), list):
-        bsdf.inputs["Base Color"].default_value = (*working(constant("basecolor")), 1.0)
-    bsdf.inputs["IOR"].default_value = float(job["defaults"]["ior"])  # fixed: not 1.0
-    for name, socket in job["scalar_inputs"].items():
-        if name in textures:
-            links.new(textures[name].outputs["Color"], bsdf.inputs[socket])
-        elif isinstance(constant(name), (int, float)):
-            bsdf.inputs[socket].default_value = float(constant(name))
-    # fixed: anisotropy turns with the anisotropy_angle map, along the UV tangent
-    if "anisotropy" in maps:
-        tangent = add("ShaderNodeTangent", "UV Tangent", "Surface", -400, -700)
-        tangent.direction_type = "UV_MAP"
-        links.new(tangent.outputs["Tangent"], bsdf.inputs["Tangent"])
-    angle = maps.get("anisotropy_angle")
-    if angle is not None:
-        if "anisotropy_angle" in textures:
-            turn = add("ShaderNodeMath", "Angle to rotation", "Surface", -400, -550)
-            turn.operation = "MULTIPLY"
-            turn.inputs[1].default_value = float(angle.get("scale", 1.0 / 360.0))
-            links.new(textures["anisotropy_angle"].outputs["Color"], turn.inputs[0])
-            links.new(turn.outputs["Value"], bsdf.inputs["Anisotropic Rotation"])
-        elif isinstance(angle.get("constant"), (int, float)):
-            degrees = float(angle["constant"]) % 180.0
-            bsdf.inputs["Anisotropic Rotation"].default_value = degrees / 360.0
-    # emission
-    if "emissive" in textures:
-        links.new(textures["emissive"].outputs["Color"], bsdf.inputs["Emission Color"])
-        bsdf.inputs["Emission Strength"].default_value = 1.0
-    elif isinstance(constant("emissive"), list) and any(constant("emissive")):
-        bsdf.inputs["Emission Color"].default_value = (*working(constant("emissive")), 1.0)
-        bsdf.inputs["Emission Strength"].default_value = 1.0
-    # relief: Normal Map (tangent space, OpenGL) -> Bump -> BSDF Normal; height -> Displacement
-    bump = add("ShaderNodeBump", "Bump", "Relief", -300, -300)
-    links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
-    if "normal" in textures:
-        normal_map = add("ShaderNodeNormalMap", "Normal Map (OpenGL)", "Relief", -550, -300)
-        normal_map.space = "TANGENT"
-        normal_map.inputs["Strength"].default_value = 1.0
-        colour = textures["normal"].outputs["Color"]
-        if maps["normal"].get("flip_green"):
-            colour = flip_green(tree, add, colour)
-        links.new(colour, normal_map.inputs["Color"])
-        links.new(normal_map.outputs["Normal"], bump.inputs["Normal"])
-    geometry = job["surface"]
-    if "height" in textures:
-        disp = add("ShaderNodeDisplacement", "Displacement", "Relief", 100, -450)
-        disp.space = "OBJECT"
-        disp.inputs["Midlevel"].default_value = float(geometry["midlevel"])
-        disp.inputs["Scale"].default_value = float(geometry["displacement_scale"])
-        links.new(textures["height"].outputs["Color"], disp.inputs["Height"])
-        if job["displacement"] != "off":
-            links.new(disp.outputs["Displacement"], out.inputs["Displacement"])
-    method = {"true": "BOTH", "bump": "BUMP", "off": "BUMP"}[job["displacement"]]
-    if not try_set(mat, "displacement_method", method):
-        try_set(mat.cycles, "displacement_method", method)
-    return mat
-
-
-def flip_green(tree: Any, add: Any, colour: Any) -> Any:
-    """DirectX normal map -> OpenGL: green = 1 - green."""
-    split = add("ShaderNodeSeparateColor", "Split DX normal", "Relief", -800, -700)
-    invert = add("ShaderNodeMath", "1 - green", "Relief", -650, -700)
-    invert.operation = "SUBTRACT"
-    invert.inputs[0].default_value = 1.0
-    join = add("ShaderNodeCombineColor", "OpenGL normal", "Relief", -500, -700)
-    tree.links.new(colour, split.inputs["Color"])
-    tree.links.new(split.outputs["Red"], join.inputs["Red"])
-    tree.links.new(split.outputs["Green"], invert.inputs[1])
-    tree.links.new(invert.outputs["Value"], join.inputs["Green"])
-    tree.links.new(split.outputs["Blue"], join.inputs["Blue"])
-    return join.outputs["Color"]
 
 
 # ------------------------------------------------------------------------ scenes
@@ -552,6 +386,8 @@ def run(job: dict[str, Any]) -> None:
 
 
 def main(argv: list[str]) -> int:
+    parent = os.environ.get("MATLOOM_PARENT_PID", "")
+    exit_with_parent(int(parent) if parent.isdigit() else None)
     try:
         import bpy
     except ImportError:

@@ -6,8 +6,8 @@ Blender runs as a separate process (``matloom.blender.runner``); every output go
 
 from __future__ import annotations
 
+import signal
 import sys
-import tempfile
 import threading
 import time
 from collections.abc import Iterator
@@ -35,8 +35,9 @@ from matloom.cli import params
     "--out",
     "out_dir",
     required=True,
-    type=click.Path(file_okay=False),
-    help="Output folder (staged; files MatLoom did not write are never touched).",
+    type=click.Path(),
+    help="Output folder (staged; files MatLoom did not write are never touched), or a .png "
+    "file for one source, one layout and one view.",
 )
 @click.option("--size", type=params.SIZE, default=512, show_default=True, help="Image size.")
 @click.option(
@@ -114,16 +115,12 @@ def blender_cmd(
     unit_m: float | None,
 ) -> None:
     """Render each SOURCE (a program file or a folder written by `matloom render`) with
-    Blender Cycles in the paper's flat and/or staged layout; optionally save a ready .blend."""
-    from matloom.blender.job import (
-        BlenderJobError,
-        RenderOptions,
-        check_source,
-        material_name,
-        planned_files,
-    )
+    Blender Cycles in the paper's flat and/or staged layout; optionally save a ready .blend.
+
+    -o names a folder (flat.png, staged.png, one subfolder per SOURCE when there are several)
+    or, for one SOURCE, one layout and one view, a single .png file."""
+    from matloom.blender.job import BlenderJobError, RenderOptions, check_source, render_names
     from matloom.blender.runner import BlenderError, check_version, find_blender
-    from matloom.io.outdir import OutputFolder
 
     options = RenderOptions(
         layouts=("flat", "staged") if layout == "both" else (layout,),
@@ -139,6 +136,17 @@ def blender_cmd(
         options.validate()
     except BlenderJobError as err:
         raise click.UsageError(str(err)) from None
+    single = out_dir.lower().endswith(".png") and not Path(out_dir).is_dir()
+    if single and len(sources) > 1:
+        raise click.UsageError(
+            f"-o {out_dir} names one image, but {len(sources)} sources were given: "
+            "give a folder for -o"
+        )
+    if single and len(render_names(options)) > 1:
+        raise click.UsageError(
+            f"-o {out_dir} names one image, but --layout {layout} --views {views} make "
+            f"{len(render_names(options))}: give a folder for -o"
+        )
     try:  # cheap checks first: a folder without a manifest fails before Blender is looked for
         for source in sources:
             check_source(source)
@@ -151,6 +159,55 @@ def blender_cmd(
         raise click.ClickException(str(err)) from None
     shown = ".".join(map(str, version)) if version else "bpy module"
     click.echo(f"blender: {blender.path} ({shown})", err=True)
+    with _stop_blender_on_sigterm():
+        if single:
+            _single(sources[0], options, Path(out_dir), blender, unit_m)
+        else:
+            _batch(sources, options, out_dir, jobs, blender, unit_m)
+
+
+def _single(source: str, options: Any, target: Path, blender: Any, unit_m: float | None) -> None:
+    """One image to one file (`-o out.png`)."""
+    from matloom.blender.job import BlenderJobError
+    from matloom.blender.render import render_to_file
+    from matloom.blender.runner import BlenderError
+
+    progress = _Progress(1)
+    name = target.stem
+    t0 = time.perf_counter()
+    try:
+        files = render_to_file(
+            source,
+            options,
+            target,
+            blender,
+            unit_m=unit_m,
+            on_event=lambda e: progress.event(name, e),
+        )
+    except (BlenderJobError, BlenderError) as err:
+        diagnostics = getattr(err, "diagnostics", None)
+        if diagnostics:
+            click.echo(diagnostics, err=True)
+            sys.exit(2)
+        raise click.ClickException(str(err)) from None
+    progress.material_done(name, time.perf_counter() - t0)
+    for path in files:
+        click.echo(str(path))
+
+
+def _batch(
+    sources: tuple[str, ...],
+    options: Any,
+    out_dir: str,
+    jobs: int,
+    blender: Any,
+    unit_m: float | None,
+) -> None:
+    """Every source into the folder `out_dir` (a subfolder each when there are several)."""
+    from matloom.blender.job import BlenderJobError, material_name, planned_files
+    from matloom.blender.runner import BlenderError, stop_all
+    from matloom.io.outdir import OutputFolder
+
     prefixes = _prefixes(sources, material_name)
     planned = [p + f for p in prefixes for f in planned_files(options)]
     failures: list[str] = []
@@ -169,18 +226,18 @@ def blender_cmd(
                 failures.append(f"{source}: {message}")
                 progress.line(f"failed: {source}: {message}")
 
-        try:
-            if jobs == 1 or len(sources) == 1:
-                for index in range(len(sources)):
-                    one(index)
-            else:
-                with ThreadPoolExecutor(max_workers=jobs) as pool:
-                    list(pool.map(one, range(len(sources))))
-        except KeyboardInterrupt:
-            from matloom.blender.runner import stop_all
-
-            stop_all()
-            raise
+        if jobs == 1 or len(sources) == 1:
+            for index in range(len(sources)):
+                one(index)
+        else:
+            pool = ThreadPoolExecutor(max_workers=jobs)
+            try:
+                list(pool.map(one, range(len(sources))))
+            except BaseException:  # Ctrl-C or SIGTERM: stop every Blender, then the threads
+                stop_all()
+                raise
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
     elapsed = time.perf_counter() - t0
     done = len(sources) - len(failures)
     click.echo(f"rendered {done} of {len(sources)} material(s) in {elapsed:.1f} s", err=True)
@@ -191,6 +248,24 @@ def blender_cmd(
             sys.exit(2 if program_error else 1)
         raise click.ClickException(f"{len(failures)} of {len(sources)} materials failed (above)")
     click.echo(str(out.path))
+
+
+@contextmanager
+def _stop_blender_on_sigterm() -> Iterator[None]:
+    """SIGTERM ends the command like Ctrl-C: Blender is stopped and staging folders removed
+    (the worker also ends itself when MatLoom is killed outright)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum: int, frame: Any) -> None:
+        raise SystemExit(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _prefixes(sources: tuple[str, ...], name_of: Any) -> list[str]:
@@ -217,19 +292,11 @@ class _Progress:
             click.echo(text, err=True)
 
     def event(self, name: str, event: dict[str, Any]) -> None:
-        kind = event.get("event")
-        if kind == "render":
-            self.line(
-                f"  {name}: {event.get('layout')} view {event.get('view')} "
-                f"({int(event.get('index', 0)) + 1}/{event.get('total')}) "
-                f"in {float(event.get('seconds', 0)):.1f} s"
-            )
-        elif kind == "saved":
-            self.line(f"  {name}: saved {Path(str(event.get('path'))).name}")
-        elif kind == "device":
-            self.line(f"  {name}: Cycles on {event.get('device')}")
-        elif kind == "warning":
-            self.line(f"  {name}: warning: {event.get('message')}")
+        from matloom.blender.render import describe_event
+
+        text = describe_event(event)
+        if text is not None:
+            self.line(f"  {name}: {text}")
 
     def material_done(self, name: str, seconds: float) -> None:
         with self.lock:
@@ -264,22 +331,22 @@ def _render_one(
     unit_m: float | None,
     progress: _Progress,
 ) -> None:
-    from matloom.blender.job import build_job, load_source, write_job
-    from matloom.blender.runner import run_worker
+    from matloom.blender.job import load_source
+    from matloom.blender.render import render_source
 
     t0 = time.perf_counter()
     source = load_source(source_path, size=options.size, unit_m=unit_m)
     label = prefix.rstrip("/") or source.name
     try:
-        with (
-            tempfile.TemporaryDirectory(prefix="matloom-blender-job-") as work,
-            _serial_install(out, f"blender:{prefix}", lock) as staging,
-        ):
+        # one install group per source and layouts: rendering `--layout staged` after
+        # `--layout flat` keeps flat.png; re-rendering a layout replaces its own files
+        group = f"blender:{prefix}{'+'.join(options.layouts)}"
+        with _serial_install(out, group, lock) as staging:
             target = staging / prefix if prefix else staging
             target.mkdir(parents=True, exist_ok=True)
-            job = build_job(source, options, target.absolute())
-            job_path = write_job(job, Path(work) / "job.json")
-            run_worker(blender, job_path, on_event=lambda e: progress.event(label, e))
+            render_source(
+                source, options, target, blender, on_event=lambda e: progress.event(label, e)
+            )
     finally:
         source.cleanup()
     progress.material_done(label, time.perf_counter() - t0)

@@ -95,10 +95,18 @@ def render_entry_cmd(
 
 @library_cmd.command("check")
 @click.argument("names", nargs=-1)
-@click.option("--size", type=params.SIZE, default=64, show_default=True, help="Evaluation size.")
+@click.option(
+    "--size",
+    type=params.SIZE,
+    default=128,
+    show_default=True,
+    help="Evaluation size of the finite-maps and seam-ratio checks.",
+)
 def check_cmd(names: tuple[str, ...], size: int) -> None:
     """Validate every entry (or NAMES) and the overlays: parses clean (no warnings), front
-    matter matches the program, finite maps, tileable entries' seam ratio <= 1.2."""
+    matter matches the program, finite maps, and tileable entries repeat with the View (the
+    View moved by one period gives the same maps, at 40 x 40) with a seam ratio <= 1.2 per map
+    at --size."""
     from matloom.library.checks import check_entry, overlay_reports
 
     lib = _library()

@@ -52,6 +52,8 @@ class Adapted:
     scale: float
     notes: list[str] = field(default_factory=list)
     used: set[int] = field(default_factory=set)
+    #: colour words the request gave that no slot took (reported as ignored)
+    unused: list[str] = field(default_factory=list)
 
 
 @functools.cache
@@ -207,6 +209,9 @@ class Adapter:
         pending: list[ColourMention] = []
         for m in mentions:
             target = None
+            if m.slot in e.colours and m.slot not in taken:
+                self.give(m, m.slot, "the colour of what the entry shows", taken)
+                continue
             if m.role:
                 target = next(
                     (s for s in primary + derived if e.role(s) == m.role and s not in taken), None
@@ -224,6 +229,7 @@ class Adapter:
             self.give(m, slot, "prompt order", taken)
         for m in pending[len(free) :]:
             self.note(f"colour '{m.words}' unused: no free colour slot")
+            self.out.unused.append(m.words)
         explicit |= taken
         self.tones(explicit)
 
@@ -284,3 +290,21 @@ def resize_view(program: A.Program, side: float) -> A.Program:
             program, view=replace(view, x1=-side / 2, y1=-side / 2, x2=side / 2, y2=side / 2)
         )
     return replace(program, view=replace(view, x2=view.x1 + side, y2=view.y1 + side))
+
+
+def place_origin(
+    program: A.Program, entry: Entry, own: tuple[float, float, float, float] | None = None
+) -> A.Program:
+    """``program`` (tileable output, its View size final) with the View's lower-left corner
+    where the entry puts the wrap edge: its ``origin = [x, y]`` (front matter), else the corner
+    of its own View ``own`` (default: the program's). The seam ratio of one render depends on
+    where the wrap edge falls in the pattern (a plank joint or a grout line along the edge
+    reports a seam although the maps repeat exactly, docs/tileable.md); the entry's corner is
+    the one ``matloom library check`` measured, so a rescaled or centred View keeps it.
+    Translation changes nothing else."""
+    view = program.view or A.ViewDecl(0.0, 0.0, 1.0, 1.0)
+    x, y = entry.origin if entry.origin is not None else (own or program.view_tuple)[:2]
+    if (x, y) == (view.x1, view.y1):
+        return program
+    w, h = view.x2 - view.x1, view.y2 - view.y1
+    return replace(program, view=replace(view, x1=x, y1=y, x2=x + w, y2=y + h))

@@ -2,9 +2,10 @@
 
 :func:`author` never needs a model or the network. It reads the request, ranks the entries
 (BM25), adapts the chosen one (colours, presets, finish, scale), composes the requested
-overlays on top, keeps the View tileable where it can, and says what it did: the top
-candidates with scores, the entry, every adaptation and the words it did not use. The result
-is deterministic for a given (prompt, seed, pick, tileable).
+overlays on top, keeps the View tileable where it can (with the wrap edge inside the pattern's
+cells, :func:`matloom.library.adapt.place_origin`), drops the Defines nothing uses any more, and
+says what it did: the top candidates with scores, the entry, every adaptation and the words it
+did not use. The result is deterministic for a given (prompt, seed, pick, tileable).
 """
 
 from __future__ import annotations
@@ -16,12 +17,12 @@ import matloom
 from matloom.lang import ast as A
 from matloom.lang.rewrite import map_program
 from matloom.lang.tileable import make_tileable, tileable_warnings
-from matloom.library.adapt import VIEW_RANGE, adapt, resize_view
+from matloom.library.adapt import VIEW_RANGE, adapt, place_origin, resize_view
 from matloom.library.data import words
 from matloom.library.entry import Entry
 from matloom.library.index import Library, library
-from matloom.library.overlay import compose, view_width
-from matloom.library.query import Request, read
+from matloom.library.overlay import Overlay, compose, prune_defines, view_width
+from matloom.library.query import OverlayMention, Request, read
 from matloom.library.retrieval import Candidate, Index
 
 MAX_OVERLAYS = 3
@@ -50,16 +51,6 @@ class LibraryResult:
     absorbed: list[str] = field(default_factory=list)
     ignored: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-
-    @property
-    def recipe(self) -> str:
-        """The chosen entry's name (the built-in author's field name, for callers of both)."""
-        return self.entry
-
-    @property
-    def modifiers(self) -> list[str]:
-        """The overlays added (the built-in author's field name, for callers of both)."""
-        return list(self.overlays)
 
     @property
     def explanation(self) -> str:
@@ -176,6 +167,26 @@ def _ignored(req: Request, used: set[int], stop: frozenset[str]) -> list[str]:
     return out
 
 
+def _takes_colour(overlay: Overlay) -> bool:
+    return any(c != overlay.host for c in overlay.colours)
+
+
+def _colour_the_entry(m: OverlayMention, entry: Entry) -> None:
+    """The colour before an overlay word that no added overlay takes ("orange painted" metal,
+    where the entry shows the paint itself) goes to the entry's slot named after the overlay
+    (``paint_col`` for "painted", ``rust_col`` for "rusty"), else to the entry's colours like
+    any other colour of the request (a colour no slot takes is reported as ignored)."""
+    cm = m.colour_mention
+    assert cm is not None
+    words = (m.name, *m.word.split())
+    cm.role = None
+    for slot in entry.colours:
+        parts = [p for p in slot.split("_") if len(p) >= 4]
+        if any(w.startswith(p) or p.startswith(w) for p in parts for w in words):
+            cm.slot = slot
+            return
+
+
 def author(
     prompt: str,
     *,
@@ -211,6 +222,12 @@ def author(
     if len(apply) > MAX_OVERLAYS:
         notes.append("dropped overlays (at most 3): " + ", ".join(m.name for m in apply[3:]))
         apply = apply[:MAX_OVERLAYS]
+    for m in req.overlays:
+        if m.colour_mention is None or (
+            any(m is a for a in apply) and _takes_colour(lib.overlays[m.name])
+        ):
+            continue
+        _colour_the_entry(m, entry)
     adapted = adapt(entry, base, req, w, lib.presets(entry, w.preset_sets), absorbed)
     program, side = adapted.program, adapted.view
     is_tileable = False
@@ -226,6 +243,8 @@ def author(
         if not is_tileable:
             notes.append("not tileable: " + warnings[0].message.removeprefix("tileable: "))
     program = resize_view(program, side)
+    if is_tileable:
+        program = place_origin(program, entry, base.view_tuple)
     unit_m = round(entry.size_m / side, 6)
     program = replace(program, view=replace(program.view, tileable=is_tileable, unit_m=unit_m))
     program = reseed(program, entry.name, seed)
@@ -246,9 +265,11 @@ def author(
         program = replace(program, view=replace(program.view, tileable=False))
         is_tileable = False
         notes.append("not tileable once the overlays were added")
+    program = prune_defines(program)
     used = idx.understood(req, entry.name) | adapted.used
     for m in req.overlays:
         used.update(range(m.index, m.index + len(m.word.split())))
+    ignored = _ignored(req, used, w.stop_words) + adapted.unused
     header = [f"# library entry: {entry.name} ({entry.category}) - {entry.description}"]
     header += [f"# adapted: {a}" for a in adapted.notes]
     header += [f"# overlay: {n}" for n in names]
@@ -269,6 +290,6 @@ def author(
         overlays=[m.name for m in apply],
         overlay_notes=names,
         absorbed=[f"{n} (amount {a:g})" for n, a in absorbed],
-        ignored=_ignored(req, used, w.stop_words),
+        ignored=ignored,
         notes=notes,
     )

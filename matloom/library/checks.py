@@ -3,8 +3,11 @@
 An entry passes when its program parses with no errors and no warnings, its front matter
 matches the program (every colour slot is three Defines ``<slot>_r/_g/_b``, every scalar slot a
 Define, the View's ``tileable`` flag equals the front matter's, presets name existing Defines),
-it evaluates to finite maps, and, when tileable, every map's seam ratio (as the render manifest
-reports it, :func:`matloom.engine.tiling.manifest_entry`) is at most ``SEAM_LIMIT``.
+it evaluates to finite maps, and, when tileable, every map repeats with the View
+(:func:`period_problems`: the View moved by one period gives the same maps) and every map's seam
+ratio (as the render manifest reports it, :func:`matloom.engine.tiling.manifest_entry`) is at
+most ``SEAM_LIMIT``. The tileable checks evaluate the View the author writes for the entry
+(:func:`matloom.library.adapt.place_origin`), which may start elsewhere than the file's.
 """
 
 from __future__ import annotations
@@ -14,14 +17,28 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import matloom
+from matloom.engine.maps import View
 from matloom.lang import ast as A
-from matloom.library.adapt import parse_expression
+from matloom.library.adapt import parse_expression, place_origin
 from matloom.library.data import words
 from matloom.library.entry import Entry
 from matloom.library.index import Library
 from matloom.library.overlay import Overlay, check_overlay
 
 SEAM_LIMIT = 1.2
+#: the periodicity check: evaluation size, texel tolerance (a share of the map's range: the
+#: float32 coordinates one period further round differently, which on the steep edges of fine
+#: threads reaches 0.1 % of a small map's range) and the share of texels allowed beyond it
+#: (a texel centre on a cell boundary can fall in either cell)
+PERIOD_SIZE = 40
+PERIOD_TOLERANCE = 0.01
+PERIOD_SHARE = 0.005
+#: the corner of the periodicity check's View: small binary fractions, so that the View and the
+#: View moved by its width have exactly the same width in float arithmetic, off the cell
+#: boundaries of the patterns (from (0, 0) the texel centres (i + 0.5) W / 40 fall on the
+#: boundaries of every multiple of 16 cells per View) and different in x and y (equal ones put
+#: the diagonal texels on every diagonal line through the origin)
+PERIOD_CORNER = (3 / 512, 5 / 512)
 
 
 @dataclass
@@ -107,8 +124,51 @@ def evaluate_problems(
     return out, seams
 
 
-def check_entry(lib: Library, entry: Entry, size: int = 64) -> EntryReport:
-    """Every check of one entry."""
+def period_problems(program: str | A.Program, size: int = PERIOD_SIZE) -> list[str]:
+    """Does every map repeat with the View? The program is evaluated at ``size`` x ``size`` on
+    a View of its width W and height H and on that View moved by exactly W, then H; a map fails
+    when more than ``PERIOD_SHARE`` of its texels differ by more than ``PERIOD_TOLERANCE`` of
+    its range. Cheap, and not fooled by where the wrap edge falls (periodicity does not depend
+    on it). The View starts at ``PERIOD_CORNER``, binary fractions whose sums with W and 2W are
+    exact, so that the moved View has exactly the same size in float arithmetic: a size one
+    rounding step off can pick another noise lattice for the same periods, which is no seam."""
+    from matloom.vocab.layout import LAYOUT
+
+    prog = matloom.parse(program) if isinstance(program, str) else program
+    x1, y1, x2, y2 = prog.view_tuple
+    # sizes on a 2**-40 grid (a change below 1e-12): every sum below is then exact
+    w, h = (round(abs(v) * 2.0**40) / 2.0**40 for v in (x2 - x1, y2 - y1))
+    cx, cy = PERIOD_CORNER
+    v = View(cx, cy, cx + w, cy + h, tileable=True)
+    base = matloom.evaluate(prog, size, size, backend="numpy", view=v)
+    out: list[str] = []
+    for what, dx, dy in (("width", w, 0.0), ("height", 0.0, h)):
+        moved = View(v.x1 + dx, v.y1 + dy, v.x2 + dx, v.y2 + dy, tileable=True)
+        other = matloom.evaluate(prog, size, size, backend="numpy", view=moved)
+        bad = []
+        for name in LAYOUT.map_fields:
+            a = np.asarray(getattr(base, name), dtype=np.float64)
+            b = np.asarray(getattr(other, name), dtype=np.float64)
+            finite = np.isfinite(a) & np.isfinite(b)
+            if not finite.any():
+                continue
+            tol = PERIOD_TOLERANCE * max(float(np.ptp(a[finite])), 1e-4)
+            share = float(np.mean(~finite | (np.abs(np.where(finite, a - b, 0.0)) > tol)))
+            if share > PERIOD_SHARE:
+                bad.append(f"{name} {share:.1%}")
+        if bad:
+            out.append(
+                f"does not repeat: the View moved by its {what} changes texels of " + ", ".join(bad)
+            )
+    return out
+
+
+def check_entry(
+    lib: Library, entry: Entry, size: int = 128, period_size: int = PERIOD_SIZE
+) -> EntryReport:
+    """Every check of one entry: static, finite maps and, when tileable, the periodicity
+    (:func:`period_problems` at ``period_size``) and the seam ratio at ``size``, on the View
+    the author writes (:func:`matloom.library.adapt.place_origin`)."""
     report = EntryReport(entry.name)
     try:
         report.problems = static_problems(lib, entry)
@@ -116,7 +176,11 @@ def check_entry(lib: Library, entry: Entry, size: int = 64) -> EntryReport:
         report.problems = [str(exc)]
     if report.problems:
         return report
-    problems, seams = evaluate_problems(lib.ast(entry.name), size, entry.tileable)
+    program = lib.ast(entry.name)
+    if entry.tileable:
+        program = place_origin(program, entry)
+        report.problems += period_problems(program, period_size)
+    problems, seams = evaluate_problems(program, size, entry.tileable)
     report.problems += problems
     report.seams = seams
     return report

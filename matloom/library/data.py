@@ -44,6 +44,7 @@ class Words:
     roles: dict[str, str]
     category_words: dict[str, frozenset[str]]
     carriers: frozenset[str]
+    form_nouns: frozenset[str]
     defaults: frozenset[str]
     synonyms: dict[str, tuple[str, ...]]
     preset_sets: dict[str, dict[str, dict[str, PresetValue]]]
@@ -122,6 +123,7 @@ def words() -> Words:
         roles=dict(w.get("roles", {})),
         category_words={k: frozenset(v) for k, v in w.get("category_words", {}).items()},
         carriers=frozenset(w.get("carriers", [])),
+        form_nouns=frozenset(w.get("form_nouns", [])),
         defaults=frozenset(w.get("defaults", {}).values()),
         synonyms=synonyms,
         preset_sets=sets,

@@ -70,6 +70,7 @@ class Entry:
     feature_m: float | None = None
     units: tuple[str, ...] = ()
     absorbs: tuple[str, ...] = ()
+    origin: tuple[float, float] | None = None
     note: str = ""
 
     def role(self, slot: str) -> str:
@@ -214,6 +215,18 @@ def entry_from_text(text: str, path: Path | str, name: str | None = None) -> Ent
         if kind not in ROLE_KINDS:
             raise r.fail(f"roles.{key}", f"kind {kind!r} is not one of {sorted(ROLE_KINDS)}")
     presets = read_presets(r.table("presets"), r.fail)
+    origin = r.get("origin", None, required=False)
+    if origin is not None:
+        if not (
+            isinstance(origin, list)
+            and len(origin) == 2
+            and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                for v in origin
+            )
+        ):
+            raise r.fail("origin", f"expected [x, y] (two finite numbers), got {origin!r}")
+        origin = (float(origin[0]), float(origin[1]))
     entry = Entry(
         name=name or path.stem,
         path=path,
@@ -232,6 +245,7 @@ def entry_from_text(text: str, path: Path | str, name: str | None = None) -> Ent
         feature_m=r.number("feature_m", required=False),
         units=r.words("units"),
         absorbs=r.words("absorbs"),
+        origin=origin,
         note=r.text("note", ""),
     )
     if not NAME_RE.fullmatch(entry.name):

@@ -109,6 +109,23 @@ def constant(program: A.Program, name: str) -> float | None:
     return None
 
 
+def prune_defines(program: A.Program) -> A.Program:
+    """``program`` without the Defines that no layer uses, directly or through other Defines
+    (what the checker's W001 reports): adaptation can leave some ("scagliola" sets a derived
+    colour to a constant, so the luminance its expression read is used no more)."""
+    by_name = {d.name: d for d in program.defines}
+    used: set[str] = set()
+    stack = [e for owner, e in A.program_expressions(program) if owner[0] == "layer"]
+    while stack:
+        for n in A.walk(stack.pop()):
+            if isinstance(n, A.Ref) and n.name in by_name and n.name not in used:
+                used.add(n.name)
+                stack.append(by_name[n.name].expr)
+    if len(used) == len(program.defines):
+        return program
+    return replace(program, defines=tuple(d for d in program.defines if d.name in used))
+
+
 def rename_refs(node: A.Node, names: dict[str, str]) -> A.Node:
     """``node`` with every Ref renamed through ``names``."""
 

@@ -36,6 +36,9 @@ class ColourMention:
     words: str
     index: int
     role: str | None = None
+    #: the colour slot it must go to (set by the author for the colour of an overlay the entry
+    #: already shows: "orange painted metal" colours the entry's paint)
+    slot: str | None = None
 
 
 @dataclass
@@ -47,6 +50,8 @@ class OverlayMention:
     index: int
     amount: float = 0.5
     colour: C.RGB | None = None
+    #: the ColourMention that gave ``colour`` ("orange" in "orange painted")
+    colour_mention: ColourMention | None = None
 
 
 @dataclass(frozen=True)
@@ -283,18 +288,20 @@ class _Reader:
             if w in self.w.amounts and w not in self.w.scale and self.free(k):
                 amount = self.w.amounts[w]
                 self.use("amount", k)
-        colour = None
+        mention = None
         for m in reversed(self.out.colours):
             if i - 2 <= m.index < i:
-                colour, m.role = m.rgb, "overlay"
+                mention, m.role = m, "overlay"
                 break
+        colour = mention.rgb if mention else None
         self.use("overlay", *range(i, i + n))
         for existing in self.out.overlays:
             if existing.name == name:
                 existing.amount = max(existing.amount, amount)
-                existing.colour = existing.colour or colour
+                if existing.colour is None:
+                    existing.colour, existing.colour_mention = colour, mention
                 return
-        self.out.overlays.append(OverlayMention(name, phrase, i, amount, colour))
+        self.out.overlays.append(OverlayMention(name, phrase, i, amount, colour, mention))
 
     # ------------------------------------------------------------------ finishes
     def finishes(self) -> None:

@@ -5,7 +5,9 @@ An entry's document is its name (twice), description, tags (twice), synonyms, pr
 ("walnut", "copper") and category. A request's terms carry weights: a plain word counts 1
 (1.3 in the head clause, before the first "with" or comma), an overlay word 0.35 (so that
 "rusty corrugated metal" finds corrugated metal and adds rust, while "rusty metal" still finds
-rusted metal), a finish word 0.6, colour, scale and size words 0.25. Synonyms
+rusted metal), a finish word 0.6, a form noun ("plate", "sheet") 0.3, colour 0.1, scale and size
+words 0.25. An entry is a candidate only when a material, object or condition word matched it
+(``REASONS``): colour and finish words alone ("glossy teal") pick nothing. Synonyms
 (``data/synonyms.toml``) add their expansion terms at 0.6 of the source word's weight. An entry
 whose synonym or multi-word tag appears in the prompt as a phrase gains ``PHRASE_BONUS`` per
 word. Scores are deterministic; ties go to the name in alphabetical order.
@@ -35,6 +37,7 @@ WEIGHTS = {
     "size": 0.25,
     "count": 0.25,
     "tone": 0.5,
+    "form": 0.3,
     "amount": 0.0,
     "negation": 0.0,
     "percent": 0.0,
@@ -47,6 +50,10 @@ CATEGORY_BOOST = 1.3
 DEFAULT_BOOST = 1.25
 #: entries that show a condition (rusted metal, peeling paint) rank lower unless it is asked for
 CONDITION_PENALTY = 0.75
+#: the word rules that can be a reason to pick an entry: material, object and condition words.
+#: An entry matched only by colour, finish, tone, scale or size words ("glossy teal gizmo") is
+#: no candidate; with no candidate the author falls back to its generic entry.
+REASONS = frozenset({"plain", "head", "overlay", "form"})
 _WORD_RE = re.compile(r"[a-z0-9]+")
 
 
@@ -65,6 +72,7 @@ class Index:
     def __init__(self, entries: Iterable[Entry], presets: dict[str, Iterable[str]], words: Words):
         self.stemmer = Stemmer.Stemmer("english")
         self.stop = words.stop_words
+        self.form_nouns = words.form_nouns
         self.names: list[str] = []
         self.category_words = words.category_words
         self.defaults = words.defaults
@@ -112,6 +120,15 @@ class Index:
     def stem(self, word: str) -> str:
         return self.stemmer.stemWord(word)
 
+    def rule(self, req: Request, i: int) -> str:
+        """The weight rule of request token ``i`` (see ``WEIGHTS``)."""
+        rule = req.used.get(i)
+        if rule is not None:
+            return rule
+        if req.tokens[i] in self.form_nouns:
+            return "form"
+        return "head" if i < req.head_end else "plain"
+
     def query(self, req: Request) -> tuple[dict[str, float], dict[str, set[int]], list[str]]:
         """(weight per stem, token indices per stem, request stems in order) of a request."""
         weights: dict[str, float] = {}
@@ -120,7 +137,7 @@ class Index:
         for i, word in req.words_at():
             if word in self.stop or len(word) < 2:
                 continue
-            rule = req.used.get(i, "head" if i < req.head_end else "plain")
+            rule = self.rule(req, i)
             w = WEIGHTS.get(rule, 1.0)
             if w <= 0:
                 continue
@@ -147,9 +164,13 @@ class Index:
         """Every entry with a positive score, best first."""
         if self.bm25 is None:
             return []
-        weights, _, order = self.query(req)
+        weights, sources, order = self.query(req)
+        reasons = {
+            s for s, idx in sources.items() if any(self.rule(req, i) in REASONS for i in idx)
+        }
         scores = np.zeros(len(self.names))
         matched: dict[int, set[str]] = {}
+        reason: set[int] = set()
         for stem, w in sorted(weights.items()):
             if stem not in self.bm25.idf:
                 continue
@@ -157,12 +178,15 @@ class Index:
             scores += w * s
             for k in np.nonzero(s > 0)[0]:
                 matched.setdefault(int(k), set()).add(stem)
+                if stem in reasons:
+                    reason.add(int(k))
         grams = {tuple(order[k : k + n]) for n in (2, 3, 4) for k in range(len(order) - n + 1)}
         position = {n: k for k, n in enumerate(self.names)}
         for gram in grams:
             for name in self.phrases.get(gram, ()):
                 scores[position[name]] += PHRASE_BONUS * len(gram)
                 matched.setdefault(position[name], set()).update(gram)
+                reason.add(position[name])
         present = set(order)
         words_in = {w for _, w in req.words_at()}
         hit = {c for c, ws in self.category_words.items() if ws & words_in}
@@ -172,6 +196,7 @@ class Index:
             if stems and stems <= present:
                 scores[k] += NAME_BONUS * len(stems)
                 matched.setdefault(k, set()).update(stems)
+                reason.add(k)
             if self.categories[name] in hit:
                 scores[k] *= CATEGORY_BOOST
             if name in self.defaults:
@@ -181,7 +206,7 @@ class Index:
         out = [
             Candidate(self.names[k], round(float(scores[k]), 4), tuple(sorted(matched.get(k, ()))))
             for k in range(len(self.names))
-            if scores[k] > 0
+            if scores[k] > 0 and k in reason
         ]
         out.sort(key=lambda c: (-c.score, c.name))
         return out

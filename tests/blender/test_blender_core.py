@@ -1,7 +1,7 @@
-"""`matloom blender` without Blender: the layout table, jobs, the runner's errors, the worker.
-
-Blender itself is replaced by small fake executables written here (crash, wrong version, error
-event, a kill after a partial write); the real renders are in test_blender_render.py.
+"""`matloom blender` without Blender: the layout table, jobs (with packed ORM / mask maps) and
+the worker script's own rules. Failures with fake Blender executables are in
+test_blender_failures.py, outputs in test_blender_outputs.py, real renders in
+test_blender_render.py.
 """
 
 from __future__ import annotations
@@ -10,11 +10,10 @@ import ast
 import json
 import math
 import os
-import stat
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -27,15 +26,7 @@ from matloom.blender.job import (
     planned_files,
     read_manifest,
 )
-from matloom.blender.runner import (
-    WORKER,
-    Blender,
-    BlenderError,
-    check_version,
-    find_blender,
-    run_worker,
-)
-from matloom.io.outdir import STAGING_PREFIX
+from matloom.blender.runner import WORKER
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = ROOT / "docs" / "examples" / "01_plank_floor.mat"
@@ -166,149 +157,103 @@ def test_job_from_a_render_folder_with_a_physical_size(tmp_path: Path) -> None:
     ]
 
 
-def test_folder_without_manifest_is_a_clear_error(tmp_path: Path) -> None:
+def _export(tmp_path: Path, name: str, *extra: str, program: Path = PROGRAM) -> Path:
+    out = tmp_path / name
+    res = subprocess.run(
+        [sys.executable, "-m", "matloom", "render", str(program), "-o", str(out), "--size", "16"]
+        + list(extra),
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )
+    assert res.returncode == 0, res.stderr
+    return out
+
+
+def _packed(folder: Path, tmp_path: Path) -> Any:
+    return build_job(load_source(str(folder)), RenderOptions(), tmp_path / "o")["packed"]
+
+
+def test_packed_orm_and_mask_map_are_found(tmp_path: Path) -> None:
+    assert _packed(_export(tmp_path, "plain"), tmp_path) is None
+    both = _export(tmp_path, "both", "--preset", "unity", "--preset", "godot")
+    packed = _packed(both, tmp_path)
+    assert (packed["preset"], packed["role"]) == ("godot", "orm")  # ORM first, then the mask map
+    assert packed["file"] == str(both.absolute() / "godot" / "01_plank_floor_orm.png")
+    assert packed["channels"] == {
+        "ao": {"channel": "R", "invert": False},
+        "roughness": {"channel": "G", "invert": False},
+        "metallic": {"channel": "B", "invert": False},
+    }
+    unity = _export(tmp_path, "unity", "--preset", "unity")
+    packed = _packed(unity, tmp_path)
+    assert (packed["preset"], packed["role"]) == ("unity", "maskmap")
+    assert packed["channels"] == {
+        "metallic": {"channel": "R", "invert": False},
+        "ao": {"channel": "G", "invert": False},
+        "roughness": {"channel": "A", "invert": True},  # smoothness = 1 - roughness
+    }
+    (unity / "unity" / "01_plank_floor_maskmap.png").unlink()
+    with pytest.raises(BlenderJobError, match="maskmap.png is listed in material.json but miss"):
+        _packed(unity, tmp_path)
+
+
+def test_constant_orm_is_not_packed(tmp_path: Path) -> None:
+    program = tmp_path / "flat.mat"
+    program.write_text("Material(Layer(1).basecolor(200, 30, 30).roughness(0.4))\n")
+    folder = _export(tmp_path, "gltf", "--preset", "gltf", program=program)
+    assert _packed(folder, tmp_path) is None  # constant AO, roughness and metallic: values
+
+
+def test_folder_without_manifest_is_a_clear_error(
+    tmp_path: Path, matloom_cli: Any, one_line_error: Any
+) -> None:
     (tmp_path / "basecolor.png").write_bytes(b"x")
     with pytest.raises(BlenderJobError, match="has no material.json"):
         read_manifest(tmp_path)
-    res = _matloom("blender", str(tmp_path), "-o", str(tmp_path / "out"))
-    line = _one_line_error(res)
+    res = matloom_cli("blender", str(tmp_path), "-o", str(tmp_path / "out"))
+    line = one_line_error(res)
     assert "has no material.json" in line and "matloom render" in line
     assert res.returncode == 1 and not (tmp_path / "out").exists()
 
 
-def test_bad_options_are_usage_errors(tmp_path: Path) -> None:
-    res = _matloom("blender", str(PROGRAM), "-o", str(tmp_path), "--save", "../x.blend")
-    assert res.returncode == 2 and ".blend" in _one_line_error(res)
-
-
-# ------------------------------------------------------------------ finding and running Blender
-
-
-def _fake(tmp_path: Path, body: str, name: str = "blender") -> Path:
-    """An executable Python script standing in for Blender."""
-    path = tmp_path / name
-    path.write_text(f"#!{sys.executable}\n" + textwrap.dedent(body))
-    path.chmod(path.stat().st_mode | stat.S_IXUSR)
-    return path
-
-
-VERSION_42 = """
-import json, os, signal, sys, time
-if sys.argv[1:] == ["--version"]:
-    print("Blender 4.2.3 LTS\\n\\tbuild date: 2024")
-    sys.exit(0)
-job = json.load(open(sys.argv[-1]))
-"""
-
-
-def test_missing_blender_says_how_to_get_one(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+def test_bad_options_are_usage_errors(
+    tmp_path: Path, matloom_cli: Any, one_line_error: Any
 ) -> None:
-    with pytest.raises(BlenderError, match="make blender-venv"):
-        find_blender(str(tmp_path / "nowhere" / "blender"))
-    monkeypatch.setattr("matloom.blender.runner.project_venvs", lambda: [])
-    with pytest.raises(BlenderError, match=r"Blender not found; install Blender 4\.2"):
-        find_blender(None, env={"PATH": str(tmp_path)})
-    res = _matloom(
-        "blender", str(PROGRAM), "-o", str(tmp_path / "o"), "--blender", str(tmp_path / "nope")
-    )
-    assert "blender.org" in _one_line_error(res)
-
-
-def test_discovery_order(tmp_path: Path) -> None:
-    exe = _fake(tmp_path, VERSION_42)
-    python = _fake(tmp_path, VERSION_42, name="python3.11")
-    assert find_blender(str(python)).kind == "bpy"
-    assert find_blender(None, env={"MATLOOM_BLENDER": str(exe)}).kind == "blender"
-    found = find_blender(None, env={"MATLOOM_BLENDER_PYTHON": str(exe), "PATH": ""})
-    assert found.kind == "bpy" and found.origin == "MATLOOM_BLENDER_PYTHON"
-    assert find_blender(None, env={"PATH": str(tmp_path)}).path == str(exe)
-
-
-def test_wrong_version_and_not_blender(tmp_path: Path) -> None:
-    old = _fake(tmp_path, 'print("Blender 3.6.5")\n', name="old")
-    with pytest.raises(BlenderError, match=r"Blender 3\.6\.5; MatLoom needs 4\.2"):
-        check_version(Blender(str(old), "blender", "test"))
-    other = _fake(tmp_path, 'print("hello")\n', name="other")
-    with pytest.raises(BlenderError, match="does not look like Blender"):
-        check_version(Blender(str(other), "blender", "test"))
-    assert check_version(Blender(str(_fake(tmp_path, VERSION_42)), "blender", "t"))[:2] == (4, 2)
-
-
-@pytest.mark.parametrize(
-    ("body", "message"),
-    [
-        ("os.kill(os.getpid(), signal.SIGSEGV)\n", "killed by SIGSEGV"),
-        (
-            "print('boom: out of memory'); sys.exit(3)\n",
-            r"exited with status 3 \(.*\); last output: boom",
-        ),
-        (
-            "print('MATLOOM-JSON ' + json.dumps({'event': 'error', 'message': 'no GPU memory'}))\n"
-            "sys.exit(1)\n",
-            "Blender: no GPU memory",
-        ),
-        ("sys.exit(0)\n", "exited without finishing the job"),
-    ],
-)
-def test_worker_failures_are_one_clear_line(tmp_path: Path, body: str, message: str) -> None:
-    fake = _fake(tmp_path, VERSION_42 + body)
-    job = tmp_path / "job.json"
-    job.write_text("{}")
-    with pytest.raises(BlenderError, match=message) as info:
-        run_worker(Blender(str(fake), "blender", "test"), job)
-    assert "\n" not in str(info.value)
-
-
-def test_killed_render_leaves_no_half_written_png(tmp_path: Path) -> None:
-    """A Blender killed after writing part of an image: nothing appears under the final name,
-    the staging folder is cleaned, the user's file is untouched, and the error is one line."""
-    fake = _fake(
-        tmp_path,
-        VERSION_42
-        + """
-out = job["renders"][0]["output"]
-with open(out, "wb") as handle:
-    handle.write(b"\\x89PNG\\r\\n\\x1a\\n half")
-os.kill(os.getpid(), signal.SIGKILL)
-""",
-    )
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "notes.txt").write_text("mine")
-    res = _matloom("blender", str(PROGRAM), "-o", str(out), "--size", "16", "--blender", str(fake))
-    assert "killed by SIGKILL" in _one_line_error(res)
-    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["notes.txt"]
-    assert not [p for p in out.iterdir() if p.name.startswith(STAGING_PREFIX)]
-    assert (out / "notes.txt").read_text() == "mine"
-
-
-def test_a_foreign_file_is_never_overwritten(tmp_path: Path) -> None:
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "flat.png").write_bytes(b"an artist's file")
-    fake = _fake(tmp_path, VERSION_42)
-    res = _matloom("blender", str(PROGRAM), "-o", str(out), "--size", "16", "--blender", str(fake))
-    assert "never overwrites" in _one_line_error(res)
-    assert (out / "flat.png").read_bytes() == b"an artist's file"
+    res = matloom_cli("blender", str(PROGRAM), "-o", str(tmp_path), "--save", "../x.blend")
+    assert res.returncode == 2 and ".blend" in one_line_error(res)
+    both = matloom_cli("blender", str(PROGRAM), "-o", str(tmp_path / "x.png"), "--layout", "both")
+    assert both.returncode == 2 and "names one image" in one_line_error(both)
+    views = matloom_cli("blender", str(PROGRAM), "-o", str(tmp_path / "x.png"), "--views", "all")
+    assert views.returncode == 2 and "give a folder for -o" in one_line_error(views)
+    two = matloom_cli("blender", str(PROGRAM), str(PROGRAM), "-o", str(tmp_path / "x.png"))
+    assert two.returncode == 2 and "2 sources" in one_line_error(two)
+    assert not list(tmp_path.iterdir())
 
 
 # ------------------------------------------------------------------ the worker script
 
 
+WORKER_MODULES = sorted(WORKER.parent.glob("worker*.py"))
+
+
 def test_worker_imports_only_bpy_and_the_standard_library() -> None:
-    tree = ast.parse(WORKER.read_text(encoding="utf-8"))
+    siblings = {path.stem for path in WORKER_MODULES}
+    assert {"worker", "worker_common", "worker_material"} <= siblings
     allowed = set(sys.stdlib_module_names) | {"bpy", "bmesh", "mathutils", "__future__"}
-    imported = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            imported |= {alias.name.split(".")[0] for alias in node.names}
-        elif isinstance(node, ast.ImportFrom):
-            imported.add((node.module or "").split(".")[0])
-    assert imported <= allowed, imported - allowed
-    assert "matloom" not in imported
-    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
-    assert not names & {"eval", "exec"}
+    for path in WORKER_MODULES:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        imported = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                imported |= {alias.name.split(".")[0] for alias in node.names}
+            elif isinstance(node, ast.ImportFrom):
+                imported.add((node.module or "").split(".")[0])
+        assert imported <= allowed | siblings, (path.name, imported - allowed - siblings)
+        assert "matloom" not in imported
+        names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+        assert not names & {"eval", "exec"}
+        assert len(path.read_text(encoding="utf-8").splitlines()) < 600
 
 
 def test_matloom_never_imports_bpy() -> None:
@@ -329,27 +274,3 @@ def test_worker_without_bpy_reports_json(tmp_path: Path) -> None:
     assert res.returncode == 3
     event = json.loads(res.stdout.strip().removeprefix("MATLOOM-JSON "))
     assert event["event"] == "error" and event["kind"] == "no_bpy"
-
-
-# ------------------------------------------------------------------ helpers
-
-
-def _matloom(*args: str) -> subprocess.CompletedProcess[str]:
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    for var in ("MATLOOM_BLENDER", "MATLOOM_BLENDER_PYTHON"):
-        env.pop(var, None)
-    return subprocess.run(
-        [sys.executable, "-m", "matloom", *args],
-        capture_output=True,
-        text=True,
-        env=env,
-        timeout=300,
-    )
-
-
-def _one_line_error(res: subprocess.CompletedProcess[str]) -> str:
-    assert res.returncode != 0, res.stderr
-    assert "Traceback" not in res.stderr, res.stderr
-    errors = [line for line in res.stderr.splitlines() if line.startswith("Error:")]
-    assert len(errors) == 1, res.stderr
-    return errors[0]

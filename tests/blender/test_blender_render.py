@@ -16,10 +16,11 @@ from typing import Any
 import numpy as np
 import pytest
 
+from matloom.blender import render_layouts
 from matloom.blender.job import RenderOptions, build_job, load_source
 from matloom.blender.layouts import LAYOUTS
-from matloom.blender.runner import Blender, BlenderError, find_blender
-from matloom.io.png import read_png
+from matloom.blender.runner import Blender
+from matloom.io.png import read_png, written_by_matloom
 
 pytestmark = pytest.mark.blender
 
@@ -38,18 +39,6 @@ Material(
   Layer(cells).basecolor(40, 160, 220).roughness(0.5)
 )
 """
-
-
-def _blender() -> Blender:
-    try:
-        return find_blender()
-    except BlenderError as err:
-        pytest.skip(f"no Blender or bpy here ({err})")
-
-
-@pytest.fixture(scope="module")
-def blender() -> Blender:
-    return _blender()
 
 
 def _run(blender: Blender, *args: str) -> subprocess.CompletedProcess[str]:
@@ -184,3 +173,87 @@ def test_material_only_blend_is_an_asset(blender: Blender, tmp_path: Path) -> No
     data = _readback(blender, tmp_path / "material.blend")
     assert data["materials"]["01_plank_floor"]["asset"]
     assert all(image["packed"] for image in data["images"].values())
+
+
+def test_single_png(blender: Blender, tmp_path: Path) -> None:
+    """The issue's form: `matloom blender PROGRAM --layout staged -o out.png`."""
+    target = tmp_path / "out.png"
+    res = _run(blender, str(PLANK), "--layout", "staged", "-o", str(target))
+    assert res.stdout.split() == [str(target)]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.png"]
+    assert written_by_matloom(target)
+    image = _image(target)
+    assert image.shape == (64, 64, 4) and image[..., :3].std() > 0.02
+
+
+def _export(tmp_path: Path, name: str, *presets: str) -> Path:
+    out = tmp_path / name
+    args = [arg for preset in presets for arg in ("--preset", preset)]
+    res = subprocess.run(
+        [sys.executable, "-m", "matloom", "render", str(PLANK), "-o", str(out), "--size", "64"]
+        + args,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )
+    assert res.returncode == 0, res.stderr
+    return out
+
+
+def test_saved_blend_splits_a_packed_orm(blender: Blender, tmp_path: Path) -> None:
+    """An export with an ORM (glTF) or a mask map (Unity): the .blend reads it once and splits it
+    with a Separate Color node; the render equals the one from the separate maps."""
+    images = {}
+    graphs = {}
+    for name, presets in (("plain", ()), ("gltf", ("gltf",)), ("unity", ("unity",))):
+        folder = _export(tmp_path, name, *presets)
+        out = tmp_path / f"{name}-out"
+        _run(blender, str(folder), "-o", str(out), "--save", "scene.blend")
+        images[name] = _image(out / "flat.png")
+        graphs[name] = _readback(blender, out / "scene.blend")
+    bsdf = "Principled BSDF"
+    gltf = graphs["gltf"]["materials"]["gltf"]
+    links = {tuple(link) for link in gltf["links"]}
+    assert {
+        ("ORM map", "Color", "Split ORM", "Color"),
+        ("Split ORM", "Red", "Base x AO", "B"),
+        ("Split ORM", "Green", bsdf, "Roughness"),
+        ("Split ORM", "Blue", bsdf, "Metallic"),
+    } <= links
+    assert not {link for link in links if link[0] in ("ao map", "roughness map", "metallic map")}
+    assert gltf["frames"] == ["Maps", "ORM split", "Relief", "Surface"]
+    names = set(graphs["gltf"]["images"])
+    assert "01_plank_floor_orm.png" in names and not names & {
+        "ao.png",
+        "roughness.png",
+        "metallic.png",
+    }
+    assert graphs["gltf"]["images"]["01_plank_floor_orm.png"]["colour_space"] == "Non-Color"
+    unity = {tuple(link) for link in graphs["unity"]["materials"]["unity"]["links"]}
+    assert {
+        ("Mask map", "Color", "Split mask map", "Color"),
+        ("Split mask map", "Red", bsdf, "Metallic"),
+        ("Split mask map", "Green", "Base x AO", "B"),
+        ("Mask map", "Alpha", "roughness = 1 - A", "Value"),
+        ("roughness = 1 - A", "Value", bsdf, "Roughness"),
+    } <= unity
+    # the same material: the packed channels carry the same 8-bit values as the maps
+    assert np.abs(images["gltf"] - images["plain"]).mean() < 0.005
+    assert np.abs(images["unity"] - images["plain"]).mean() < 0.005
+
+
+def test_render_layouts_api(blender: Blender, tmp_path: Path) -> None:
+    folder = _export(tmp_path, "maps")
+    lines: list[str] = []
+    paths = render_layouts(
+        folder,
+        ["staged"],
+        tmp_path / "renders",
+        size=64,
+        samples=4,
+        blender=blender.path,
+        progress=lines.append,
+    )
+    assert paths == [tmp_path / "renders" / "staged.png"]
+    assert _image(paths[0]).shape == (64, 64, 4) and written_by_matloom(paths[0])
+    assert lines[-1].startswith("staged view 0 (1/1) in ")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import matloom
 from matloom.library import author, library
 from matloom.library.adapt import slot_colour
-from matloom.library.overlay import constant, view_width
+from matloom.library.overlay import constant, define_value, prune_defines, view_width
 
 
 def program(prompt: str, **kw: object) -> matloom.lang.ast.Program:
@@ -110,3 +110,16 @@ def test_overlay_amount_and_colour() -> None:
     assert constant(p, "cover") == 0.8
     r = author("blue moss on cobblestone")
     assert slot_colour(matloom.parse(r.program), "moss") == (40, 80, 170)
+
+
+def test_prune_defines_drops_what_no_layer_uses_any_more() -> None:
+    text = (
+        "Define(base_r, 200)\nDefine(lum, (base_r * 0.3))\nDefine(dark_r, (lum * 0.5))\n"
+        "Define(keep, 0.4)\nMaterial(Layer(1).basecolor(dark_r, 0, 0).roughness(keep))\n"
+    )
+    program = matloom.parse(text)
+    assert prune_defines(program) is program
+    # a preset sets the derived slot to a constant: lum and base_r are used no more
+    adapted = define_value(program, "dark_r", 90)
+    assert [d.name for d in prune_defines(adapted).defines] == ["dark_r", "keep"]
+    assert matloom.check(matloom.format(prune_defines(adapted))) == []

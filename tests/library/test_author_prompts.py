@@ -104,14 +104,31 @@ def test_colour_words_give_that_colour(prompt: str, channel: int) -> None:
     assert colour[channel] > 1.15 * max(others), (prompt, colour)
 
 
-@pytest.mark.xfail(
-    reason="known: a colour right before an overlay the entry absorbs ('orange painted' metal) "
-    "is dropped, and not reported as ignored",
-    strict=False,
-)
 def test_colour_before_an_absorbed_overlay_is_kept() -> None:
-    colour = mean_basecolor(author("orange painted metal").program)
+    r = author("orange painted metal")
+    assert "painted" in " ".join(r.absorbed), r.explanation  # the entry shows the paint itself
+    colour = mean_basecolor(r.program)
     assert colour[0] > colour[1] > colour[2], colour
+    assert any("'orange'" in a for a in r.adaptations), r.explanation
+
+
+def test_colour_of_an_absorbed_condition_goes_to_its_slot() -> None:
+    r = author("orange rusty metal")
+    assert r.entry == "rusted-metal" and not r.overlays, r.explanation
+    assert any(a.startswith("colour rust_col = 'orange'") for a in r.adaptations), r.explanation
+    rust = slot_colour(matloom.parse(r.program), "rust_col")
+    assert rust is not None and rust[0] > rust[1] > rust[2]
+
+
+def test_a_colour_no_slot_takes_is_reported_as_ignored() -> None:
+    r = author("red green blue yellow purple orange pink white black grey plastic")
+    left = [a for a in r.adaptations if "unused: no free colour slot" in a]
+    taken = [a for a in r.adaptations if a.startswith("colour ") and a not in left]
+    assert left, r.explanation
+    for note in left:
+        word = note.split("'")[1]
+        assert word in r.ignored, r.explanation
+    assert len(taken) + len(left) == 10
 
 
 def test_tone_words_shade_the_named_part() -> None:

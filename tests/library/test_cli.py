@@ -5,8 +5,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
+import matloom.library.checks as checks
 from matloom.cli.main import cli
 from matloom.library import library
 from matloom.library.coverage import coverage_table
@@ -65,3 +67,19 @@ def test_render_writes_maps_with_physical_size(tmp_path: Path) -> None:
 def test_check_named_entries() -> None:
     code, out = run("check", "cobblestone", "square-tiles", "--size", "48")
     assert code == 0, out
+
+
+def test_check_evaluates_at_128_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    code, out = run("check", "--help")
+    assert code == 0 and "--size" in out and "128" in out
+    sizes: list[int] = []
+    real = checks.evaluate_problems
+
+    def spy(program, size, tileable):  # noqa: ANN001, ANN202
+        sizes.append(size)
+        return real(program, size, tileable)
+
+    monkeypatch.setattr(checks, "evaluate_problems", spy)
+    code, out = run("check", "cobblestone")
+    assert code == 0, out
+    assert sizes == [128]

@@ -94,3 +94,29 @@ def test_nothing_matches_uses_the_fallback() -> None:
     assert r.entry == "generic-surface"
     assert r.rank == 0
     assert set(r.ignored) == {"zorblax", "quixotic"}
+
+
+def test_finish_and_colour_words_alone_pick_no_entry() -> None:
+    r = author("glossy teal flurbonic gizmo")
+    assert r.entry == "generic-surface" and r.rank == 0, r.explanation
+    assert r.candidates == []
+    assert {"flurbonic", "gizmo"} <= set(r.ignored)
+    assert "glossy" not in r.ignored and "teal" not in r.ignored  # applied to the fallback
+    assert any("glossy" in a for a in r.adaptations) and any("teal" in a for a in r.adaptations)
+    assert search("glossy teal") == []
+
+
+def test_a_material_word_still_counts_beside_finish_words() -> None:
+    assert author("glossy teal tiles").entry != "generic-surface"
+    assert author("shiny brushed aluminum").entry == "brushed-metal"
+
+
+def test_rusted_steel_plate_is_plain_steel_with_rust_not_a_patterned_plate() -> None:
+    r = author("heavily rusted steel plate")
+    assert r.entry != "diamond-plate", r.explanation
+    # rust as an overlay, or shown by the entry itself (rusted-metal, corten ...)
+    shows_rust = "rusty" in r.overlays or any(a.startswith("rusty") for a in r.absorbed)
+    assert shows_rust and r.category == "metal", r.explanation
+    # the pattern is still found when it is asked for
+    assert author("rusty diamond plate").entry == "diamond-plate"
+    assert "plate" in author("steel tread plate").entry
