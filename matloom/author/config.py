@@ -116,6 +116,11 @@ class AuthorConfig(BaseModel):
     #: Stop revising once the critic asks for no changes (no suggestions, no edits); the
     #: paper always runs every round.
     stop_when_satisfied: bool = False
+    #: Blender layouts to render the final material in after export ("flat", "staged"), into
+    #: ``blender/<layout>.png`` of the run folder (empty: none; see docs/blender.md).
+    blender_layouts: tuple[str, ...] = ()
+    #: Size in pixels of those Blender renders.
+    blender_size: int = 512
     #: The critic's statistics: the paper's 28 statistics on a ``stats_grid`` grid, or the
     #: ``visible`` statistics computed at the critique resolution.
     critic_stats: Literal["paper", "visible"] = "paper"

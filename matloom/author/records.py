@@ -200,6 +200,15 @@ class ModelIds(_Model):
     scorer: str | None = None
 
 
+class BlenderRecord(_Model):
+    """The final material's Blender renders (``--blender-layouts``)."""
+
+    layouts: list[str]
+    files: list[str] = Field(default_factory=list)
+    seconds: float = 0.0
+    error: str | None = None
+
+
 class RunRecord(_Model):
     """Everything about one authoring run (``record.json``)."""
 
@@ -235,6 +244,7 @@ class RunRecord(_Model):
     final: FinalRecord | None = None
     #: Things the user should know about the result (the CLI prints them on stderr).
     warnings: list[str] = Field(default_factory=list)
+    blender: BlenderRecord | None = None
     durations: Durations = Field(default_factory=Durations)
     sessions: list[str] = Field(default_factory=list)
 

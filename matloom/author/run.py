@@ -370,6 +370,35 @@ class Run:
         record.final = final
         record.durations.export = time.perf_counter() - start
         self.store.save()
+        if self.config.blender_layouts:
+            self.render_blender()
+
+    def render_blender(self) -> None:
+        """Render the exported material in Blender's layouts (a failure is recorded and warned
+        about; the material itself stays exported)."""
+        from matloom.author.records import BlenderRecord
+        from matloom.blender import BlenderError, render_layouts
+
+        layouts = list(self.config.blender_layouts)
+        self.notify("blender", "rendering " + ", ".join(layouts) + " in Blender")
+        folder = self.store.folder
+        entry = BlenderRecord(layouts=layouts)
+        start = time.perf_counter()
+        try:
+            paths = render_layouts(
+                folder,
+                layouts,
+                folder / "blender",
+                size=self.config.blender_size,
+                progress=lambda line: self.notify("blender", line),
+            )
+            entry.files = [str(p.relative_to(folder)) for p in paths]
+        except BlenderError as err:
+            entry.error = str(err)
+            self.warn(f"Blender renders skipped: {err}")
+        entry.seconds = time.perf_counter() - start
+        self.record.blender = entry
+        self.store.save()
 
     def _nonfinite_texels(self, program: str) -> int:
         """Non-finite texels of ``program`` at the export size; its maps are kept (the last

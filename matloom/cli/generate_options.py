@@ -40,6 +40,8 @@ _CONFIG_FLAGS: dict[str, str] = {
     "critic_views": "critic_views",
     "critic_history": "critic_history",
     "stop_when_satisfied": "stop_when_satisfied",
+    "blender_layouts": "blender_layouts",
+    "blender_size": "blender_size",
     "critic_stats": "critic_stats",
     "revision_images": "revision_images",
 }
@@ -115,6 +117,18 @@ def _preset_values(params: dict[str, Any], given: set[str], fresh: bool) -> dict
     if name is None and fresh:
         name = default_preset(data)
     return preset_values(name, data) if name is not None else {}
+
+
+def _blender_layouts(_ctx: Any, _param: Any, value: str) -> tuple[str, ...]:
+    """``flat,staged`` / ``both`` -> the layout names, in order, without repeats."""
+    names: list[str] = []
+    for part in (p.strip() for p in value.split(",") if p.strip()):
+        for name in ("flat", "staged") if part == "both" else (part,):
+            if name not in ("flat", "staged"):
+                raise click.BadParameter(f"unknown layout {name!r}: use flat, staged or both")
+            if name not in names:
+                names.append(name)
+    return tuple(names)
 
 
 def build_config(
@@ -232,6 +246,20 @@ def pipeline_options(f: Any) -> Any:
             show_default=True,
             help="The critic also sees the previous round's preview and score and says whether "
             "this round is better.",
+        ),
+        click.option(
+            "--blender-layouts",
+            callback=_blender_layouts,
+            default="",
+            help="Render the final material in these Blender layouts after export "
+            "(flat,staged or both) into blender/<layout>.png; Blender as for `matloom blender`.",
+        ),
+        click.option(
+            "--blender-size",
+            type=click.IntRange(16, 4096),
+            default=d.blender_size,
+            show_default=True,
+            help="Size in pixels of the --blender-layouts renders.",
         ),
         click.option(
             "--stop-when-satisfied/--all-rounds",

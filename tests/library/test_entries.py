@@ -1,5 +1,5 @@
 """Every library entry and overlay: parses clean (no warnings), front matter matches the
-program, evaluates finite at 64 x 64, tileable entries tile (seam ratio <= 1.2 per map), and
+program, evaluates finite at 128 x 128, tileable entries tile (seam ratio <= 1.2 per map), and
 every slot Define reaches an output map."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ NAMES = sorted(LIB.entries)
 
 @pytest.mark.parametrize("name", NAMES)
 def test_entry_is_clean_finite_and_tiles(name: str) -> None:
-    report = check_entry(LIB, LIB.entry(name), size=64)
+    report = check_entry(LIB, LIB.entry(name), size=128)
     assert report.ok, f"{LIB.entry(name).path}: " + "; ".join(report.problems)
 
 
