@@ -7,7 +7,7 @@ import sys
 
 from matloom.lang import ast as A
 from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
-from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt, hint_for
+from matloom.lang.diagnostics import Diagnostic, Reporter, Severity, Span, hint_for
 from matloom.lang.lexer import as_float
 from matloom.lang.parser import MAX_NESTING
 from matloom.lang.seeds import uses_seed
@@ -29,24 +29,11 @@ _MIN_SPAN = sys.float_info.min * 8192
 """Smallest View width/height: texel sizes stay normal floats (never 0) up to 8192 pixels."""
 
 
-class Checker:
+class Checker(Reporter):
     def __init__(self, source: str) -> None:
         self.src = source
         self.diags: list[Diagnostic] = []
         self.nodes = 0
-
-    def diag(
-        self,
-        code: str,
-        msg: str,
-        span: Span,
-        expected: str | None = None,
-        hint: str | None = None,
-        severity: Severity = Severity.ERROR,
-    ) -> None:
-        self.diags.append(
-            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
-        )
 
     def warn(self, code: str, msg: str, span: Span, hint: str | None = None) -> None:
         self.diag(code, msg, span, hint=hint, severity=Severity.WARNING)

@@ -128,3 +128,24 @@ __all__ = [
     "format_diagnostics",
     "hint_for",
 ]
+
+
+class Reporter:
+    """Collects diagnostics over one source text (the parser's and the checker's base)."""
+
+    src: str
+    diags: list[Diagnostic]
+
+    def diag(
+        self,
+        code: str,
+        msg: str,
+        span: Span,
+        expected: str | None = None,
+        hint: str | None = None,
+        severity: Severity = Severity.ERROR,
+    ) -> None:
+        """Record one diagnostic with its caret excerpt of :attr:`src`."""
+        self.diags.append(
+            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
+        )

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from matloom.lang import ast as A
 from matloom.lang.brackets import Brackets, analyse, construct, pos
-from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt
+from matloom.lang.diagnostics import Diagnostic, Reporter, Span
 from matloom.lang.lexer import Lexer, Token
 
 
@@ -16,7 +16,7 @@ class _Bail(Exception):
     """Abort the current statement after a syntax error has been recorded."""
 
 
-class ParserBase:
+class ParserBase(Reporter):
     """Token cursor and diagnostics of one parse."""
 
     def __init__(self, source: str) -> None:
@@ -41,18 +41,6 @@ class ParserBase:
         return self._brackets
 
     # ---------------------------------------------------------------- diagnostics
-    def diag(
-        self,
-        code: str,
-        msg: str,
-        span: Span,
-        expected: str | None = None,
-        hint: str | None = None,
-        severity: Severity = Severity.ERROR,
-    ) -> None:
-        self.diags.append(
-            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
-        )
 
     def fail(
         self, code: str, msg: str, span: Span, expected: str | None = None, hint: str | None = None
