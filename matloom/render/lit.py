@@ -22,14 +22,13 @@ raise: NaN becomes the channel's neutral value (0; ao 1, ior 1.5), infinities cl
 from __future__ import annotations
 
 import functools
-import os
 from collections.abc import Callable
 
 import numpy as np
 
 from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
 from matloom.render import lit_model as M
-from matloom.render.preview import DEFAULT_LIGHT, Light
+from matloom.render.preview import DEFAULT_LIGHT, Light, pick_shader
 from matloom.vocab.layout import LAYOUT
 
 #: The maps the lit shading reads, in the kernel's order (every array field but the height,
@@ -222,17 +221,8 @@ def available_backends() -> list[str]:
 
 
 def _resolve_backend(backend: str) -> str:
-    """``auto`` -> $MATLOOM_BACKEND if it names a backend here, else numba when installed,
-    else numpy (as :func:`matloom.render.preview.shade` resolves it)."""
-    if backend == "auto":
-        wanted = os.environ.get("MATLOOM_BACKEND", "auto")
-        if wanted in _SHADERS:
-            backend = wanted
-        else:
-            return "numba" if _numba_importable() else "numpy"
-    if backend not in available_backends():
-        raise ValueError(f"unknown or unavailable shader {backend!r}; have {available_backends()}")
-    return backend
+    """As :func:`matloom.render.preview.shade` resolves it (:func:`pick_shader`)."""
+    return pick_shader(backend, _SHADERS, _numba_importable)
 
 
 def shade_lit(

@@ -40,7 +40,7 @@ from __future__ import annotations
 import functools
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
 import numpy as np
@@ -288,9 +288,10 @@ def available_shaders() -> list[str]:
     return sorted(name for name in _SHADERS if name != "numba" or _numba_importable())
 
 
-def _resolve_backend(backend: str) -> str:
-    """``auto`` -> $MATLOOM_BACKEND if it names a shader here, else numba when it is installed,
-    else numpy; an explicit name must be available.
+def pick_shader(backend: str, names: Collection[str], numba_ok: Callable[[], bool]) -> str:
+    """The shader to use among ``names`` (``numba`` counts only when ``numba_ok()``): ``auto``
+    -> $MATLOOM_BACKEND if it names one of them, else numba when it is installed, else numpy;
+    an explicit name must be available (ValueError otherwise). Shared by every preview layout.
 
     ``auto`` never depends on what this process happens to have loaded or compiled: a preview
     made while the engine's kernels still compile (the numpy evaluation path of a cold start)
@@ -298,13 +299,18 @@ def _resolve_backend(backend: str) -> str:
     """
     if backend == "auto":
         wanted = os.environ.get("MATLOOM_BACKEND", "auto")
-        if wanted in _SHADERS:
+        if wanted in names:
             backend = wanted
         else:
-            return "numba" if _numba_importable() else "numpy"
-    if backend not in available_shaders():
-        raise ValueError(f"unknown or unavailable shader {backend!r}; have {available_shaders()}")
+            return "numba" if numba_ok() else "numpy"
+    have = sorted(name for name in names if name != "numba" or numba_ok())
+    if backend not in have:
+        raise ValueError(f"unknown or unavailable shader {backend!r}; have {have}")
     return backend
+
+
+def _resolve_backend(backend: str) -> str:
+    return pick_shader(backend, _SHADERS, _numba_importable)
 
 
 def shade(maps: MaterialMaps, *, light: Light | None = None, backend: str = "auto") -> np.ndarray:
