@@ -6,7 +6,9 @@ raises its wear slot), stated percentages (cover slot), scale words / sizes / co
 View), then explicit colours. Colours go to the slot whose role a nearby noun names ("white
 grout", "gold veins"), else to the free slots in order, main colour first; plain colour words
 ("red") on natural materials are pulled toward the entry's own colour so "red brick" still looks
-like brick. Every change is described in a short note for the explanation.
+like brick. Slots the request left alone whose strong hue contradicts its palette take a shade
+of a requested colour ("red and black tartan" has no yellow line). Every change is described
+in a short note for the explanation.
 """
 
 from __future__ import annotations
@@ -28,6 +30,14 @@ NATURAL = frozenset(
     {"wood", "stone", "masonry", "concrete", "metal", "ground", "leather", "organic", "natural"}
 )
 BASIC = frozenset("red green blue brown yellow orange grey gray purple pink white black".split())
+#: categories whose other colours follow the request's palette even when it names one colour
+PATTERNED = frozenset(
+    {"fabric", "carpet", "tiles", "paper", "plastic", "ornament", "ceramic", "glass", "scifi"}
+)
+#: a slot colour this grey (HSV saturation) is neutral: it never contradicts a palette
+NEUTRAL_SAT = 0.18
+#: a slot whose hue is this close (degrees) to a requested colour already fits the palette
+PALETTE_HUE = 30
 VIEW_RANGE = (0.25, 4.0)
 _ROLE_OF_NOUN = {
     "mortar": "grout",
@@ -153,6 +163,10 @@ class Adapter:
                     value = round(old * self.w.finish_relief[key], 4)
                     self.out.program = define_value(self.program, slot, value)
                     self.note(f"{slot} x{self.w.finish_relief[key]:g} (finish '{word}')")
+            if key == "metallic":
+                for slot in self.scalar_slots("metallic"):
+                    self.out.program = define_value(self.program, slot, 1)
+                    self.note(f"{slot} = 1 (finish '{word}')")
             if key in _GLOSSY:
                 for slot in self.scalar_slots("gloss"):
                     self.out.program = define_value(self.program, slot, _GLOSSY[key])
@@ -187,6 +201,11 @@ class Adapter:
                 if e.feature_m and (not size.noun or size.noun in units or len(req.sizes) == 1):
                     scale = size.metres / e.feature_m
                     why = f"{size.words} {size.noun}".strip()
+                    self.out.used.update(
+                        i
+                        for i, t in enumerate(req.tokens)
+                        if size.noun and plural_stem(t) == size.noun
+                    )
                     break
             else:
                 if req.scale != 1.0:
@@ -225,13 +244,38 @@ class Adapter:
             else:
                 pending.append(m)
         free = [s for s in primary + secondary if s not in taken]
-        for m, slot in zip(pending, free, strict=False):
+        grout = [s for s in e.colours if e.role(s) == "grout" and s not in taken and s not in free]
+        for m, slot in zip(pending, free + grout, strict=False):
             self.give(m, slot, "prompt order", taken)
-        for m in pending[len(free) :]:
+        for m in pending[len(free + grout) :]:
             self.note(f"colour '{m.words}' unused: no free colour slot")
             self.out.unused.append(m.words)
+        named = [(m.rgb, m.words) for m in mentions]
+        if named and (len(named) > 1 or e.category in PATTERNED):
+            self.palette(named, [s for s in primary if s not in taken | explicit])
         explicit |= taken
         self.tones(explicit)
+
+    def palette(self, named: list[tuple[C.RGB, str]], slots: list[str]) -> None:
+        """Free primary slots whose colour contradicts the requested palette (a strong hue the
+        request did not name: the yellow line of a "red and black tartan") take a shade of the
+        requested colour nearest in lightness; neutral slots and grout/frame roles stay."""
+        for slot in slots:
+            if self.entry.role(slot) in {"grout", "frame", "material"}:
+                continue
+            old = slot_colour(self.program, slot)
+            if old is None or C.saturation(old) < NEUTRAL_SAT:
+                continue
+            if any(
+                C.saturation(n) >= NEUTRAL_SAT and C.hue_distance(n, old) <= PALETTE_HUE
+                for n, _ in named
+            ):
+                continue
+            near, words = min(named, key=lambda n: abs(C.luminance(n[0]) - C.luminance(old)))
+            light = C.lightness(near) + (C.lightness(old) - C.lightness(near)) * 0.75
+            rgb = C.with_lightness(near, light)
+            self.out.program = set_colour(self.program, slot, rgb)
+            self.note(f"colour {slot} = {rgb} (a shade of '{words}': only the requested palette)")
 
     def give(self, m: ColourMention, slot: str, why: str, taken: set[str]) -> None:
         rgb = m.rgb

@@ -22,7 +22,7 @@ from matloom.library.data import words
 from matloom.library.entry import Entry
 from matloom.library.index import Library, library
 from matloom.library.overlay import Overlay, compose, prune_defines, view_width
-from matloom.library.query import OverlayMention, Request, read
+from matloom.library.query import ColourMention, OverlayMention, Request, read
 from matloom.library.retrieval import Candidate, Index
 
 MAX_OVERLAYS = 3
@@ -146,6 +146,35 @@ def _tileable_side(program: A.Program, target: float, view0: float) -> float | N
     return None
 
 
+def _tileable_scale(program: A.Program, put, scale: float) -> float:  # noqa: ANN001
+    """The overlay size factor nearest ``scale`` (within 40 %) at which the composed program
+    still tiles (noise frequencies stay whole numbers of periods), else ``scale`` itself."""
+    options = {round(k / n, 4) for n in range(1, 5) for k in range(1, 13)}
+    ranked = sorted(
+        (s for s in options | {scale} if abs(s / scale - 1) <= 0.4 and s != 1.0),
+        key=lambda s: (abs(s / scale - 1), s),
+    )
+    for s in ranked[:6]:
+        if not tileable_warnings(put(program, s)):
+            return s
+    return scale
+
+
+def _metal_colours(req: Request, terms: frozenset[str], presets: dict, idx: Index) -> None:
+    """A metal colour name ("silver", "gold", "copper") that the chosen entry neither shows nor
+    takes as a preset is the colour of the entry ("silver fabric" is silver-coloured)."""
+    w = words()
+    for i, word in req.words_at():
+        if i in req.used or word not in w.metal_colours or word in presets:
+            continue
+        rgb = w.colour(word)
+        if rgb is None or idx.stem(word) in terms:
+            continue
+        req.colours.append(ColourMention(rgb, word, i))
+        req.used[i] = "colour"
+    req.colours.sort(key=lambda m: m.index)
+
+
 def _choose(cands: list[Candidate], lib: Library, pick: int | None) -> tuple[Entry, float, int]:
     if pick is not None:
         if not 1 <= pick <= len(cands):
@@ -217,6 +246,9 @@ def author(
     for m in req.overlays:
         if m.name in entry.absorbs or idx.stem(m.word.split()[0]) in terms:
             absorbed.append((m.name, m.amount))
+            if m.scale != 1.0:  # "fine cracks" on cracked earth: the entry's own features
+                req.scale *= m.scale
+                req.scale_words.append(f"{m.word} x{m.scale:g}")
         elif m.name in lib.overlays:
             apply.append(m)
     if len(apply) > MAX_OVERLAYS:
@@ -228,7 +260,9 @@ def author(
         ):
             continue
         _colour_the_entry(m, entry)
-    adapted = adapt(entry, base, req, w, lib.presets(entry, w.preset_sets), absorbed)
+    presets = lib.presets(entry, w.preset_sets)
+    _metal_colours(req, terms, presets, idx)
+    adapted = adapt(entry, base, req, w, presets, absorbed)
     program, side = adapted.program, adapted.view
     is_tileable = False
     if tileable:
@@ -252,15 +286,24 @@ def author(
     names = []
     for m in apply:
         ov = lib.overlays[m.name]
-        program = compose(
-            program,
-            ov,
-            main_colour=main,
-            cover=m.amount,
-            colour=m.colour,
-            reseed=lambda p, n=m.name: reseed(p, f"{entry.name}+{n}", seed),
-        )
-        names.append(f"{m.name} (amount {m.amount:g}) - {ov.description}")
+
+        def put(p: A.Program, s: float, m: OverlayMention = m, ov: Overlay = ov) -> A.Program:
+            return compose(
+                p,
+                ov,
+                main_colour=main,
+                cover=m.amount,
+                colour=m.colour,
+                reseed=lambda q, n=m.name: reseed(q, f"{entry.name}+{n}", seed),
+                scale=s,
+            )
+
+        scale = m.scale
+        if scale != 1.0 and is_tileable:
+            scale = _tileable_scale(program, put, scale)
+        program = put(program, scale)
+        size = f", size x{scale:g}" if scale != 1.0 else ""
+        names.append(f"{m.name} (amount {m.amount:g}{size}) - {ov.description}")
     if apply and is_tileable and tileable_warnings(program):
         program = replace(program, view=replace(program.view, tileable=False))
         is_tileable = False

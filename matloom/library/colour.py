@@ -61,3 +61,15 @@ def hue_distance(a: RGB, b: RGB) -> float:
     hb = colorsys.rgb_to_hsv(b[0] / 255, b[1] / 255, b[2] / 255)[0]
     d = abs(ha - hb)
     return min(d, 1 - d) * 360
+
+
+def lightness(rgb: RGB) -> float:
+    """HLS lightness in [0, 1]."""
+    return colorsys.rgb_to_hls(rgb[0] / 255, rgb[1] / 255, rgb[2] / 255)[1]
+
+
+def with_lightness(rgb: RGB, light: float) -> RGB:
+    """``rgb`` with its HLS lightness set to ``light`` (hue and saturation kept)."""
+    h, _, s = colorsys.rgb_to_hls(rgb[0] / 255, rgb[1] / 255, rgb[2] / 255)
+    r, g, b = colorsys.hls_to_rgb(h, max(0.0, min(1.0, light)), s)
+    return clamp_rgb((r * 255, g * 255, b * 255))

@@ -3,8 +3,9 @@
 
 ``colours.toml``  named colours, multi-word colour phrases, ``-ish`` forms, tone modifiers and
                   the colour names that are usually materials ("slate", "copper");
-``words.toml``    negations, stop words, finishes, scale, amount, unit and number words, and the
-                  nouns that give a colour its role ("grout", "veins", "background");
+``words.toml``    negations, stop words, finishes, scale, amount, unit and number words, the
+                  nouns that give a colour its role ("grout", "veins", "background"), material
+                  nouns, motif words and extra overlay words;
 ``synonyms.toml`` request words or phrases -> extra retrieval terms ("desert" -> "arid dry sand");
 ``presets.toml``  word presets shared by several entries ("walnut" -> the ``wood`` colour).
 """
@@ -46,6 +47,14 @@ class Words:
     carriers: frozenset[str]
     form_nouns: frozenset[str]
     defaults: frozenset[str]
+    #: material nouns ("leather", "cobblestone"): they weigh more in retrieval
+    materials: frozenset[str]
+    #: motif -> the words that name it ("hexagon": hexagonal, honeycomb ...)
+    motifs: dict[str, frozenset[str]]
+    #: extra overlay words (data): word or phrase -> overlay name ("rain" -> wet)
+    overlay_words: dict[str, str]
+    #: colour names that are metals ("silver"): colours unless the entry is that metal
+    metal_colours: frozenset[str]
     synonyms: dict[str, tuple[str, ...]]
     preset_sets: dict[str, dict[str, dict[str, PresetValue]]]
 
@@ -125,6 +134,10 @@ def words() -> Words:
         carriers=frozenset(w.get("carriers", [])),
         form_nouns=frozenset(w.get("form_nouns", [])),
         defaults=frozenset(w.get("defaults", {}).values()),
+        materials=frozenset(w.get("materials", {}).get("words", [])),
+        motifs={k: frozenset(v) for k, v in w.get("motifs", {}).items()},
+        overlay_words={k.lower(): v for k, v in w.get("overlay_words", {}).items()},
+        metal_colours=frozenset(col.get("metal_colours", {}).get("words", [])),
         synonyms=synonyms,
         preset_sets=sets,
     )

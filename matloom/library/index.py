@@ -67,11 +67,15 @@ class Library:
 
     @functools.cached_property
     def triggers(self) -> dict[str, str]:
-        """Overlay word or phrase -> overlay name."""
+        """Overlay word or phrase -> overlay name (the overlays' triggers, then the extra overlay
+        words of ``data/words.toml``)."""
         out: dict[str, str] = {}
         for ov in sorted(self.overlays.values(), key=lambda o: o.name):
             for t in (*ov.triggers, *ov.weak):
                 out.setdefault(t, ov.name)
+        for t, name in sorted(words().overlay_words.items()):
+            if name in self.overlays:
+                out.setdefault(t, name)
         return out
 
     @functools.cached_property

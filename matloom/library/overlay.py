@@ -11,7 +11,7 @@ layers, and the Defines they use, are appended on top of the entry's layers. Com
   lighten whatever the entry's colour is);
 * sets the overlay's slots (``cover`` from the amount words, its colour from the prompt);
 * rescales noise frequencies and heights from the overlay's View to the entry's, so the overlay
-  keeps the same number of features across the material;
+  keeps the same number of features across the material (times a size factor: "small cracks");
 * renames Defines that clash with the entry's names and re-derives seeds for the user seed.
 """
 
@@ -185,12 +185,14 @@ def compose(
     cover: float | None = None,
     colour: tuple[int, int, int] | None = None,
     reseed: object = None,
+    scale: float = 1.0,
 ) -> A.Program:
     """``host`` with ``overlay``'s layers (all but its first) and their Defines on top.
 
     ``main_colour`` is the entry's main colour slot (bound to the overlay's ``host`` colour);
     ``cover`` and ``colour`` set the overlay's slots; ``reseed`` (a callable taking and returning
-    a program) re-derives the overlay's seeds.
+    a program) re-derives the overlay's seeds; ``scale`` sizes the overlay's features ("small
+    cracks" 0.65: smaller cells with thinner lines, the same cover).
     """
     ov = overlay.ast
     if cover is not None and overlay.cover:
@@ -221,7 +223,7 @@ def compose(
         replace(
             d,
             name=names.get(d.name, d.name),
-            expr=scale_frequencies(rename_refs(d.expr, names), factor),
+            expr=scale_frequencies(rename_refs(d.expr, names), factor / scale),
         )
         for d in ov.defines
         if d.name not in drop

@@ -4,7 +4,10 @@
 role a nearby noun gives them: "white grout", "gold veins"), finish words, overlay words
 ("mossy", "rusty", with an amount and an optional colour), scale words, explicit sizes
 ("30 cm tiles"), counts ("8 planks"), percentages and tone words before other nouns ("dark
-wood"). Every rule records the tokens it used, so the author can report the words nothing used.
+wood"). Colour names that are usually materials ("copper", "charcoal") count as colours in
+colour context ("in charcoal", "the colour is silver", "gold velvet"); a scale word before an
+overlay sizes the overlay ("small cracks"). Every rule records the tokens it used, so the
+author can report the words nothing used.
 Retrieval then reads the remaining words (see :mod:`matloom.library.retrieval`).
 """
 
@@ -26,6 +29,21 @@ _CONDITION_TONES = frozenset({"faded", "dirty", "dusty", "burnt", "washed", "ear
 #: words that end the forward search for a colour's role noun ("white marble with gold veins")
 _ROLE_STOP = frozenset({"with", "and", "or", "on", "over"})
 _SCALE_SKIP = frozenset({"shirt", "dress", "weight", "weighted"})
+#: nouns that say the next words are a colour ("the color of it is silver", "a shade of gold")
+_COLOUR_NOUNS = frozenset({"color", "colour", "colors", "colours", "hue", "shade", "tone"})
+_COPULAS = frozenset({"is", "are", "was", "were", "be"})
+#: words before a tone that soften or strengthen it ("slightly darker brown")
+_INTENSITY = {"slightly": 0.5, "somewhat": 0.6, "bit": 0.5, "very": 1.4, "much": 1.3}
+#: basic colour words a specific colour name may come before ("cornflower blue" is one colour)
+_BASIC = frozenset(
+    "red green blue brown yellow orange grey gray purple pink white black violet".split()
+)
+#: materials a metal colour name before them does not colour ("steel wool", "gold metal")
+_METALS = frozenset(
+    "metal metals metallic iron tin zinc titanium aluminium aluminum wool chrome steel".split()
+)
+#: the longest head term a "term: definition" request may have
+_TERM_MAX = 5
 
 
 @dataclass
@@ -52,6 +70,8 @@ class OverlayMention:
     colour: C.RGB | None = None
     #: the ColourMention that gave ``colour`` ("orange" in "orange painted")
     colour_mention: ColourMention | None = None
+    #: feature-size factor of the overlay itself ("small cracks" 0.65, "hairline cracks" 0.45)
+    scale: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -78,6 +98,10 @@ class Request:
     prompt: str
     tokens: list[str]
     head_end: int = 0
+    #: end of the term of a "term: definition" request (0 when there is none)
+    term_end: int = 0
+    #: end of the first sentence (later sentences weigh less in retrieval)
+    sentence_end: int = 0
     negated: set[int] = field(default_factory=set)
     colours: list[ColourMention] = field(default_factory=list)
     finishes: list[tuple[str, str]] = field(default_factory=list)
@@ -139,6 +163,11 @@ class _Reader:
     def run(self) -> Request:
         end = next((i for i, w in enumerate(self.t) if w in _HEAD_END and i > 0), len(self.t))
         self.out.head_end = end
+        if self.at(end) == ":" and end <= _TERM_MAX:
+            self.out.term_end = end
+        self.out.sentence_end = next(
+            (i for i, w in enumerate(self.t) if w in {".", "!", "?"} and i > 0), len(self.t)
+        )
         self.negations()
         self.colours()
         self.overlays()
@@ -197,7 +226,12 @@ class _Reader:
                 return i, i + n, self.w.phrases[phrase], phrase
         mods: list[str] = []
         j = i
-        while self.at(j) in self.w.tones and len(mods) < 2:
+        strength = 1.0
+        if self.at(j) in _INTENSITY and self.at(j + 1) in self.w.tones:
+            strength = _INTENSITY[self.at(j)]
+            mods.append(self.at(j))
+            j += 1
+        while self.at(j) in self.w.tones and len(mods) < 3:
             mods.append(self.at(j))
             j += 1
         tonal = [m for m in mods if m not in _CONDITION_TONES]
@@ -206,7 +240,12 @@ class _Reader:
             return None
         end, rgb, name = base
         for m in reversed(mods):
-            rgb = C.apply_tone(rgb, m, self.w.tones[m])
+            if m in self.w.tones:
+                light, sat = self.w.tones[m]
+                tone = (1 + (light - 1) * strength, 1 + (sat - 1) * strength)
+                rgb = C.apply_tone(rgb, m, tone)
+        if self.same_colour(name, self.at(end)):
+            name, end = f"{name} {self.at(end)}", end + 1  # "cornflower blue": one colour
         words = " ".join([*mods, name])
         if self.at(end) == "/" and self.base_colour_at(end + 1) is not None:
             end2, rgb2, name2 = self.base_colour_at(end + 1)  # type: ignore[misc]
@@ -237,6 +276,18 @@ class _Reader:
             return None
         return j + 1, rgb, w
 
+    def same_colour(self, name: str, nxt: str) -> bool:
+        """Is ``nxt`` a basic colour word that only names the family of the specific colour
+        ``name`` ("cornflower blue", "pearl white"), not a second colour ("gold black")?"""
+        if name in _BASIC or nxt not in _BASIC or nxt == name:
+            return False
+        a, b = self.w.colour(name), self.w.colour(nxt)
+        if a is None or b is None:
+            return False
+        if C.saturation(b) < 0.15:
+            return C.saturation(a) < 0.25 and abs(C.luminance(a) - C.luminance(b)) < 0.35
+        return C.saturation(a) >= 0.15 and C.hue_distance(a, b) <= 40
+
     def colour_context(self, j: int) -> bool:
         """Is the material-ish word at ``j`` used as a colour ("slate grey", "copper colour")?"""
         nxt, prev = self.at(j + 1), self.at(j - 1)
@@ -252,6 +303,23 @@ class _Reader:
             return True
         if nxt in {",", "and", "or", "/"} and self.colour_word_at(j + 2):
             return True
+        w = self.at(j)
+        if w in self.w.metal_colours and nxt in self.w.materials and nxt not in _METALS:
+            return True  # "gold velvet", "silver fabric": a metal's colour on another material
+        if prev == "in" and (w in self.w.metal_colours or w not in self.w.materials):
+            return True  # "in charcoal and cream", "fish scales in copper"; not "in slate"
+        if prev in _COLOUR_SUFFIX or prev in _COLOUR_NOUNS:
+            return True  # "coloured silver", "shade gold"
+        if prev == ":" and self.at(j - 2) in _COLOUR_NOUNS:
+            return True  # "colour: gold"
+        if prev == "of" and self.at(j - 2) in _COLOUR_NOUNS:
+            return True  # "a shade of gold"
+        if prev in _COPULAS:  # "the color of it is silver"
+            for k in range(j - 2, max(j - 8, -1), -1):
+                if self.at(k) in _CLAUSE_END or self.at(k) == ",":
+                    break
+                if self.at(k) in _COLOUR_NOUNS:
+                    return True
         return nxt == "in" and self.at(j + 2) in _COLOUR_SUFFIX
 
     def role_near(self, start: int, end: int) -> str | None:
@@ -326,6 +394,11 @@ class _Reader:
             )
             if not target or target in _SCALE_SKIP or target in self.w.stop_words:
                 continue
+            overlay = self.overlay_at(self.t.index(target, i + 1))
+            if overlay is not None:  # "small cracks": the overlay's features, not the View
+                overlay.scale *= self.w.scale[w]
+                self.use("scale", i)
+                continue
             factors.append(self.w.scale[w])
             self.out.scale_words.append(w)
             self.use("scale", i)
@@ -334,6 +407,13 @@ class _Reader:
             for f in factors:
                 prod *= f
             self.out.scale = prod ** (1.0 / len(factors))
+
+    def overlay_at(self, k: int) -> OverlayMention | None:
+        """The overlay mention whose words include token ``k``."""
+        for m in self.out.overlays:
+            if m.index <= k < m.index + len(m.word.split()):
+                return m
+        return None
 
     def number(self, tok: str) -> float | None:
         if re.fullmatch(r"\d+/\d+", tok):

@@ -10,7 +10,11 @@ words 0.25. An entry is a candidate only when a material, object or condition wo
 (``REASONS``): colour and finish words alone ("glossy teal") pick nothing. Synonyms
 (``data/synonyms.toml``) add their expansion terms at 0.6 of the source word's weight. An entry
 whose synonym or multi-word tag appears in the prompt as a phrase gains ``PHRASE_BONUS`` per
-word. Scores are deterministic; ties go to the name in alphabetical order.
+word. The term of a "term: definition" request weighs 2.5 and words after the first sentence
+0.75; material nouns (``[materials]``) weigh ``MATERIAL_WEIGHT`` times more, and entries with
+none of the request's materials rank ``MATERIAL_PENALTY`` lower; a motif the request names
+(``[motifs]``) ranks the entries that show it ``MOTIF_BOOST`` higher and the others
+``MOTIF_PENALTY`` lower. Scores are deterministic; ties go to the name in alphabetical order.
 """
 
 from __future__ import annotations
@@ -38,6 +42,8 @@ WEIGHTS = {
     "count": 0.25,
     "tone": 0.5,
     "form": 0.3,
+    "term": 2.5,
+    "later": 0.75,
     "amount": 0.0,
     "negation": 0.0,
     "percent": 0.0,
@@ -50,10 +56,18 @@ CATEGORY_BOOST = 1.3
 DEFAULT_BOOST = 1.25
 #: entries that show a condition (rusted metal, peeling paint) rank lower unless it is asked for
 CONDITION_PENALTY = 0.75
+#: a material noun ("leather", "cobblestone") weighs this many times its word's weight; when the
+#: request names materials, entries with none of them (nor their category) rank lower
+MATERIAL_WEIGHT = 1.25
+MATERIAL_PENALTY = 0.5
+#: a motif the request names ("hexagonal", "circles", "camo"): entries showing it rank higher,
+#: the others lower, so the motif wins over incidental words
+MOTIF_BOOST = 1.35
+MOTIF_PENALTY = 0.6
 #: the word rules that can be a reason to pick an entry: material, object and condition words.
 #: An entry matched only by colour, finish, tone, scale or size words ("glossy teal gizmo") is
 #: no candidate; with no candidate the author falls back to its generic entry.
-REASONS = frozenset({"plain", "head", "overlay", "form"})
+REASONS = frozenset({"plain", "head", "overlay", "form", "term", "later"})
 _WORD_RE = re.compile(r"[a-z0-9]+")
 
 
@@ -73,6 +87,11 @@ class Index:
         self.stemmer = Stemmer.Stemmer("english")
         self.stop = words.stop_words
         self.form_nouns = words.form_nouns
+        self.materials = words.materials
+        self.motif_of = {w: m for m, ws in sorted(words.motifs.items()) for w in ws}
+        self.motif_stems = {
+            m: frozenset(self.stemmer.stemWords(sorted(ws))) for m, ws in words.motifs.items()
+        }
         self.names: list[str] = []
         self.category_words = words.category_words
         self.defaults = words.defaults
@@ -93,7 +112,9 @@ class Index:
                 e.description,
                 *e.tags,
                 *e.tags,
-                *e.synonyms,
+                # each synonym word once: a word repeated over many phrasings ("laser cut
+                # fabric", "cutwork fabric" ...) is no more the entry's than a tag
+                " ".join(dict.fromkeys(" ".join(e.synonyms).replace("-", " ").lower().split())),
                 *presets.get(e.name, ()),
                 e.category,
             ]
@@ -105,6 +126,11 @@ class Index:
                 if len(key) > 1:
                     self.phrases.setdefault(key, set()).add(e.name)
         self.bm25 = BM25Okapi(docs, k1=1.2, b=B) if docs else None
+        #: the motifs each entry shows (a motif word among its terms)
+        self.motifs = {
+            n: frozenset(m for m, st in self.motif_stems.items() if st & self.terms[n])
+            for n in self.names
+        }
         self.synonyms = {
             tuple(self.stems(k, keep_stop=True)): [s for v in vals for s in self.stems(v)]
             for k, vals in words.synonyms.items()
@@ -127,7 +153,30 @@ class Index:
             return rule
         if req.tokens[i] in self.form_nouns:
             return "form"
+        if i < req.term_end:
+            return "term"
+        if i > req.sentence_end:
+            return "later"
         return "head" if i < req.head_end else "plain"
+
+    def material_words(self, req: Request) -> list[set[str]]:
+        """For each material noun of the request (not a colour, overlay ...): the stems that
+        carry it (its stem and its synonyms' stems)."""
+        out: list[set[str]] = []
+        for i, word in req.words_at():
+            if word in self.materials and i not in req.used:
+                key = (self.stem(word),)
+                out.append({key[0], *self.synonyms.get(key, ())})
+        return out
+
+    def motif_words(self, req: Request) -> set[str]:
+        """The motifs the request names (a motif word that no overlay or colour took)."""
+        words = [(i, w) for i, w in req.words_at() if i not in req.used]
+        out = {self.motif_of[w] for _, w in words if w in self.motif_of}
+        for (i, a), (j, b) in zip(words, words[1:]):
+            if j == i + 1 and a + b in self.motif_of:
+                out.add(self.motif_of[a + b])
+        return out
 
     def query(self, req: Request) -> tuple[dict[str, float], dict[str, set[int]], list[str]]:
         """(weight per stem, token indices per stem, request stems in order) of a request."""
@@ -141,11 +190,21 @@ class Index:
             w = WEIGHTS.get(rule, 1.0)
             if w <= 0:
                 continue
+            if word in self.materials and rule in REASONS and rule != "overlay":
+                w *= MATERIAL_WEIGHT
             s = self.stem(word)
             weights[s] = weights.get(s, 0.0) + w
             sources.setdefault(s, set()).add(i)
             order.append(s)
-        stems = [(i, self.stem(w)) for i, w in req.words_at()]
+        words = req.words_at()
+        for (i, a), (j, b) in zip(words, words[1:]):
+            joined = self.stem(a + b)  # "honey comb" -> honeycomb, "zig zag" -> zigzag
+            if j == i + 1 and self.bm25 is not None and joined in self.bm25.idf:
+                w = max(WEIGHTS.get(self.rule(req, k), 1.0) for k in (i, j))
+                weights[joined] = weights.get(joined, 0.0) + w
+                sources.setdefault(joined, set()).update((i, j))
+                order.append(joined)
+        stems = [(i, self.stem(w)) for i, w in words]
         for n in (3, 2, 1):
             for k in range(len(stems) - n + 1):
                 chunk = stems[k : k + n]
@@ -191,12 +250,24 @@ class Index:
         words_in = {w for _, w in req.words_at()}
         hit = {c for c, ws in self.category_words.items() if ws & words_in}
         asked = {m.name for m in req.overlays}
+        finish_stems = {self.stem(word) for _, word in req.finishes}
+        materials = self.material_words(req)
+        motifs = self.motif_words(req)
+        motifs = {m for m in motifs if any(m in self.motifs[n] for n in self.names)}
         for k, name in enumerate(self.names):
+            terms = self.terms[name]
+            cat_ok = self.categories[name] in hit
+            if materials and not cat_ok and not any(st & terms for st in materials):
+                scores[k] *= MATERIAL_PENALTY
+            for motif in motifs:
+                scores[k] *= MOTIF_BOOST if motif in self.motifs[name] else MOTIF_PENALTY
             stems = self.name_stems[name]
             if stems and stems <= present:
                 scores[k] += NAME_BONUS * len(stems)
                 matched.setdefault(k, set()).update(stems)
                 reason.add(k)
+            elif stems & finish_stems and k in reason:  # "brushed aluminium": brushed-metal
+                scores[k] += NAME_BONUS
             if self.categories[name] in hit:
                 scores[k] *= CATEGORY_BOOST
             if name in self.defaults:

@@ -1,0 +1,200 @@
+"""Rules for long, descriptive and motif requests: colours in sentence form, the requested
+palette, motif and material words, "term: definition" requests, overlay sizes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matloom
+from matloom.library import author, library
+from matloom.library import colour as C
+from matloom.library.adapt import adapt, slot_colour
+from matloom.library.data import words
+from matloom.library.index import load_library
+from matloom.library.overlay import OVERLAY_DIR
+from matloom.library.query import read
+
+
+def req(prompt: str):  # noqa: ANN201
+    lib = library()
+    return read(prompt, words(), lib.triggers, lib.weak_triggers)
+
+
+def colours(prompt: str) -> list[str]:
+    return [m.words for m in req(prompt).colours]
+
+
+# ---------------------------------------------------------------- colours in sentence form
+def test_metal_colour_after_a_colour_noun_and_a_copula_is_a_colour() -> None:
+    assert colours("The color of it is silver") == ["silver"]
+    assert colours("a shade of gold") == ["gold"]
+    assert colours("colour: copper") == ["copper"]
+    r = author("The colour of this fabric is silver")
+    assert "silver" not in r.ignored
+    assert any("'silver'" in a for a in r.adaptations), r.explanation
+
+
+def test_colour_names_after_in_are_colours_but_not_material_nouns() -> None:
+    assert colours("herringbone tweed in charcoal and cream") == ["charcoal", "cream"]
+    assert colours("fish scales in copper") == ["copper"]
+    assert colours("carved in slate") == []  # a material, not a colour
+
+
+def test_a_metal_colour_before_another_material_colours_it() -> None:
+    assert colours("gold velvet") == ["gold"]
+    assert colours("copper leather") == ["copper"]
+    assert colours("steel wool") == []
+    r = author("gold velvet")
+    assert r.category == "fabric" and "gold" not in r.ignored, r.explanation
+
+
+def test_comparative_tones_make_a_second_shade() -> None:
+    r = req("Its colors are a light brown with a mix of slightly darker brown")
+    assert [m.words for m in r.colours] == ["light brown", "slightly darker brown"]
+    light, darker = (C.luminance(m.rgb) for m in r.colours)
+    brown = C.luminance(words().named["brown"])
+    assert light > brown > darker
+    # "slightly" halves the tone: darker than brown, lighter than plain "darker brown"
+    assert darker > C.luminance(req("darker brown").colours[0].rgb)
+
+
+def test_a_specific_colour_before_its_basic_family_is_one_colour() -> None:
+    assert colours("cornflower blue cotton") == ["cornflower blue"]
+    assert colours("burgundy red and ivory white") == ["burgundy red", "ivory white"]
+    assert colours("gold black and white stripes") == ["gold", "black", "white"]
+
+
+# ---------------------------------------------------------------- the requested palette
+STRIPES = """# ---
+# description = "Striped cloth: a red ground with navy bands and thin yellow lines"
+# category = "fabric"
+# tags = ["zorbstripe", "fabric"]
+# size_m = 0.2
+# tileable = true
+# colours = ["base", "band", "line", "edge"]
+# [roles]
+# band = "accent"
+# line = "accent"
+# edge = "grout"
+# ---
+View(0, 0, 2, 2, tileable=True)
+Define(base_r, 170)
+Define(base_g, 30)
+Define(base_b, 40)
+Define(band_r, 20)
+Define(band_g, 40)
+Define(band_b, 70)
+Define(line_r, 220)
+Define(line_g, 200)
+Define(line_b, 80)
+Define(edge_r, 200)
+Define(edge_g, 120)
+Define(edge_b, 40)
+Define(bands, fBm(octaves=2, base_freq=3, to_01=True, seed=11))
+Define(lines, fBm(octaves=2, base_freq=9, to_01=True, seed=12))
+Material(
+  Layer(1).basecolor(base_r, base_g, base_b).roughness(0.8),
+  Layer(bands).basecolor(band_r, band_g, band_b).roughness(0.8),
+  Layer(lines).basecolor(line_r, line_g, line_b).roughness(0.8),
+  Layer((lines * 0.5)).basecolor(edge_r, edge_g, edge_b).roughness(0.8)
+)
+"""
+
+
+def stripes_library(tmp_path: Path):  # noqa: ANN201
+    folder = tmp_path / "entries" / "fabric"
+    folder.mkdir(parents=True)
+    (folder / "zorb-stripes.mat").write_text(STRIPES)
+    return load_library(tmp_path / "entries", OVERLAY_DIR)
+
+
+def test_slots_the_request_did_not_colour_follow_its_palette(tmp_path: Path) -> None:
+    lib = stripes_library(tmp_path)
+    r = author("red and black zorbstripe", lib=lib)
+    p = matloom.parse(r.program)
+    red = words().named["red"]
+    assert slot_colour(p, "base") == red and slot_colour(p, "band") == words().named["black"]
+    line = slot_colour(p, "line")
+    assert line is not None and C.hue_distance(line, red) <= 30, line  # no yellow line left
+    assert C.luminance(line) > C.luminance(red)  # a lighter shade: the pattern keeps contrast
+    assert slot_colour(p, "edge") == (200, 120, 40)  # a grout role keeps its colour
+    bw = matloom.parse(author("black and white zorbstripe", lib=lib).program)
+    assert C.saturation(slot_colour(bw, "line")) < 0.18  # a grey between black and white
+    # one colour on a patterned entry: the other strong hues follow it too
+    one = matloom.parse(author("navy zorbstripe", lib=lib).program)
+    navy = words().named["navy"]
+    for slot in ("band", "line"):
+        assert C.hue_distance(slot_colour(one, slot), navy) <= 30
+
+
+def test_an_extra_colour_goes_to_a_free_grout_slot() -> None:
+    lib = library()
+    entry = lib.entry("square-tiles")
+    out = adapt(entry, lib.ast("square-tiles"), req("khaki and taupe tiles"), words(), {}, [])
+    assert slot_colour(out.program, "grout") == words().named["taupe"]
+    assert out.unused == []
+
+
+# ---------------------------------------------------------------- motif and material words
+def test_a_named_motif_wins_over_incidental_words() -> None:
+    idx = library().index
+    r = author("black rubber floor mat with raised circles")
+    assert "circle" in idx.motifs[r.entry], r.explanation
+    assert "rubber" in idx.terms[r.entry]
+    assert "circles" not in r.ignored
+    r = author("This is a shiny fabric. The rose gold color has a honey comb pattern on top.")
+    assert "hexagon" in idx.motifs[r.entry] and r.category == "fabric", r.explanation
+
+
+def test_motif_words_taken_by_an_overlay_are_no_motif() -> None:
+    idx = library().index
+    assert idx.motif_words(req("concrete wall with cracks")) == set()
+    assert idx.motif_words(req("hexagonal tiles")) == {"hexagon"}
+    assert idx.motif_words(req("zig zag rug")) == {"chevron"}
+
+
+def test_the_material_noun_outweighs_context_words() -> None:
+    r = author("mossy cobblestone path after rain")
+    assert "cobbleston" in library().index.terms[r.entry], r.explanation
+    assert r.overlays == ["mossy", "wet"]
+    assert author("studded black leather").category == "leather"
+
+
+def test_category_cues_steer_long_descriptions() -> None:
+    r = author("A summer dress in navy with small white polka dots, light and airy.")
+    assert r.category == "fabric", r.explanation
+    assert author("winter blanket in burgundy").category == "fabric"
+
+
+def test_the_term_of_a_definition_weighs_most() -> None:
+    r = req("Tweed: a rough woollen fabric, typically with a flecked look, in brown and green.")
+    idx = library().index
+    assert r.term_end == 1 and idx.rule(r, 0) == "term"
+    assert idx.rule(r, 5) == "plain"
+    long = req("This is a fabric. It is red.")
+    assert idx.rule(long, 6) == "later"
+    assert "tweed" in author(r.prompt).entry
+
+
+# ---------------------------------------------------------------- sizes
+def test_size_words_before_an_overlay_size_the_overlay_not_the_view() -> None:
+    plain = author("concrete wall with cracks")
+    small = author("concrete wall with small cracks")
+    assert small.entry == plain.entry and small.overlays == ["cracked"]
+    assert "size x" in small.overlay_notes[0] and "size x" not in plain.overlay_notes[0]
+    assert not any(a.startswith("View") for a in small.adaptations)
+    assert small.ignored == []
+    assert req("hairline cracks").overlays[0].scale < req("small cracks").overlays[0].scale < 1
+    # on an entry that shows the cracks itself, the entry's features get smaller
+    earth = author("hairline cracks in dry earth")
+    assert earth.entry == "cracked-earth" and any("View" in a for a in earth.adaptations)
+
+
+def test_a_measured_row_sets_the_scale_and_is_not_ignored() -> None:
+    r = author("wood floor with 1/2 inch rows")
+    assert any("1/2 inch" in a for a in r.adaptations)
+    assert "rows" not in r.ignored
+
+
+def test_after_rain_adds_wet() -> None:
+    assert "wet" in author("slate roof after rain").overlays
