@@ -175,6 +175,57 @@ def _metal_colours(req: Request, terms: frozenset[str], presets: dict, idx: Inde
     req.colours.sort(key=lambda m: m.index)
 
 
+#: words between a colour and the noun it describes ("yellow-and-black hazard stripe")
+_COLOUR_JOIN = frozenset({"and", "or", "/", "-", ",", "&"})
+_COLOUR_NOUNS = frozenset(
+    "color colour colors colours shade shades tone tones hue hues tint tints low high".split()
+)
+
+
+def _foreign_colours(req: Request, terms: frozenset[str], idx: Index, entry: Entry) -> list[str]:
+    """Drop the colours that describe a noun the entry does not show ("a yellow-and-black hazard
+    stripe" on diamond plate, "dark oil stains" on a sidewalk): they would recolour the main
+    material. A colour keeps its place when its noun is a material, a category word, a role
+    noun or one of the entry's own words. Returns the dropped colours' words."""
+    w = words()
+    known = w.materials | frozenset().union(*w.category_words.values()) | _COLOUR_NOUNS
+    keep, dropped = [], []
+
+    def colourish(k: int) -> bool:
+        t = req.tokens[k]
+        return w.colour(t) is not None or t in w.tones or req.used.get(k) == "colour"
+
+    for m in req.colours:
+        j = m.index + len(m.words.split())
+        while j < len(req.tokens) and (
+            (req.tokens[j] in _COLOUR_JOIN and j + 1 < len(req.tokens) and colourish(j + 1))
+            or req.used.get(j) in {"colour", "finish", "tone"}
+            or colourish(j)
+        ):
+            j += 1
+        noun = req.tokens[j] if j < len(req.tokens) else ""
+        roleless = m.role is None or (
+            m.role != "grout" and not any(entry.role(s) == m.role for s in entry.colours)
+        )
+        foreign = (
+            roleless
+            and m.slot is None
+            and noun.isalpha()
+            and j not in req.used
+            and noun not in w.stop_words
+            and noun not in known
+            and noun not in w.roles
+            and not noun.endswith(("ed", "ing", "ly"))
+            and idx.stem(noun) not in terms
+        )
+        if foreign:
+            dropped.append(f"{m.words} (the colour of '{noun}')")
+        else:
+            keep.append(m)
+    req.colours = keep
+    return dropped
+
+
 def _choose(cands: list[Candidate], lib: Library, pick: int | None) -> tuple[Entry, float, int]:
     if pick is not None:
         if not 1 <= pick <= len(cands):
@@ -262,7 +313,9 @@ def author(
         _colour_the_entry(m, entry)
     presets = lib.presets(entry, w.preset_sets)
     _metal_colours(req, terms, presets, idx)
+    foreign = _foreign_colours(req, terms, idx, entry) if rank else []
     adapted = adapt(entry, base, req, w, presets, absorbed)
+    adapted.unused.extend(foreign)
     program, side = adapted.program, adapted.view
     is_tileable = False
     if tileable:

@@ -295,7 +295,7 @@ class _Reader:
             return True
         if self.w.roles.get(nxt, "none") != "none" and nxt not in {"fabric", "body", "ground"}:
             return True
-        if nxt in self.w.carriers or nxt in self.triggers:
+        if nxt in self.w.carriers or (nxt in self.triggers and nxt not in self.w.materials):
             return True
         if prev in _LIST_JOIN and (
             self.colour_word_at(j - 2) or self.at(j - 2) in self.w.materialish

@@ -29,7 +29,7 @@ from rank_bm25 import BM25Okapi
 
 from matloom.library.data import Words
 from matloom.library.entry import Entry
-from matloom.library.query import Request
+from matloom.library.query import Request, plural_stem
 
 WEIGHTS = {
     "plain": 1.0,
@@ -64,6 +64,9 @@ MATERIAL_PENALTY = 0.5
 #: the others lower, so the motif wins over incidental words
 MOTIF_BOOST = 1.35
 MOTIF_PENALTY = 0.6
+#: when the request names no motif, entries whose name states one rank lower ("black shiny ceramic
+#: floor tiles" are plain tiles, not a checkerboard)
+UNASKED_MOTIF = 0.85
 #: the word rules that can be a reason to pick an entry: material, object and condition words.
 #: An entry matched only by colour, finish, tone, scale or size words ("glossy teal gizmo") is
 #: no candidate; with no candidate the author falls back to its generic entry.
@@ -131,6 +134,11 @@ class Index:
             n: frozenset(m for m, st in self.motif_stems.items() if st & self.terms[n])
             for n in self.names
         }
+        #: the motifs an entry's name states ("checker-tiles")
+        self.named_motifs = {
+            n: frozenset(m for m, st in self.motif_stems.items() if st & self.name_stems[n])
+            for n in self.names
+        }
         self.synonyms = {
             tuple(self.stems(k, keep_stop=True)): [s for v in vals for s in self.stems(v)]
             for k, vals in words.synonyms.items()
@@ -146,10 +154,25 @@ class Index:
     def stem(self, word: str) -> str:
         return self.stemmer.stemWord(word)
 
+    def lone_material(self, req: Request, i: int) -> bool:
+        """Is token ``i`` an overlay word that is the request's only material noun ("fresh
+        powder snow", "green moss")? Then it names the material, not an overlay on another."""
+        if req.used.get(i) != "overlay" or not self.is_material(req.tokens[i]):
+            return False
+        return not any(
+            self.is_material(w) and req.used.get(j) != "overlay"
+            for j, w in req.words_at()
+            if j != i
+        )
+
+    def is_material(self, word: str) -> bool:
+        """Is ``word`` (or its singular) a material noun ("rocks", "tiles")?"""
+        return word in self.materials or plural_stem(word) in self.materials
+
     def rule(self, req: Request, i: int) -> str:
         """The weight rule of request token ``i`` (see ``WEIGHTS``)."""
         rule = req.used.get(i)
-        if rule is not None:
+        if rule is not None and not self.lone_material(req, i):
             return rule
         if req.tokens[i] in self.form_nouns:
             return "form"
@@ -164,7 +187,7 @@ class Index:
         carry it (its stem and its synonyms' stems)."""
         out: list[set[str]] = []
         for i, word in req.words_at():
-            if word in self.materials and i not in req.used:
+            if word in self.materials and (i not in req.used or self.lone_material(req, i)):
                 key = (self.stem(word),)
                 out.append({key[0], *self.synonyms.get(key, ())})
         return out
@@ -261,6 +284,8 @@ class Index:
                 scores[k] *= MATERIAL_PENALTY
             for motif in motifs:
                 scores[k] *= MOTIF_BOOST if motif in self.motifs[name] else MOTIF_PENALTY
+            if not motifs and self.named_motifs[name]:
+                scores[k] *= UNASKED_MOTIF
             stems = self.name_stems[name]
             if stems and stems <= present:
                 scores[k] += NAME_BONUS * len(stems)

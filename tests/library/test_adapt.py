@@ -123,3 +123,27 @@ def test_prune_defines_drops_what_no_layer_uses_any_more() -> None:
     adapted = define_value(program, "dark_r", 90)
     assert [d.name for d in prune_defines(adapted).defines] == ["dark_r", "keep"]
     assert matloom.check(matloom.format(prune_defines(adapted))) == []
+
+
+def test_a_colour_of_something_the_entry_lacks_leaves_the_material_alone() -> None:
+    r = author("aluminium diamond plate floor with a yellow hazard stripe along one edge")
+    assert r.entry == "diamond-plate"
+    rgb = slot_colour(matloom.parse(r.program), "metal")
+    assert rgb is not None and max(rgb) - min(rgb) < 20  # aluminium grey, not yellow
+    assert any(i.startswith("yellow") for i in r.ignored)
+    # a colour of the material itself still applies
+    assert slot_colour(program("yellow diamond plate"), "metal") != slot_colour(
+        default("diamond-plate"), "metal"
+    )
+
+
+def test_plural_colour_words_are_colours() -> None:
+    r = author("woven fabric in greys and browns")
+    assert "greys" not in r.ignored and "browns" not in r.ignored
+    assert any("grey" in a for a in r.adaptations)
+
+
+def test_metallic_finish_sets_the_metallic_slot() -> None:
+    r = author("shiny metallic fabric with a rose gold honeycomb pattern")
+    assert r.entry == "honeycomb-print"
+    assert constant(matloom.parse(r.program), "metal") == 1

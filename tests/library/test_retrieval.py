@@ -120,3 +120,17 @@ def test_rusted_steel_plate_is_plain_steel_with_rust_not_a_patterned_plate() -> 
     # the pattern is still found when it is asked for
     assert author("rusty diamond plate").entry == "diamond-plate"
     assert "plate" in author("steel tread plate").entry
+
+
+def test_an_overlay_word_that_is_the_only_material_names_the_material() -> None:
+    # "snow" and "moss" are overlay words ("snow covered rocks"), but alone they are the material
+    assert author("fresh powder snow").entry == "snow"
+    assert author("green moss").entry == "moss"
+    r = author("snow covered rocks")
+    assert "snowy" in r.overlays
+
+
+def test_an_entry_named_for_a_motif_needs_the_motif_asked_for() -> None:
+    # plain black tiles are not a black-and-white checkerboard
+    assert author("black shiny ceramic floor tiles").entry != "checker-tiles"
+    assert author("black and white checkered ceramic floor tiles").entry == "checker-tiles"
