@@ -205,7 +205,8 @@ def _foreign_colours(req: Request, terms: frozenset[str], idx: Index, entry: Ent
             j += 1
         noun = req.tokens[j] if j < len(req.tokens) else ""
         roleless = m.role is None or (
-            m.role != "grout" and not any(entry.role(s) == m.role for s in entry.colours)
+            m.role not in {"grout", "overlay"}
+            and not any(entry.role(s) == m.role for s in entry.colours)
         )
         foreign = (
             roleless

@@ -28,7 +28,9 @@ _COLOUR_SUFFIX = frozenset({"color", "colour", "colored", "coloured", "tone", "t
 _CONDITION_TONES = frozenset({"faded", "dirty", "dusty", "burnt", "washed", "earthy"})
 #: words that end the forward search for a colour's role noun ("white marble with gold veins")
 _ROLE_STOP = frozenset({"with", "and", "or", "on", "over"})
-_SCALE_SKIP = frozenset({"shirt", "dress", "weight", "weighted"})
+_SCALE_SKIP = frozenset(
+    "shirt dress weight weighted terrain area areas landscape surface surfaces scene map world room space".split()
+)
 #: nouns that say the next words are a colour ("the color of it is silver", "a shade of gold")
 _COLOUR_NOUNS = frozenset({"color", "colour", "colors", "colours", "hue", "shade", "tone"})
 _COPULAS = frozenset({"is", "are", "was", "were", "be"})
