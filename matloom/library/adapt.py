@@ -252,7 +252,10 @@ class Adapter:
             self.out.unused.append(m.words)
         named = [(m.rgb, m.words) for m in mentions]
         if named and (len(named) > 1 or e.category in PATTERNED):
-            self.palette(named, [s for s in primary if s not in taken | explicit])
+            free_primary = [s for s in primary if s not in taken | explicit]
+            if e.category in NATURAL and e.colours:  # the wood of "black and gray lines"
+                free_primary = [s for s in free_primary if s != e.colours[0]]
+            self.palette(named, free_primary)
         explicit |= taken
         self.tones(explicit)
 

@@ -147,3 +147,12 @@ def test_metallic_finish_sets_the_metallic_slot() -> None:
     r = author("shiny metallic fabric with a rose gold honeycomb pattern")
     assert r.entry == "honeycomb-print"
     assert constant(matloom.parse(r.program), "metal") == 1
+
+
+def test_a_role_noun_after_a_colour_list_takes_every_colour_of_the_list() -> None:
+    r = author("spalted wood with black and gray line patterns")
+    assert r.entry == "spalted-wood"
+    p = matloom.parse(r.program)
+    assert slot_colour(p, "line") == (22, 22, 24)
+    # the wood itself keeps its colour: the colours named the lines, not the wood
+    assert slot_colour(p, "wood") == slot_colour(default("spalted-wood"), "wood")
