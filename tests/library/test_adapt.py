@@ -156,3 +156,10 @@ def test_a_role_noun_after_a_colour_list_takes_every_colour_of_the_list() -> Non
     assert slot_colour(p, "line") == (22, 22, 24)
     # the wood itself keeps its colour: the colours named the lines, not the wood
     assert slot_colour(p, "wood") == slot_colour(default("spalted-wood"), "wood")
+
+
+def test_one_named_colour_leaves_the_accent_slots_of_a_patterned_entry() -> None:
+    r = author("handmade paper, off-white, with flecks of dried petals")
+    assert r.entry == "handmade-paper-inclusions"
+    p = matloom.parse(r.program)
+    assert slot_colour(p, "petal") == slot_colour(default("handmade-paper-inclusions"), "petal")
