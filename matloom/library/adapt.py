@@ -255,8 +255,8 @@ class Adapter:
             free_primary = [s for s in primary if s not in taken | explicit]
             if e.category in NATURAL and e.colours:  # the wood of "black and gray lines"
                 free_primary = [s for s in free_primary if s != e.colours[0]]
-            if len(named) == 1:  # one colour names the ground, not the accents (petal flecks)
-                free_primary = [s for s in free_primary if e.role(s) != "accent"]
+            said = {plural_stem(t) for t in self.req.tokens}  # "flecks of dried petals"
+            free_primary = [s for s in free_primary if s.split("_")[0] not in said]
             self.palette(named, free_primary)
         explicit |= taken
         self.tones(explicit)

@@ -328,6 +328,12 @@ def author(
             if snapped is not None:
                 notes.append(f"View {side:g} -> {snapped:g} so that it tiles")
                 side, is_tileable = snapped, True
+            elif not tileable_warnings(make_tileable(resize_view(program, view0))):
+                # no tileable size near the asked one: tiling wins over a size word
+                notes.append(
+                    f"View kept at {view0:g}: the entry tiles only at sizes far from {side:g}"
+                )
+                side, is_tileable = view0, True
         if not is_tileable:
             notes.append("not tileable: " + warnings[0].message.removeprefix("tileable: "))
     program = resize_view(program, side)
