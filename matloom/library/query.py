@@ -325,12 +325,16 @@ class _Reader:
         return nxt == "in" and self.at(j + 2) in _COLOUR_SUFFIX
 
     def role_near(self, start: int, end: int) -> str | None:
-        forward = range(end, min(end + 6, len(self.t)))
+        k = end  # the forward window is 4 words, not counting a list of colours after this one
+        while k < len(self.t) and k < end + 4:
+            if self.t[k] in {"and", "or", ","} and self.colour_word_at(k + 1):
+                end, k = end + 2, k + 2  # "black and gray line patterns": both are the lines'
+            else:
+                k += 1
+        forward = range(end, min(end + 4, len(self.t)))
         for span in (forward, range(start - 1, max(start - 7, -1), -1)):
             for k in span:
                 w = self.t[k]
-                if span is forward and w in {"and", "or", ","} and self.colour_word_at(k + 1):
-                    continue  # "black and gray line patterns": the lines are both colours
                 if w in _CLAUSE_END or w == "," or (span is forward and w in _ROLE_STOP):
                     break
                 if w in self.w.roles:
