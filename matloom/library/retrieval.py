@@ -60,6 +60,9 @@ CONDITION_PENALTY = 0.75
 #: request names materials, entries with none of them (nor their category) rank lower
 MATERIAL_WEIGHT = 1.25
 MATERIAL_PENALTY = 0.5
+#: entries that show some of the request's material nouns but miss one that is no category word
+#: ("grey slate floor tiles": a tile entry that is not slate)
+PART_MATERIAL_PENALTY = 0.75
 #: a motif the request names ("hexagonal", "circles", "camo"): entries showing it rank higher,
 #: the others lower, so the motif wins over incidental words
 MOTIF_BOOST = 1.35
@@ -275,6 +278,8 @@ class Index:
         asked = {m.name for m in req.overlays}
         finish_stems = {self.stem(word) for _, word in req.finishes}
         materials = self.material_words(req)
+        cat_stems = {self.stem(w) for ws in self.category_words.values() for w in ws}
+        specific = [st for st in materials if not st & cat_stems]
         motifs = self.motif_words(req)
         motifs = {m for m in motifs if any(m in self.motifs[n] for n in self.names)}
         for k, name in enumerate(self.names):
@@ -282,6 +287,8 @@ class Index:
             cat_ok = self.categories[name] in hit
             if materials and not cat_ok and not any(st & terms for st in materials):
                 scores[k] *= MATERIAL_PENALTY
+            elif any(not st & terms for st in specific):
+                scores[k] *= PART_MATERIAL_PENALTY  # "slate floor tiles": tiles, but not slate
             for motif in motifs:
                 scores[k] *= MOTIF_BOOST if motif in self.motifs[name] else MOTIF_PENALTY
             if not motifs and self.named_motifs[name]:

@@ -134,3 +134,8 @@ def test_an_entry_named_for_a_motif_needs_the_motif_asked_for() -> None:
     # plain black tiles are not a black-and-white checkerboard
     assert author("black shiny ceramic floor tiles").entry != "checker-tiles"
     assert author("black and white checkered ceramic floor tiles").entry == "checker-tiles"
+
+
+def test_a_named_material_beats_an_entry_that_only_matches_the_category() -> None:
+    # "tiles" is a category word, "slate" a material: a travertine tile entry is not slate
+    assert author("grey slate floor tiles in random sizes with dark grout").entry == "slate"
