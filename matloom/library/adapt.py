@@ -176,7 +176,8 @@ class Adapter:
         for name, amount in absorbed:
             for slot in self.scalar_slots("wear"):
                 old = constant(self.program, slot) or 0.0
-                value = round(max(old, amount), 3)
+                # an amount word below the default lowers it ("slightly corroded copper")
+                value = round(amount if amount < 0.5 else max(old, amount), 3)
                 self.out.program = define_value(self.program, slot, value)
                 self.note(f"{slot} = {value:g} ('{name}' is part of the entry)")
         if self.req.percents:

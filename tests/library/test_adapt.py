@@ -163,3 +163,9 @@ def test_one_named_colour_leaves_the_accent_slots_of_a_patterned_entry() -> None
     assert r.entry == "handmade-paper-inclusions"
     p = matloom.parse(r.program)
     assert slot_colour(p, "petal") == slot_colour(default("handmade-paper-inclusions"), "petal")
+
+
+def test_an_amount_word_lowers_the_wear_of_an_entry_that_shows_the_condition() -> None:
+    slight = constant(program("slightly rusted metal"), "wear")
+    heavy = constant(program("heavily rusted metal"), "wear")
+    assert slight is not None and heavy is not None and slight < 0.5 < heavy
