@@ -29,7 +29,6 @@ from matloom.library.query import ColourMention, Request, plural_stem
 NATURAL = frozenset(
     {"wood", "stone", "masonry", "concrete", "metal", "ground", "leather", "organic", "natural"}
 )
-BASIC = frozenset("red green blue brown yellow orange grey gray purple pink white black".split())
 #: categories whose other colours follow the request's palette even when it names one colour
 PATTERNED = frozenset(
     {"fabric", "carpet", "tiles", "paper", "plastic", "ornament", "ceramic", "glass", "scifi"}
@@ -286,7 +285,7 @@ class Adapter:
     def give(self, m: ColourMention, slot: str, why: str, taken: set[str]) -> None:
         rgb = m.rgb
         default = slot_colour(self.program, slot)
-        if self.entry.category in NATURAL and m.words in BASIC and default is not None:
+        if self.entry.category in NATURAL and m.words in C.BASIC and default is not None:
             if C.saturation(default) >= 0.12 and C.hue_distance(rgb, default) <= 35:
                 rgb = C.mix(rgb, default, 0.45)
         self.out.program = set_colour(self.program, slot, rgb)

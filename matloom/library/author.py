@@ -11,6 +11,7 @@ did not use. The result is deterministic for a given (prompt, seed, pick, tileab
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 
 import matloom
@@ -22,7 +23,7 @@ from matloom.library.data import words
 from matloom.library.entry import Entry
 from matloom.library.index import Library, library
 from matloom.library.overlay import Overlay, compose, prune_defines, view_width
-from matloom.library.query import ColourMention, OverlayMention, Request, read
+from matloom.library.query import COLOUR_NOUNS, ColourMention, OverlayMention, Request, read
 from matloom.library.retrieval import Candidate, Index
 
 MAX_OVERLAYS = 3
@@ -131,33 +132,43 @@ def reseed(program: A.Program, entry: str, seed: int) -> A.Program:
     return map_program(program, fn)
 
 
+def _nearest_tiling(
+    options: Iterable[float], target: float, tolerance: float, tries: int, tiles: Callable
+) -> float | None:
+    """The option nearest ``target`` (within ``tolerance``, relative; at most ``tries`` tried,
+    nearest first) for which ``tiles(option)`` holds, else None."""
+    ranked = sorted(
+        (o for o in options if abs(o / target - 1) <= tolerance),
+        key=lambda o: (abs(o / target - 1), o),
+    )
+    return next((o for o in ranked[:tries] if tiles(o)), None)
+
+
 def _tileable_side(program: A.Program, target: float, view0: float) -> float | None:
     """The View side nearest ``target`` at which ``program`` tiles (None if none close)."""
     candidates = {round(view0 * k / m, 6) for k in range(1, 17) for m in range(1, 9)}
     lo, hi = view0 * VIEW_RANGE[0], view0 * VIEW_RANGE[1]
-    ranked = sorted(
-        (c for c in candidates if lo <= c <= hi), key=lambda c: (abs(c / target - 1), c)
+    return _nearest_tiling(
+        (c for c in candidates if lo <= c <= hi),
+        target,
+        0.35,
+        10,
+        lambda side: not tileable_warnings(make_tileable(resize_view(program, side))),
     )
-    for side in ranked[:10]:
-        if abs(side / target - 1) > 0.35:
-            break
-        if not tileable_warnings(make_tileable(resize_view(program, side))):
-            return side
-    return None
 
 
-def _tileable_scale(program: A.Program, put, scale: float) -> float:  # noqa: ANN001
+def _tileable_scale(program: A.Program, put: Callable, scale: float) -> float:
     """The overlay size factor nearest ``scale`` (within 40 %) at which the composed program
     still tiles (noise frequencies stay whole numbers of periods), else ``scale`` itself."""
-    options = {round(k / n, 4) for n in range(1, 5) for k in range(1, 13)}
-    ranked = sorted(
-        (s for s in options | {scale} if abs(s / scale - 1) <= 0.4 and s != 1.0),
-        key=lambda s: (abs(s / scale - 1), s),
+    options = {round(k / n, 4) for n in range(1, 5) for k in range(1, 13)} | {scale}
+    found = _nearest_tiling(
+        (s for s in options if s != 1.0),
+        scale,
+        0.4,
+        6,
+        lambda s: not tileable_warnings(put(program, s)),
     )
-    for s in ranked[:6]:
-        if not tileable_warnings(put(program, s)):
-            return s
-    return scale
+    return scale if found is None else found
 
 
 def _metal_colours(req: Request, terms: frozenset[str], presets: dict, idx: Index) -> None:
@@ -177,9 +188,8 @@ def _metal_colours(req: Request, terms: frozenset[str], presets: dict, idx: Inde
 
 #: words between a colour and the noun it describes ("yellow-and-black hazard stripe")
 _COLOUR_JOIN = frozenset({"and", "or", "/", "-", ",", "&"})
-_COLOUR_NOUNS = frozenset(
-    "color colour colors colours shade shades tone tones hue hues tint tints low high".split()
-)
+#: nouns after a colour that are no thing of their own ("teal shades", "beige low-pile")
+_NO_THING = COLOUR_NOUNS | {"shades", "tones", "hues", "tint", "tints", "low", "high"}
 
 
 def _foreign_colours(req: Request, terms: frozenset[str], idx: Index, entry: Entry) -> list[str]:
@@ -188,7 +198,7 @@ def _foreign_colours(req: Request, terms: frozenset[str], idx: Index, entry: Ent
     material. A colour keeps its place when its noun is a material, a category word, a role
     noun or one of the entry's own words. Returns the dropped colours' words."""
     w = words()
-    known = w.materials | frozenset().union(*w.category_words.values()) | _COLOUR_NOUNS
+    known = w.materials | frozenset().union(*w.category_words.values()) | _NO_THING
     keep, dropped = [], []
 
     def colourish(k: int) -> bool:

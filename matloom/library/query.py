@@ -32,14 +32,12 @@ _SCALE_SKIP = frozenset(
     "shirt dress weight weighted terrain area areas landscape surface surfaces scene map world room space".split()
 )
 #: nouns that say the next words are a colour ("the color of it is silver", "a shade of gold")
-_COLOUR_NOUNS = frozenset({"color", "colour", "colors", "colours", "hue", "shade", "tone"})
+COLOUR_NOUNS = frozenset({"color", "colour", "colors", "colours", "hue", "shade", "tone"})
 _COPULAS = frozenset({"is", "are", "was", "were", "be"})
 #: words before a tone that soften or strengthen it ("slightly darker brown")
 _INTENSITY = {"slightly": 0.5, "somewhat": 0.6, "bit": 0.5, "very": 1.4, "much": 1.3}
 #: basic colour words a specific colour name may come before ("cornflower blue" is one colour)
-_BASIC = frozenset(
-    "red green blue brown yellow orange grey gray purple pink white black violet".split()
-)
+_BASIC = C.BASIC | {"violet"}
 #: materials a metal colour name before them does not colour ("steel wool", "gold metal")
 _METALS = frozenset(
     "metal metals metallic iron tin zinc titanium aluminium aluminum wool chrome steel".split()
@@ -104,6 +102,9 @@ class Request:
     term_end: int = 0
     #: end of the first sentence (later sentences weigh less in retrieval)
     sentence_end: int = 0
+    #: overlay words that are material nouns when the request names no other material ("fresh
+    #: powder snow", "green moss"): they name the material, not an overlay on another one
+    lone_materials: set[int] = field(default_factory=set)
     negated: set[int] = field(default_factory=set)
     colours: list[ColourMention] = field(default_factory=list)
     finishes: list[tuple[str, str]] = field(default_factory=list)
@@ -177,7 +178,19 @@ class _Reader:
         self.scale()
         self.numbers()
         self.tones()
+        self.lone_materials()
         return self.out
+
+    def is_material(self, word: str) -> bool:
+        """Is ``word`` (or its singular) a material noun ("rocks", "tiles")?"""
+        return word in self.w.materials or plural_stem(word) in self.w.materials
+
+    def lone_materials(self) -> None:
+        used, words = self.out.used, self.out.words_at()
+        overlay = [i for i, w in words if used.get(i) == "overlay" and self.is_material(w)]
+        others = any(self.is_material(w) and used.get(j) != "overlay" for j, w in words)
+        if not others:
+            self.out.lone_materials = set(overlay)
 
     # ------------------------------------------------------------------ negations
     def negations(self) -> None:
@@ -310,17 +323,17 @@ class _Reader:
             return True  # "gold velvet", "silver fabric": a metal's colour on another material
         if prev == "in" and (w in self.w.metal_colours or w not in self.w.materials):
             return True  # "in charcoal and cream", "fish scales in copper"; not "in slate"
-        if prev in _COLOUR_SUFFIX or prev in _COLOUR_NOUNS:
+        if prev in _COLOUR_SUFFIX or prev in COLOUR_NOUNS:
             return True  # "coloured silver", "shade gold"
-        if prev == ":" and self.at(j - 2) in _COLOUR_NOUNS:
+        if prev == ":" and self.at(j - 2) in COLOUR_NOUNS:
             return True  # "colour: gold"
-        if prev == "of" and self.at(j - 2) in _COLOUR_NOUNS:
+        if prev == "of" and self.at(j - 2) in COLOUR_NOUNS:
             return True  # "a shade of gold"
         if prev in _COPULAS:  # "the color of it is silver"
             for k in range(j - 2, max(j - 8, -1), -1):
                 if self.at(k) in _CLAUSE_END or self.at(k) == ",":
                     break
-                if self.at(k) in _COLOUR_NOUNS:
+                if self.at(k) in COLOUR_NOUNS:
                     return True
         return nxt == "in" and self.at(j + 2) in _COLOUR_SUFFIX
 

@@ -29,7 +29,7 @@ from rank_bm25 import BM25Okapi
 
 from matloom.library.data import Words
 from matloom.library.entry import Entry
-from matloom.library.query import Request, plural_stem
+from matloom.library.query import Request
 
 WEIGHTS = {
     "plain": 1.0,
@@ -100,6 +100,7 @@ class Index:
         }
         self.names: list[str] = []
         self.category_words = words.category_words
+        self.category_stems = {self.stem(w) for ws in words.category_words.values() for w in ws}
         self.defaults = words.defaults
         self.categories: dict[str, str] = {}
         self.absorbs: dict[str, frozenset[str]] = {}
@@ -157,25 +158,10 @@ class Index:
     def stem(self, word: str) -> str:
         return self.stemmer.stemWord(word)
 
-    def lone_material(self, req: Request, i: int) -> bool:
-        """Is token ``i`` an overlay word that is the request's only material noun ("fresh
-        powder snow", "green moss")? Then it names the material, not an overlay on another."""
-        if req.used.get(i) != "overlay" or not self.is_material(req.tokens[i]):
-            return False
-        return not any(
-            self.is_material(w) and req.used.get(j) != "overlay"
-            for j, w in req.words_at()
-            if j != i
-        )
-
-    def is_material(self, word: str) -> bool:
-        """Is ``word`` (or its singular) a material noun ("rocks", "tiles")?"""
-        return word in self.materials or plural_stem(word) in self.materials
-
     def rule(self, req: Request, i: int) -> str:
         """The weight rule of request token ``i`` (see ``WEIGHTS``)."""
         rule = req.used.get(i)
-        if rule is not None and not self.lone_material(req, i):
+        if rule is not None and i not in req.lone_materials:
             return rule
         if req.tokens[i] in self.form_nouns:
             return "form"
@@ -190,7 +176,7 @@ class Index:
         carry it (its stem and its synonyms' stems)."""
         out: list[set[str]] = []
         for i, word in req.words_at():
-            if word in self.materials and (i not in req.used or self.lone_material(req, i)):
+            if word in self.materials and (i not in req.used or i in req.lone_materials):
                 key = (self.stem(word),)
                 out.append({key[0], *self.synonyms.get(key, ())})
         return out
@@ -278,8 +264,7 @@ class Index:
         asked = {m.name for m in req.overlays}
         finish_stems = {self.stem(word) for _, word in req.finishes}
         materials = self.material_words(req)
-        cat_stems = {self.stem(w) for ws in self.category_words.values() for w in ws}
-        specific = [st for st in materials if not st & cat_stems]
+        specific = [st for st in materials if not st & self.category_stems]
         motifs = self.motif_words(req)
         motifs = {m for m in motifs if any(m in self.motifs[n] for n in self.names)}
         for k, name in enumerate(self.names):
