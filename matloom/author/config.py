@@ -20,9 +20,11 @@ and can be named in a ``matloom.toml`` file::
     images = false              # text-only: the critic gets code and statistics, no render
     extra_body = { reasoning = { enabled = true } }
 
-The file is looked up at ``$MATLOOM_CONFIG``, ``./matloom.toml``, then
-``~/.config/matloom/matloom.toml``. It can also name settings presets (``[settings.NAME]``,
-``[matloom] settings``; :mod:`matloom.author.settings_presets`).
+The file is looked up at ``$MATLOOM_CONFIG``, then ``~/.config/matloom/matloom.toml``: files
+the user chose. A ``matloom.toml`` in the current folder may come from whoever made the folder
+(a cloned repository, an unpacked archive), and a profile names the server that receives an API
+key, so it is read only when named with ``--config``. It can also name settings presets
+(``[settings.NAME]``, ``[matloom] settings``; :mod:`matloom.author.settings_presets`).
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 #: The critic's configurable inputs (paper Sec. 4, Stage II).
 CRITIC_SIGNALS: tuple[str, ...] = ("render", "stats", "code")
@@ -47,6 +49,14 @@ CRITIC_VIEWS: dict[str, tuple[str, ...]] = {
     "both": ("flat", "lit"),
 }
 
+
+#: Largest image side of any size setting: the engine's ``Limits.max_resolution`` (docs/limits.md;
+#: a test keeps the two equal), checked when the settings are made, before any model request.
+MAX_SIZE = 8192
+#: Key variables read when a model's settings name none, in order.
+DEFAULT_KEY_VARIABLES: tuple[str, ...] = ("MATLOOM_API_KEY", "OPENAI_API_KEY")
+#: The server the ``openai`` client talks to without a base URL (``$OPENAI_BASE_URL`` overrides).
+DEFAULT_BASE_URL = "https://api.openai.com/v1"
 
 #: Old names of ``AuthorConfig.start`` values, read as the new ones.
 START_ALIASES: dict[str, str] = {"builtin": "library"}
@@ -64,17 +74,19 @@ class ModelSettings(BaseModel):
     provider: str = "openai"
     model: str
     base_url: str | None = None
-    #: Environment variable holding the key; the default order is MATLOOM_API_KEY, OPENAI_API_KEY.
+    #: Environment variable holding the key (then the only one read); unset: MATLOOM_API_KEY,
+    #: else OPENAI_API_KEY.
     api_key_env: str | None = None
-    temperature: float | None = None
+    temperature: float | None = Field(None, allow_inf_nan=False)
     reasoning_effort: str | None = None
     extra_body: dict[str, Any] | None = None
-    max_completion_tokens: int | None = 65536
-    timeout_s: float = 600.0
+    max_completion_tokens: int | None = Field(65536, ge=1)
+    #: Seconds one request may take (checked here, so a bad value fails before any request).
+    timeout_s: float = Field(600.0, gt=0, le=86_400, allow_inf_nan=False)
     #: Attempts after the first on 429 / 5xx / timeouts / connection errors.
-    max_retries: int = 5
+    max_retries: int = Field(5, ge=0, le=100)
     #: First back-off delay; attempt r waits backoff_s * 1.5**r plus up to backoff_s of jitter.
-    backoff_s: float = 1.0
+    backoff_s: float = Field(1.0, ge=0, le=3_600, allow_inf_nan=False)
     #: Whether the model accepts image input; ``None`` guesses from the model name.
     images: bool | None = None
 
@@ -120,7 +132,7 @@ class AuthorConfig(BaseModel):
     #: ``blender/<layout>.png`` of the run folder (empty: none; see docs/blender.md).
     blender_layouts: tuple[str, ...] = ()
     #: Size in pixels of those Blender renders.
-    blender_size: int = 512
+    blender_size: int = Field(512, ge=16, le=4096)
     #: The critic's statistics: the paper's 28 statistics on a ``stats_grid`` grid, or the
     #: ``visible`` statistics computed at the critique resolution.
     critic_stats: Literal["paper", "visible"] = "paper"
@@ -138,11 +150,11 @@ class AuthorConfig(BaseModel):
     scorer: str = "auto"
     scorer_weights: str | None = None
     variants: int = Field(1000, ge=0)
-    critique_size: int = Field(512, ge=8)
-    select_size: int = Field(512, ge=8)
-    sweep_size: int = Field(256, ge=8)
-    stats_grid: int = Field(128, ge=8)
-    export_size: int = Field(512, ge=8)
+    critique_size: int = Field(512, ge=8, le=MAX_SIZE)
+    select_size: int = Field(512, ge=8, le=MAX_SIZE)
+    sweep_size: int = Field(256, ge=8, le=MAX_SIZE)
+    stats_grid: int = Field(128, ge=8, le=MAX_SIZE)
+    export_size: int = Field(512, ge=8, le=MAX_SIZE)
     sweep_jobs: int = Field(0, ge=0)
     seed: int = 0
     #: Make the final program tileable (``View(..., tileable=True)``) before it is exported,
@@ -196,30 +208,57 @@ class AuthorConfig(BaseModel):
 
 
 def config_file_candidates() -> list[Path]:
-    """Where ``matloom.toml`` is looked for, in order."""
+    """Where ``matloom.toml`` is looked for without ``--config``, in order: only places the user
+    chose (the current folder's file is not one; see the module docstring)."""
     paths = []
     env = os.environ.get("MATLOOM_CONFIG")
     if env:
         paths.append(Path(env))
-    paths.append(Path.cwd() / "matloom.toml")
     paths.append(Path.home() / ".config" / "matloom" / "matloom.toml")
     return paths
 
 
+def find_config_file(path: str | os.PathLike[str] | None = None) -> Path | None:
+    """The config file read: ``path`` (which must exist), else the first existing candidate."""
+    if path is not None:
+        if not Path(path).exists():
+            raise ConfigError(f"config file {path} does not exist")
+        return Path(path)
+    return next((p for p in config_file_candidates() if p.exists()), None)
+
+
+def ignored_local_config(used: Path | None) -> Path | None:
+    """``./matloom.toml`` when it exists and is not the file read (it needs ``--config``)."""
+    local = Path("matloom.toml")
+    if not local.is_file():
+        return None
+    if used is not None and used.exists() and used.resolve() == local.resolve():
+        return None
+    return local
+
+
 def load_config_file(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
     """The parsed TOML of ``path`` (or of the first existing default location); ``{}`` if none."""
-    if path is not None:
-        candidates = [Path(path)]
-        if not candidates[0].exists():
-            raise ConfigError(f"config file {path} does not exist")
-    else:
-        candidates = [p for p in config_file_candidates() if p.exists()]
-    if not candidates:
+    found = find_config_file(path)
+    if found is None:
         return {}
     try:
-        return tomllib.loads(candidates[0].read_text(encoding="utf-8"))
-    except (OSError, tomllib.TOMLDecodeError) as e:
-        raise ConfigError(f"cannot read {candidates[0]}: {e}") from None
+        return tomllib.loads(found.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
+        raise ConfigError(f"cannot read {found}: {one_line(e)}") from None
+
+
+def one_line(err: Exception) -> str:
+    """A one-line message: a pydantic error as ``field: problem (got value)`` items."""
+    if isinstance(err, ValidationError):
+        parts = []
+        for item in err.errors():
+            where = ".".join(str(x) for x in item["loc"]) or "value"
+            got = repr(item.get("input"))
+            got = got if len(got) <= 60 else got[:57] + "..."
+            parts.append(f"{where}: {item['msg']} (got {got})")
+        return "; ".join(parts)
+    return " ".join(str(err).split())
 
 
 def profile_names(data: dict[str, Any]) -> list[str]:
@@ -227,23 +266,30 @@ def profile_names(data: dict[str, Any]) -> list[str]:
     return sorted(data.get("profiles", {}))
 
 
+def default_profile_name(data: dict[str, Any]) -> str | None:
+    """The profile a config file chooses by default (``[matloom] profile``), if any."""
+    return data.get("matloom", {}).get("profile")
+
+
 def resolve_profile(data: dict[str, Any], name: str | None) -> ModelSettings | None:
     """The :class:`ModelSettings` of profile ``name`` (or of the file's default profile)."""
-    name = name or data.get("matloom", {}).get("profile")
+    name = name or default_profile_name(data)
     if name is None:
         return None
     profiles = data.get("profiles", {})
     if name not in profiles:
         known = ", ".join(profile_names(data)) or "none defined"
         raise ConfigError(f"unknown model profile {name!r} (profiles: {known})")
+    if not isinstance(profiles[name], dict):
+        raise ConfigError(f"[profiles.{name}] must be a table of model settings")
     try:
         return ModelSettings(**profiles[name])
     except ValueError as e:
-        raise ConfigError(f"profile {name!r} is invalid: {e}") from None
+        raise ConfigError(f"profile {name!r} is invalid: {one_line(e)}") from None
 
 
 def with_overrides(settings: ModelSettings | None, **overrides: Any) -> ModelSettings | None:
-    """``settings`` with the non-None ``overrides`` applied (a new frozen object).
+    """``settings`` with the non-None ``overrides`` applied (a new, validated frozen object).
 
     A ``model`` override with no base settings creates fresh settings for that model.
     """
@@ -252,15 +298,45 @@ def with_overrides(settings: ModelSettings | None, **overrides: Any) -> ModelSet
         if "model" not in given:
             return None
         return ModelSettings(**given)
-    return settings.model_copy(update=given) if given else settings
+    if not given:
+        return settings
+    return ModelSettings.model_validate({**settings.model_dump(), **given})
+
+
+def key_variables(settings: ModelSettings) -> tuple[str, ...]:
+    """The variables the API key is read from: the profile's ``api_key_env`` alone when it
+    names one (another provider's key must not go to its server), else the defaults."""
+    return (settings.api_key_env,) if settings.api_key_env else DEFAULT_KEY_VARIABLES
+
+
+def api_key_source(settings: ModelSettings) -> str | None:
+    """The name of the variable the API key is taken from (None when all are empty)."""
+    return next((name for name in key_variables(settings) if os.environ.get(name)), None)
 
 
 def api_key_for(settings: ModelSettings) -> str | None:
-    """The API key: the profile's variable, else MATLOOM_API_KEY, else OPENAI_API_KEY."""
-    names = [settings.api_key_env] if settings.api_key_env else []
-    names += ["MATLOOM_API_KEY", "OPENAI_API_KEY"]
-    for name in names:
-        value = os.environ.get(name)
-        if value:
-            return value
-    return None
+    """The API key: the value of :func:`api_key_source` (see :func:`key_variables`)."""
+    name = api_key_source(settings)
+    return os.environ[name] if name else None
+
+
+def server_of(settings: ModelSettings) -> str:
+    """The server requests go to, as the ``openai`` client picks it, credentials redacted."""
+    from matloom.author.redact import redact_url
+
+    if settings.provider != "openai":
+        return f"the {settings.provider!r} provider (in-process)"
+    url = settings.base_url or os.environ.get("OPENAI_BASE_URL") or DEFAULT_BASE_URL
+    return redact_url(url)
+
+
+def describe_access(role: str, settings: ModelSettings) -> str:
+    """One line naming the model, the server and the key variable a role's requests use."""
+    source = api_key_source(settings)
+    if settings.provider != "openai":
+        key = "no API key"
+    elif source:
+        key = f"API key from ${source}"
+    else:
+        key = "no API key ($" + ", $".join(key_variables(settings)) + " unset)"
+    return f"{role} {settings.model} at {server_of(settings)}, {key}"

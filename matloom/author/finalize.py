@@ -10,6 +10,8 @@ The run's own files (``record.json``, ``renders/``) stay beside the batch.
 
 from __future__ import annotations
 
+import re
+import unicodedata
 from typing import TYPE_CHECKING
 
 from matloom.author.records import RecordStore
@@ -20,6 +22,8 @@ if TYPE_CHECKING:
 
 #: The batch group of the final material (the group ``matloom render`` writes).
 EXPORT_GROUP = "render"
+#: Longest material name made from a prompt (whole words are kept).
+NAME_CHARS = 48
 
 
 def evaluate_for_export(program: str, size: int) -> MaterialMaps:
@@ -31,12 +35,33 @@ def evaluate_for_export(program: str, size: int) -> MaterialMaps:
     return evaluate(program, size, size, usage=Usage(preview_tile=1))
 
 
+def material_name(text: str) -> str:
+    """A material name from a prompt or a library entry name: its ASCII letters and digits,
+    lower case, words joined by ``_`` (``"Red brick, wet"`` -> ``red_brick_wet``), at most
+    :data:`NAME_CHARS` characters; ``material`` when nothing is left."""
+    ascii_text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode("ascii")
+    words = re.findall(r"[a-z0-9]+", ascii_text.lower())
+    name = ""
+    for word in words:
+        longer = f"{name}_{word}" if name else word
+        if len(longer) > NAME_CHARS:
+            break
+        name = longer
+    return name or (words[0][:NAME_CHARS] if words else "material")
+
+
 def export_final(
-    store: RecordStore, program: str, size: int, maps: MaterialMaps | None = None
+    store: RecordStore,
+    program: str,
+    size: int,
+    maps: MaterialMaps | None = None,
+    *,
+    name: str = "material",
 ) -> dict[str, str]:
     """Install the final ``program`` (evaluated at ``size``, unless its ``maps`` at that size
     are given) into the run folder; return the written files by role, relative to the folder
-    (``program``, ``preview``, ``manifest`` and one per map)."""
+    (``program``, ``preview``, ``manifest`` and one per map). ``name`` is the material's name
+    (``name`` in material.json, the prefix of engine export files)."""
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
     from matloom.io.png import save_png
@@ -57,7 +82,9 @@ def export_final(
             final_dir=out.path,
             program_text=program,
             extra_meta={"source": "matloom generate", "prompt": store.record.prompt},
+            name=name,
         )
+        result.manifest["name"] = name
         atomic_write_bytes(staging / "material.mat", text.encode("utf-8"))
         save_png(staging / "preview.png", preview)
         write_manifest(result, staging)

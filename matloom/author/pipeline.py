@@ -9,6 +9,7 @@ through a callback of :class:`ProgressEvent`.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -28,8 +29,11 @@ __all__ = [
     "AuthoringError",
     "Progress",
     "ProgressEvent",
+    "RunRequestError",
     "RunResult",
     "author_material",
+    "check_prompt",
+    "check_sizes",
     "resolve_scorer",
 ]
 
@@ -40,6 +44,11 @@ class AuthoringError(RuntimeError):
     def __init__(self, message: str, folder: Path) -> None:
         super().__init__(message)
         self.folder = folder
+
+
+class RunRequestError(AuthoringError):
+    """The run cannot start as asked (a bad prompt or setting, a resume that does not match
+    the record): nothing was requested or written."""
 
 
 @dataclass(frozen=True)
@@ -63,6 +72,7 @@ class RunResult:
             "author": self.record.author,
             "program": final.program if final else None,
             "score": final.score if final else None,
+            "name": self.record.material_name,
             "files": final.files if final else {},
             "warnings": list(self.record.warnings),
             "durations": self.record.durations.model_dump(),
@@ -87,26 +97,65 @@ def resolve_scorer(config: AuthorConfig) -> tuple[TextImageScorer | None, str | 
 # ---------------------------------------------------------------------- entry points
 
 
-def _open_store(
-    prompt: str | None, config: AuthorConfig | None, folder: Path, resume: bool
+def check_prompt(prompt: str) -> None:
+    """ValueError unless ``prompt`` is text that can be stored (no undecodable bytes)."""
+    try:
+        prompt.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(
+            "the prompt is not valid UTF-8 text (it holds bytes that do not decode); "
+            "give it in UTF-8"
+        ) from None
+
+
+def check_sizes(config: AuthorConfig) -> None:
+    """The documented limits (size, memory budget) that every render of the run meets whatever
+    the program: checked before the first request, so the paid rounds cannot end in a refused
+    export. Raises :class:`matloom.engine.limits.LimitError`."""
+    from matloom.engine.limits import Usage, check_request
+    from matloom.lang.api import parse
+
+    smallest = parse("Material(Layer(1))")
+    sizes = {
+        "--export-size": config.export_size,
+        "--critique-size": config.critique_size,
+        "--select-size": config.select_size,
+        "--sweep-size": config.sweep_size,
+        "--stats-grid": config.stats_grid,
+    }
+    for flag, size in sizes.items():
+        try:
+            check_request(smallest, size, size, usage=Usage(preview_tile=1))
+        except ValueError as err:
+            raise type(err)(f"{flag} {size}: {err}") from None
+
+
+def _open_store(  # noqa: PLR0913 - author_material's arguments, passed through
+    prompt: str | None,
+    config: AuthorConfig | None,
+    folder: Path,
+    resume: bool,
+    trust_record: bool,
 ) -> RecordStore:
+    """The run's record: a new one, or (``resume``) the folder's, checked against the prompt
+    and settings given, before anything is requested or written."""
     import matloom
+
+    def refuse(message: str) -> RunRequestError:
+        return RunRequestError(message, folder)
 
     if (folder / RECORD_NAME).exists():
         if not resume:
-            raise AuthoringError(
-                f"{folder} already holds a run; pass --resume to continue it or choose another -o",
-                folder,
+            raise refuse(
+                f"{folder} already holds a run; pass --resume to continue it or choose another -o"
             )
-        store = RecordStore.load(folder)
-        if config is not None:
-            store.record.settings = config
+        store = _load_for_resume(folder, prompt, config, trust_record, refuse)
         store.record.status = "running"
         store.record.error = None
         discard_unfinished_turns(store)
         return store
     if prompt is None:
-        raise AuthoringError(f"nothing to resume in {folder} (no {RECORD_NAME})", folder)
+        raise refuse(f"nothing to resume in {folder} (no {RECORD_NAME})")
     config = config or AuthorConfig()
     record = RunRecord(
         matloom_version=matloom.__version__,
@@ -115,6 +164,50 @@ def _open_store(
         author="llm" if config.generator is not None else "library",
     )
     return RecordStore(folder, record)
+
+
+def _load_for_resume(
+    folder: Path,
+    prompt: str | None,
+    config: AuthorConfig | None,
+    trust_record: bool,
+    refuse: Callable[[str], RunRequestError],
+) -> RecordStore:
+    """The folder's record, refused when the prompt or settings differ from it, or when it
+    would send requests where the user did not say (:mod:`matloom.author.resume`)."""
+    from pydantic import ValidationError
+
+    from matloom.author.config import ConfigError, one_line
+    from matloom.author.resume import check_recorded_access, differences
+
+    try:
+        store = RecordStore.load(folder)
+    except (OSError, ValueError) as err:  # ValidationError and JSONDecodeError included
+        reason = one_line(err) if isinstance(err, ValidationError) else str(err)
+        message = f"cannot resume: {folder / RECORD_NAME} is not a valid run record ({reason})"
+        raise refuse(message) from None
+    recorded = store.record
+    if prompt is not None and prompt != recorded.prompt:
+        raise refuse(
+            f"--resume: {folder} holds the run for {recorded.prompt!r}, not {prompt!r}; "
+            "resume it without a prompt, or choose another -o for the new prompt"
+        )
+    try:
+        if config is None:
+            check_recorded_access(recorded.settings, trust_record)
+            check_sizes(recorded.settings)
+        else:
+            changed = differences(recorded.settings, config)
+            if changed:
+                raise refuse(
+                    f"--resume: {folder} was run with other settings ("
+                    + "; ".join(changed)
+                    + "); resume it without them, or choose another -o for a new run"
+                )
+            store.record.settings = config
+    except (ConfigError, ValueError) as err:  # RunRequestError is neither: it passes
+        raise refuse(str(err)) from None
+    return store
 
 
 def _models(
@@ -137,26 +230,36 @@ def author_material(
     generator: ChatModel | None = None,
     critic: ChatModel | None = None,
     scorer: TextImageScorer | None = None,
+    trust_record: bool = False,
 ) -> RunResult:
     """Author one material into the run folder ``out_dir`` and return the finished record.
 
-    ``config`` defaults to :class:`AuthorConfig()` (or, on resume, to the recorded settings).
-    Models and the scorer are built from the config unless given. Raises
-    :class:`AuthoringError` on failure, after saving the record. The run folder is locked
-    while the run lasts, and files in it that MatLoom did not write are never replaced
-    (:class:`matloom.io.outdir.OutputError`).
+    ``config`` defaults to :class:`AuthorConfig()` (or, on resume, to the recorded settings,
+    whose model servers and key variables are used only with ``trust_record``). On resume a
+    ``prompt`` or ``config`` that differs from the record is refused. Models and the scorer are
+    built from the config unless given. Raises :class:`RunRequestError` before anything is
+    done when the run cannot start as asked, and :class:`AuthoringError` on failure, after
+    saving the record. The run folder is locked while the run lasts, and files in it that
+    MatLoom did not write are never replaced (:class:`matloom.io.outdir.OutputError`).
     """
+    try:  # before the folder is made or locked
+        if prompt is not None:
+            check_prompt(prompt)
+        if config is not None:
+            check_sizes(config)
+    except ValueError as err:
+        raise RunRequestError(str(err), Path(out_dir)) from None
     with OutputFolder(out_dir) as out:
+        folder = Path(out.path)
+        store = _open_store(prompt, config, folder, resume, trust_record)
         return _author_locked(
-            prompt, out, config, resume, progress, generator=generator, critic=critic, scorer=scorer
+            store, out, progress, generator=generator, critic=critic, scorer=scorer
         )
 
 
-def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed through
-    prompt: str | None,
+def _author_locked(
+    store: RecordStore,
     out: OutputFolder,
-    config: AuthorConfig | None,
-    resume: bool,
     progress: Progress | None,
     *,
     generator: ChatModel | None,
@@ -164,7 +267,6 @@ def _author_locked(  # noqa: PLR0913 - author_material's arguments, passed throu
     scorer: TextImageScorer | None,
 ) -> RunResult:
     folder = Path(out.path)
-    store = _open_store(prompt, config, folder, resume)
     store.attach(out)
     record = store.record
     session_start = time.perf_counter()

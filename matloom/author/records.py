@@ -19,7 +19,7 @@ from typing import Any, Literal
 from pydantic import AliasChoices, BaseModel, ConfigDict, Field
 
 from matloom.author.config import AuthorConfig
-from matloom.author.redact import Redactor
+from matloom.author.redact import Redactor, redact_settings
 from matloom.io.atomic import atomic_write_bytes
 from matloom.io.outdir import OutputFolder
 
@@ -56,10 +56,10 @@ class AttemptRecord(_Model):
 
     attempt: int
     reply: str
-    outcome: Literal["accepted", "no_program", "parse_error", "too_large"]
+    outcome: Literal["accepted", "no_program", "parse_error", "too_large", "bad_reply"]
     diagnostics: list[dict[str, Any]] = Field(default_factory=list)
     #: Why a reply was refused unread (``too_large``: over the reply-size cap; the reply above
-    #: is then only its start).
+    #: is then only its start; ``bad_reply``: no usable reply came, e.g. a malformed body).
     error: str | None = None
     seconds: float
     model: str
@@ -244,6 +244,9 @@ class RunRecord(_Model):
     final: FinalRecord | None = None
     #: Things the user should know about the result (the CLI prints them on stderr).
     warnings: list[str] = Field(default_factory=list)
+    #: The material's name (``name`` in material.json, for the file names of engine exports):
+    #: the library entry when the library authored it offline, else a slug of the prompt.
+    material_name: str | None = None
     blender: BlenderRecord | None = None
     durations: Durations = Field(default_factory=Durations)
     sessions: list[str] = Field(default_factory=list)
@@ -285,7 +288,8 @@ class RecordStore:
     def save(self) -> None:
         """Write ``record.json`` atomically (temp file + rename), credentials redacted."""
         self.record.updated = utc_now()
-        text = self.redactor().json_text(self.record.model_dump_json(indent=2) + "\n")
+        stored = self.record.model_copy(update={"settings": redact_settings(self.record.settings)})
+        text = self.redactor().json_text(stored.model_dump_json(indent=2) + "\n")
         self._write(RECORD_NAME, text.encode("utf-8"))
 
     def write_file(self, relative: str, data: bytes) -> str:

@@ -12,6 +12,11 @@ query string (``?key=...``). :class:`Redactor` replaces them:
 
 The record, text artefacts, model error messages and the CLI's error output all go through it.
 A resumed run whose recorded base URL was redacted needs ``--base-url`` again.
+
+``extra_body`` (``--extra-body``, a profile's table) is merged into every request and can carry
+tokens, so it is treated like the key: ``record.json`` keeps its shape with every string value
+replaced (:func:`redact_extra_body`), and its strings of :data:`EXTRA_BODY_SECRET_CHARS` or more are redacted wherever they appear.
+A resumed run that had string values there needs ``--extra-body`` (or ``--profile``) again.
 """
 
 from __future__ import annotations
@@ -31,6 +36,9 @@ REDACTED = "[REDACTED]"
 URL_REDACTED = "REDACTED"
 #: Secrets shorter than this are replaced only as part of their URL, not in free text.
 MIN_SECRET_CHARS = 8
+#: ``extra_body`` strings replaced in free text: from this length (a token is longer; shorter
+#: ones are ordinary settings like "high", whose replacement could break a program's text).
+EXTRA_BODY_SECRET_CHARS = 16
 
 
 def redact_url(url: str) -> str:
@@ -72,9 +80,53 @@ def url_secrets(url: str) -> list[str]:
     return [s for raw in found if raw for s in {raw, unquote(raw)}]
 
 
+def _strings(value: Any) -> list[str]:
+    """Every string value inside a JSON-like value (dict keys excluded)."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, dict):
+        return [s for v in value.values() for s in _strings(v)]
+    if isinstance(value, list | tuple):
+        return [s for v in value for s in _strings(v)]
+    return []
+
+
+def redact_extra_body(body: dict[str, Any] | None) -> dict[str, Any] | None:
+    """``body`` with every string value (at any depth) replaced by :data:`REDACTED`."""
+
+    def clean(value: Any) -> Any:
+        if isinstance(value, str):
+            return REDACTED
+        if isinstance(value, dict):
+            return {k: clean(v) for k, v in value.items()}
+        if isinstance(value, list | tuple):
+            return [clean(v) for v in value]
+        return value
+
+    return None if body is None else clean(body)
+
+
+def has_redacted_values(body: dict[str, Any] | None) -> bool:
+    """True when ``body`` holds a value :func:`redact_extra_body` replaced."""
+    return REDACTED in _strings(body)
+
+
+def redact_settings(config: AuthorConfig) -> AuthorConfig:
+    """``config`` as ``record.json`` stores it: the models' ``extra_body`` redacted."""
+    update = {
+        role: settings.model_copy(update={"extra_body": redact_extra_body(settings.extra_body)})
+        for role in ("generator", "critic")
+        if (settings := getattr(config, role)) is not None and settings.extra_body
+    }
+    return config.model_copy(update=update) if update else config
+
+
 def _settings_secrets(settings: ModelSettings) -> list[str]:
     key = api_key_for(settings)
-    return ([key] if key else []) + (url_secrets(settings.base_url) if settings.base_url else [])
+    found = [key] if key else []
+    found += url_secrets(settings.base_url) if settings.base_url else []
+    extra = _strings(settings.extra_body)
+    return found + [s for s in extra if len(s) >= EXTRA_BODY_SECRET_CHARS and s != REDACTED]
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from matloom.author.finalize import export_final, tileable_text
+from matloom.author.finalize import export_final, material_name, tileable_text
 from matloom.author.llm.base import ChatModel, ImageInput
 from matloom.author.prompts.revision import (
     canonical_assistant_turn,
@@ -366,7 +366,10 @@ class Run:
         self.notify("export", "writing material.mat, preview.png, the maps and material.json")
         maps = self._evaluated.get(final.program)  # the finite check's maps: not evaluated twice
         self._evaluated.clear()
-        final.files = export_final(self.store, final.program, self.config.export_size, maps)
+        record.material_name = record.material_name or material_name(record.prompt)
+        final.files = export_final(
+            self.store, final.program, self.config.export_size, maps, name=record.material_name
+        )
         record.final = final
         record.durations.export = time.perf_counter() - start
         self.store.save()
@@ -444,5 +447,7 @@ def append_library_program(run: Run) -> ProgramRecord:
     )
     run.record.programs.append(program)
     run.record.library_explanation = result.explanation
+    if run.record.offline:  # the library's program is the result: the entry names it
+        run.record.material_name = material_name(result.entry)
     run.record.durations.generation.append(time.perf_counter() - start)
     return program

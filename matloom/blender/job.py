@@ -13,19 +13,21 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from matloom.blender.layouts import COMMON, LAYOUTS, camera_for_view, layout_json
+from matloom.blender.listed import UnlistedFileError, listed_file
 from matloom.blender.packed import PackedTextureError, packed_texture
+from matloom.blender.tempdirs import TempDir
 from matloom.io.atomic import atomic_write_bytes
 
 JOB_FORMAT = "matloom-blender-job"
 JOB_VERSION = 1
 MANIFEST = "material.json"
+#: What ``--save-material-only`` writes (the material alone, marked as an asset).
+MATERIAL_BLEND = "material.blend"
 
 #: Principled BSDF input for each scalar map (the reference's wiring).
 SCALAR_INPUTS: dict[str, str] = {
@@ -63,12 +65,12 @@ class Source:
     path: str
     maps_dir: Path
     manifest: dict[str, Any]
-    temp_dir: Path | None = None
+    temp_dir: TempDir | None = None
 
     def cleanup(self) -> None:
         """Remove the temporary folder this source rendered into (only that one)."""
         if self.temp_dir is not None:
-            shutil.rmtree(self.temp_dir, ignore_errors=True)
+            self.temp_dir.remove()
             self.temp_dir = None
 
 
@@ -97,8 +99,16 @@ class RenderOptions:
                 f"--save {self.save!r}: give a file name ending in .blend (no folders); it is "
                 "written into the output folder"
             )
+        # compared without case: on macOS and Windows the two names are one file too
+        if self.save_material_only and (self.save or "").lower() == MATERIAL_BLEND.lower():
+            raise BlenderJobError(
+                f"--save {self.save} and --save-material-only would both write "
+                f"{MATERIAL_BLEND}: give --save another name"
+            )
 
 
+#: A real manifest is tens of kilobytes; a huge one is not read into memory.
+_MANIFEST_MAX_BYTES = 50_000_000
 _BLEND_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*\.blend$")
 _NAME = re.compile(r"[^A-Za-z0-9_-]+")
 
@@ -117,12 +127,18 @@ def material_name(path: str) -> str:
 def read_manifest(folder: Path) -> dict[str, Any]:
     """The ``material.json`` of an exported folder, checked; :class:`BlenderJobError` if not."""
     manifest_path = folder / MANIFEST
+    if manifest_path.is_symlink():  # never read a manifest from outside the folder
+        raise BlenderJobError(
+            f"{manifest_path} is a symlink; MatLoom reads only files inside the folder"
+        )
     if not manifest_path.is_file():
         raise BlenderJobError(
             f"{folder} has no {MANIFEST}: not a complete folder exported by `matloom render` "
             "(export one with `matloom render PROGRAM -o DIR`, or pass the program file)"
         )
     try:
+        if manifest_path.stat().st_size > _MANIFEST_MAX_BYTES:
+            raise ValueError(f"larger than {_MANIFEST_MAX_BYTES // 1_000_000} MB")
         data = json.loads(manifest_path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as err:
         raise BlenderJobError(f"cannot read {manifest_path}: {err}") from None
@@ -134,10 +150,17 @@ def read_manifest(folder: Path) -> dict[str, Any]:
 
 
 def check_source(path: str) -> None:
-    """Fail early (one line) for a missing path or a folder that is no export."""
+    """Fail early (one line) for a missing path, a folder that is no export, or one whose
+    manifest names a file Blender may not read (:mod:`matloom.blender.listed`)."""
     target = Path(path)
     if target.is_dir():
-        read_manifest(target)
+        folder = target.absolute()
+        manifest = read_manifest(folder)
+        material_maps(manifest, folder)
+        try:
+            packed_texture(manifest, folder)
+        except PackedTextureError as err:
+            raise BlenderJobError(str(err)) from None
     elif not target.is_file():
         raise BlenderJobError(f"{path}: no such program file or folder")
 
@@ -153,13 +176,13 @@ def load_source(
         return Source(name, path, folder, read_manifest(folder))
     if not target.is_file():
         raise BlenderJobError(f"{path}: no such program file or folder")
-    temp = Path(tempfile.mkdtemp(prefix="matloom-blender-"))
+    temp = TempDir()  # marked and locked: a killed run's folder is removed by the next run
     try:
-        _render_program(target, temp / "maps", size, unit_m, program_seed, name)
-        folder = temp / "maps"
+        folder = temp.path / "maps"
+        _render_program(target, folder, size, unit_m, program_seed, name)
         return Source(name, path, folder, read_manifest(folder), temp)
     except BaseException:
-        shutil.rmtree(temp, ignore_errors=True)
+        temp.remove()
         raise
 
 
@@ -243,10 +266,10 @@ def material_maps(manifest: dict[str, Any], folder: Path) -> dict[str, dict[str,
                 entry.get("colour_space", "")
             )
         if isinstance(file, str) and file:
-            full = folder / file
-            if not full.is_file():
-                raise BlenderJobError(f"{folder}: {file} is listed in {MANIFEST} but missing")
-            item["file"] = str(full)
+            try:
+                item["file"] = str(listed_file(folder, file, manifest))
+            except UnlistedFileError as err:
+                raise BlenderJobError(str(err)) from None
         elif item["constant"] is None:
             continue
         out[name] = item
@@ -307,7 +330,7 @@ def planned_files(options: RenderOptions) -> list[str]:
     if options.save:
         files.append(options.save)
     if options.save_material_only:
-        files.append("material.blend")
+        files.append(MATERIAL_BLEND)
     return files
 
 
@@ -355,7 +378,7 @@ def build_job(source: Source, options: RenderOptions, out_dir: Path) -> dict[str
         "renders": renders,
         "device": options.device,
         "save_blend": str(out_dir / options.save) if options.save else None,
-        "save_material": str(out_dir / "material.blend") if options.save_material_only else None,
+        "save_material": str(out_dir / MATERIAL_BLEND) if options.save_material_only else None,
     }
 
 

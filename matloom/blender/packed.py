@@ -12,6 +12,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from matloom.blender.listed import UnlistedFileError, listed_file
+
 _ORM_TEXT = "R AO, G roughness, B metallic"
 _ORM = {"ao": ("R", False), "roughness": ("G", False), "metallic": ("B", False)}
 _MASK_TEXT = "R metallic, G AO, B detail mask (1), A smoothness = 1 - roughness"
@@ -50,11 +52,10 @@ def packed_texture(manifest: dict[str, Any], folder: Path) -> dict[str, Any] | N
         if item.get("channels") != text:
             continue
         sub = entry.get("folder") if isinstance(entry.get("folder"), str) else preset
-        path = folder / sub / item["file"]
-        if not path.is_file():
-            raise PackedTextureError(
-                f"{folder}: {sub}/{item['file']} is listed in material.json but missing"
-            )
+        try:  # only a file inside the folder, listed with its SHA-256, is ever read
+            path = listed_file(folder, f"{sub}/{item['file']}", manifest)
+        except UnlistedFileError as err:
+            raise PackedTextureError(str(err)) from None
         return {
             "preset": preset,
             "role": role,

@@ -13,12 +13,12 @@ to a single file goes through the folder's ownership index (:mod:`matloom.io.out
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
 from matloom.blender.job import (
+    MATERIAL_BLEND,
     BlenderJobError,
     RenderOptions,
     Source,
@@ -29,6 +29,7 @@ from matloom.blender.job import (
 )
 from matloom.blender.layouts import LAYOUT_NAMES
 from matloom.blender.runner import Blender, BlenderError, check_version, find_blender, run_worker
+from matloom.blender.tempdirs import TempDir
 
 EventHandler = Callable[[dict[str, Any]], None]
 
@@ -69,9 +70,9 @@ def render_source(
     from matloom.blender.images import adopt_render
 
     out_dir = out_dir.absolute()
-    with tempfile.TemporaryDirectory(prefix="matloom-blender-job-") as work:
+    with TempDir("job-") as work:
         job = build_job(source, options, out_dir)
-        run_worker(blender, write_job(job, Path(work) / "job.json"), on_event=on_event)
+        run_worker(blender, write_job(job, work / "job.json"), on_event=on_event, temp_dir=work)
     written: dict[str, Path] = {}
     for view in job["renders"]:
         path = Path(view["output"])
@@ -168,8 +169,8 @@ def render_layouts(
             if progress is not None and line is not None:
                 progress(line)
 
-        with tempfile.TemporaryDirectory(prefix="matloom-blender-") as work:
-            written = render_source(source, options, Path(work), found, on_event)
+        with TempDir() as work:
+            written = render_source(source, options, work, found, on_event)
             return [_install_png(t, written[t.name].read_bytes()) for t in targets]
     except (BlenderJobError, OutputError) as err:
         raise BlenderError(str(err).splitlines()[0]) from None
@@ -192,6 +193,7 @@ def render_to_file(
     """
     from matloom.io.outdir import OutputFolder
 
+    options.validate()  # clashing names and bad options fail before anything is rendered
     names = render_names(options)
     if len(names) != 1:
         raise BlenderJobError(
@@ -202,14 +204,14 @@ def render_to_file(
     _refuse_foreign_png(target)
     blends = [options.save] if options.save else []
     if options.save_material_only:
-        blends.append("material.blend")
+        blends.append(MATERIAL_BLEND)
     if blends:
         with OutputFolder(target.parent) as folder:
             folder.check_writable(blends)
     source = load_source(source_path, size=options.size, unit_m=unit_m)
     try:
-        with tempfile.TemporaryDirectory(prefix="matloom-blender-") as work:
-            written = render_source(source, options, Path(work), blender, on_event)
+        with TempDir() as work:
+            written = render_source(source, options, work, blender, on_event)
             installed = [_install_png(target, written[names[0][2]].read_bytes())]
             if blends:
                 with OutputFolder(target.parent) as folder:

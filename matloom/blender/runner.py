@@ -159,15 +159,20 @@ def run_worker(
     job_path: Path,
     on_event: Callable[[dict[str, Any]], None] | None = None,
     timeout: float | None = None,
+    temp_dir: Path | None = None,
 ) -> list[dict[str, Any]]:
     """Run the worker on ``job_path`` and return its events; :class:`BlenderError` on failure.
 
     ``on_event`` sees each event as it arrives (progress). Blender's own output is kept only
-    to explain a failure.
+    to explain a failure. ``temp_dir``: Blender's temporary folder (its ``blender_*`` folder
+    goes there): one of ours, so that it goes with ours even when Blender cannot remove it.
     """
     events: list[dict[str, Any]] = []
     other: list[str] = []
     env = dict(os.environ)
+    if temp_dir is not None:
+        # Blender leaves $TMPDIR/blender_* behind when it ends by os._exit or a signal
+        env.update(TMPDIR=str(temp_dir), TEMP=str(temp_dir), TMP=str(temp_dir))
     env.setdefault("PYTHONUNBUFFERED", "1")
     env["MATLOOM_PARENT_PID"] = str(os.getpid())  # the worker ends itself if we are gone
     with _RUNNING_LOCK:  # checked and registered together: stop_all() misses no process

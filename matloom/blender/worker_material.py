@@ -14,6 +14,9 @@ from typing import Any
 
 from worker_common import try_set, try_use_nodes, working
 
+#: anisotropy_angle is the brushing direction; Blender's tangent is the highlight's stretch,
+#: across it (matloom.vocab.channels.ANISOTROPY_STRETCH_OFFSET_DEG = 90 degrees, in turns).
+_BRUSHING_TO_STRETCH_TURN = 0.25
 #: Separate Color outputs by channel letter (A is the image's own Alpha output)
 _CHANNELS = {"R": "Red", "G": "Green", "B": "Blue"}
 
@@ -142,7 +145,9 @@ def split_packed(
 def wire_anisotropy(
     tree: Any, add: Callable[..., Any], bsdf: Any, maps: dict[str, Any], textures: dict[str, Any]
 ) -> None:
-    """Fixed: anisotropy turns with the anisotropy_angle map, along the UV tangent."""
+    """Anisotropy across the brushing: Blender stretches the highlight along its tangent (the
+    UV tangent turned by Anisotropic Rotation, 1 = 360 degrees), and anisotropy_angle is the
+    direction of the brush lines, so the rotation is the angle plus a quarter turn."""
     links = tree.links
     if "anisotropy" in maps:
         tangent = add("ShaderNodeTangent", "UV Tangent", "Surface", -400, -700)
@@ -153,13 +158,15 @@ def wire_anisotropy(
         return
     if "anisotropy_angle" in textures:
         turn = add("ShaderNodeMath", "Angle to rotation", "Surface", -400, -550)
-        turn.operation = "MULTIPLY"
+        turn.operation = "MULTIPLY_ADD"  # value * scale + a quarter turn
         turn.inputs[1].default_value = float(angle.get("scale", 1.0 / 360.0))
+        turn.inputs[2].default_value = _BRUSHING_TO_STRETCH_TURN
         links.new(textures["anisotropy_angle"].outputs["Color"], turn.inputs[0])
         links.new(turn.outputs["Value"], bsdf.inputs["Anisotropic Rotation"])
     elif isinstance(angle.get("constant"), (int, float)):
         degrees = float(angle["constant"]) % 180.0
-        bsdf.inputs["Anisotropic Rotation"].default_value = degrees / 360.0
+        rotation = degrees / 360.0 + _BRUSHING_TO_STRETCH_TURN
+        bsdf.inputs["Anisotropic Rotation"].default_value = rotation
 
 
 def wire_relief(

@@ -37,6 +37,7 @@ DEMO_PROMPTS = (
 def demo_cmd(out_dir: str, size: int) -> None:
     """Render the paper's tile program and generate three materials offline."""
     from matloom.engine.evaluate import evaluate, prepare
+    from matloom.engine.kernels import compile_report
     from matloom.examples import example_text
     from matloom.io.atomic import atomic_write_bytes
     from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
@@ -46,61 +47,114 @@ def demo_cmd(out_dir: str, size: int) -> None:
     from matloom.render.preview import shade, tile_image
 
     root = Path(out_dir).resolve()
-    lines = []
-    t0 = time.perf_counter()
-    program = prepare(example_text("black_ceramic_tiles"))
-    text = format_program(program)
-    maps = evaluate(program, size, size)
-    dest = root / "paper_tile_program"
-    swatch = shade(maps)
-    first_run = time.perf_counter() - t0
-    compiling = _background_compiling()  # the first run used numpy: kernels not compiled yet
-    with OutputFolder(dest) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
-        result = write_maps(maps, staging, final_dir=out.path, program_text=text)
-        atomic_write_bytes(staging / "material.mat", (text + "\n").encode())
-        save_png(staging / "preview.png", swatch)
-        save_png(staging / "preview_tiled.png", tile_image(swatch, 2))
-        write_manifest(result, staging)
-    lines.append(f"paper tile program ({size}x{size}, {time.perf_counter() - t0:.2f} s):")
-    lines.append(f"  program  {dest / 'material.mat'}")
-    lines.append(f"  maps     {dest}/ ({len(result.manifest['maps'])} maps + material.json)")
-    lines.append(f"  preview  {dest / 'preview.png'}")
-    lines += _generate_offline(root, size)
-    lines.insert(4, _timings(program, size, first_run, compiling))
+    notice = _SetupNotice()
+    previous_reporter = compile_report.set_reporter(notice)  # plain words instead of kernels
+    try:
+        lines = []
+        t0 = time.perf_counter()
+        program = prepare(example_text("black_ceramic_tiles"))
+        text = format_program(program)
+        maps = evaluate(program, size, size)
+        dest = root / "paper_tile_program"
+        swatch = shade(maps)
+        first_run = time.perf_counter() - t0
+        setting_up = _setting_up()  # the first run used the slower renderer meanwhile
+        with OutputFolder(dest) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
+            result = write_maps(maps, staging, final_dir=out.path, program_text=text)
+            atomic_write_bytes(staging / "material.mat", (text + "\n").encode())
+            save_png(staging / "preview.png", swatch)
+            save_png(staging / "preview_tiled.png", tile_image(swatch, 2))
+            write_manifest(result, staging)
+        lines.append(f"paper tile program ({size}x{size}, {time.perf_counter() - t0:.2f} s):")
+        lines.append(f"  program  {dest / 'material.mat'}")
+        lines.append(f"  maps     {dest}/ ({len(result.manifest['maps'])} maps + material.json)")
+        lines.append(f"  preview  {dest / 'preview.png'}")
+        lines += _generate_offline(root, size)
+        _finish_setup(notice)
+        lines.insert(4, _timings(program, size, first_run, setting_up))
+        _finish_setup(notice)  # (the warm run may have started it, where nothing had)
+    finally:
+        compile_report.set_reporter(previous_reporter)
     click.echo("\n".join(lines))
 
 
-def _background_compiling() -> bool:
+class _SetupNotice:
+    """The demo's :class:`~matloom.engine.kernels.compile_report.CompileReporter`: one line,
+    in terms of what the user sees, the first time this machine sets up the fast renderer
+    (compiles the numba kernels) in this process or in the background."""
+
+    def __init__(self) -> None:
+        self.said = False
+
+    def say(self) -> None:
+        if not self.said:
+            self.said = True
+            click.echo(
+                "first run on this machine: setting up the fast renderer (once; the maps are "
+                "the same without it)",
+                err=True,
+            )
+
+    def kernel_compiling(self, name: str) -> None:
+        self.say()
+
+    def kernel_compiled(self, name: str, seconds: float) -> None:
+        pass
+
+    def background_compiling(self, done: int, total: int) -> None:
+        self.say()
+
+
+def _setting_up() -> bool:
     from matloom.engine.kernels import warmup
 
     return warmup.state().running
 
 
-def _timings(program: Any, size: int, first_run: float, compiling: bool) -> str:
-    """The tile program's first-run and warm timings (evaluate + shade). When the first run
-    used the numpy path because the kernels were compiling in the background, wait until the
-    background compiler has the tile program's kernels (progress on stderr; it goes on with
-    the others), load them with one untimed numba run, then time the warm run."""
+#: Seconds the demo waits at most for the background set-up before it stops it.
+SETUP_WAIT_S = 600.0
+
+
+def _finish_setup(notice: _SetupNotice) -> None:
+    """Wait until the background set-up of the fast renderer has finished, so that the demo
+    leaves no process running (the work is kept for later commands); progress on stderr. One
+    the demo started that has not finished after :data:`SETUP_WAIT_S` is stopped (the next
+    command restarts it)."""
+    from matloom.cli.progress import LazyProgress
+    from matloom.engine.kernels import warmup
+
+    if not warmup.state().running:
+        return
+    notice.say()
+    click.echo(
+        "finishing the set-up of the fast renderer, so later renders are quick ...", err=True
+    )
+    start = time.perf_counter()
+    with LazyProgress("setting up the fast renderer", enabled=sys.stderr.isatty()) as bar:
+        done = warmup.wait(timeout=SETUP_WAIT_S, progress=bar)
+    if done.running:
+        warmup.stop_background()
+        click.echo(
+            "the set-up took too long and was stopped; the next render restarts it", err=True
+        )
+    else:
+        warmup.reap()
+        click.echo(f"fast renderer ready ({time.perf_counter() - start:.0f} s)", err=True)
+
+
+def _timings(program: Any, size: int, first_run: float, setting_up: bool) -> str:
+    """The tile program's first-run and warm timings (evaluate + shade). The warm run follows
+    one untimed run (which loads the fast renderer's code) on the fast renderer where it is
+    ready."""
     from matloom.engine.evaluate import evaluate
+    from matloom.engine.kernels import warmup
     from matloom.render.preview import shade
 
-    note, backend = "", "auto"
-    if compiling:
-        from matloom.cli.progress import COMPILING, LazyProgress
-        from matloom.engine.kernels import warmup, warmup_steps
-
-        start = time.perf_counter()
-        with LazyProgress(COMPILING, enabled=sys.stderr.isatty()) as bar:
-            done = warmup.wait(progress=bar, steps=warmup_steps.TILE_STEPS)
-        if done.ready or done.done >= warmup_steps.TILE_STEPS:
-            backend = "numba"
-            note = (
-                " (numpy path: kernels compiling in the background, the tile program's were "
-                f"ready {time.perf_counter() - start:.1f} s later)"
-            )
-        else:
-            note = " (numpy path: the kernels could not be compiled)"
-        shade(evaluate(program, size, size, backend=backend), backend=backend)  # loads them
+    backend = "numba" if warmup.state().ready else "auto"
+    note = (
+        " (while the fast renderer was being set up: slower, the same maps)" if setting_up else ""
+    )
+    shade(evaluate(program, size, size, backend=backend), backend=backend)  # loads the code
     t0 = time.perf_counter()
     shade(evaluate(program, size, size, backend=backend), backend=backend)
     warm = time.perf_counter() - t0

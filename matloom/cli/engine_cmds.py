@@ -68,6 +68,35 @@ def check_ao_radius(units: float, view: tuple[float, float, float, float], w: in
         )
 
 
+def check_unit_m(
+    unit_m: float | None, program_unit_m: float | None, view: tuple[float, float, float, float]
+) -> None:
+    """Before any work: the physical size (``--unit-m``, else the program's ``unit_m``) must be
+    one the presets can store; a ``--unit-m`` that replaces a different program ``unit_m`` is
+    said on stderr (one line naming both)."""
+    import math
+
+    from matloom.io.presets.common import physical_size_problem
+
+    effective = unit_m if unit_m is not None else program_unit_m
+    if effective is None:
+        return
+    x1, y1, x2, y2 = view
+    problem = physical_size_problem(effective, (abs(x2 - x1), abs(y2 - y1)))
+    if problem is not None:
+        hint = "'--unit-m'" if unit_m is not None else "the program's View(..., unit_m=...)"
+        raise click.BadParameter(problem, param_hint=hint)
+    if unit_m is not None and program_unit_m is not None:
+        # the library's entries round their unit_m to 6 digits: that is the same size
+        if not math.isclose(unit_m, program_unit_m, rel_tol=1e-4, abs_tol=1e-6):
+            click.echo(
+                f"note: --unit-m {unit_m:g} replaces the program's View unit_m={program_unit_m:g}"
+                f" (the swatch is {abs(x2 - x1) * unit_m:g} m wide instead of "
+                f"{abs(x2 - x1) * program_unit_m:g} m)",
+                err=True,
+            )
+
+
 #: ``--preset`` choices (the registry is imported lazily; this list is checked by a test).
 PRESET_NAMES = ("gltf", "mtlx", "usd", "unreal", "unity", "godot")
 
@@ -155,7 +184,8 @@ def square_texel_view(
     "--unit-m",
     type=params.POSITIVE,
     default=None,
-    help="Metres per coordinate unit: physical size and displacement in metres.",
+    help="Metres per coordinate unit: physical size and displacement in metres (each side "
+    "1e-9 to 1e9 m); replaces the program's View unit_m, with a note on stderr.",
 )
 @click.option(
     "--name",
@@ -254,6 +284,7 @@ def render_cmd(
     view, view_note = square_texel_view(program.view_tuple, w, h, stretch)
     if ao_radius is not None:
         check_ao_radius(ao_radius, view, w, h)
+    check_unit_m(unit_m, program.unit_m, view)
     canonical = format_program(program)
     name = material_name or params.NAME.convert(Path(file).stem, None, None)
     with OutputFolder(out_dir) as out:  # locked before the work starts: a second writer fails

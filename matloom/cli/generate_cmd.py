@@ -13,7 +13,7 @@ from typing import Any
 
 import click
 
-from matloom.author.config import AuthorConfig, ConfigError
+from matloom.author.config import AuthorConfig, ConfigError, one_line
 from matloom.cli.generate_options import (
     SEARCH_FLAGS,
     build_config,
@@ -88,6 +88,12 @@ class ProgressView:
 )
 @click.option("--jobs", type=int, default=1, show_default=True, help="Prompts authored at once.")
 @click.option("--resume", is_flag=True, help="Continue an interrupted run (or batch).")
+@click.option(
+    "--trust-record",
+    is_flag=True,
+    help="With --resume: use the model servers and key variables that record.json names "
+    "(only for a run folder you made; otherwise give --base-url/--profile again).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--quiet", is_flag=True, help="No progress display.")
 @click.option(
@@ -106,6 +112,7 @@ def generate_cmd(
     prompts_file: str | None,
     jobs: int,
     resume: bool,
+    trust_record: bool,
     as_json: bool,
     quiet: bool,
     explain: bool,
@@ -116,14 +123,20 @@ def generate_cmd(
     With no model configured (no --model, --profile or default profile) the program comes from
     the material library (offline, deterministic): see --explain and --pick.
     """
+    from matloom.author.pipeline import check_prompt, check_sizes
+
     given = explicit_flags(ctx)
     try:
+        if prompt is not None:
+            check_prompt(prompt)
         base = _resumed_settings(out_dir) if resume and not prompts_file else None
-        config = build_config(ctx.params, given, base)
+        config = build_config(ctx.params, given, base, trust_record=trust_record)
+        check_sizes(config)
     except (ConfigError, ValueError) as err:
-        raise click.ClickException(str(err)) from None
+        raise click.ClickException(one_line(err)) from None
     if prompt is None and prompts_file is None and base is None:
         raise click.UsageError("give a PROMPT, --prompts FILE, or --resume an existing run")
+    _say_model_access(ctx.params, given, config, fresh=base is None)
     if config.generator is None:
         click.echo(
             "matloom: no model configured (--model/--profile); using the material library",
@@ -145,6 +158,39 @@ def generate_cmd(
         _run_single(prompt, out_dir, config, resume, as_json, view, explain, asked)
 
 
+def _say_model_access(
+    params: dict[str, Any], given: set[str], config: AuthorConfig, *, fresh: bool
+) -> None:
+    """Name on stderr, always, the server and the key variable each model's requests use, and
+    the config file a default profile came from (so no file turns a run into requests
+    silently); say when ./matloom.toml is not read."""
+    from matloom.author.config import (
+        default_profile_name,
+        describe_access,
+        find_config_file,
+        ignored_local_config,
+        load_config_file,
+    )
+
+    used = find_config_file(params["config_file"])
+    local = ignored_local_config(used)
+    if local is not None:
+        click.echo(
+            f"matloom: {local} is not read: a config in the current folder is used only with "
+            f"--config {local}",
+            err=True,
+        )
+    if config.generator is None:
+        return
+    note = ""
+    if fresh and not {"profile", "model"} & given and used is not None:
+        name = default_profile_name(load_config_file(used))
+        note = f" (default profile {name!r} of {used})" if name else ""
+    click.echo(f"matloom: {describe_access('generator', config.generator)}{note}", err=True)
+    if config.critic is not None:
+        click.echo(f"matloom: {describe_access('critic', config.critic)}", err=True)
+
+
 def _check_pick(prompt: str, config: AuthorConfig) -> None:
     """Refuse a --pick past the library's candidates before anything is written."""
     if config.pick is None or (config.generator is not None and config.start != "library"):
@@ -163,9 +209,14 @@ def _check_pick(prompt: str, config: AuthorConfig) -> None:
 def _resumed_settings(out_dir: str) -> AuthorConfig | None:
     from matloom.author.records import RECORD_NAME, RecordStore
 
-    if not (Path(out_dir) / RECORD_NAME).exists():
+    path = Path(out_dir) / RECORD_NAME
+    if not path.exists():
         return None
-    return RecordStore.load(out_dir).record.settings
+    try:
+        return RecordStore.load(out_dir).record.settings
+    except (OSError, ValueError) as err:  # pydantic's ValidationError and JSON errors included
+        reason = one_line(err)
+        raise ConfigError(f"cannot resume: {path} is not a valid run record ({reason})") from None
 
 
 def _run_single(
@@ -178,25 +229,22 @@ def _run_single(
     explain: bool = False,
     search_asked: bool = False,
 ) -> None:
-    from matloom.author.pipeline import AuthoringError, author_material
+    from matloom.author.pipeline import AuthoringError, RunRequestError, author_material
     from matloom.io.outdir import OutputError
 
     try:
         with view:
             result = author_material(prompt, out_dir, config, resume=resume, progress=view.update)
-    except OutputError as err:  # the folder cannot be used: nothing was done
+    except (OutputError, RunRequestError) as err:  # nothing was done
         raise click.ClickException(str(err)) from None
     except AuthoringError as err:
-        raise click.ClickException(
-            f"{err}\n(the record is kept in {Path(err.folder) / 'record.json'}; "
-            "fix the cause and rerun with --resume)"
-        ) from None
+        raise click.ClickException(f"{err}{_record_note(err.folder)}") from None
     except Exception as err:  # noqa: BLE001 - the CLI never shows a traceback
         from matloom.author.redact import Redactor
 
         raise click.ClickException(
             Redactor.for_config(config).text(f"unexpected {type(err).__name__}: {err}")
-            + f"\n(the record is kept in {Path(out_dir) / 'record.json'}; rerun with --resume)"
+            + _record_note(Path(out_dir))
         ) from None
     if explain:
         _say_explanation(result.record)
@@ -207,6 +255,16 @@ def _run_single(
     if search_asked:
         _say_scorer_note(result.record)
     _say_warnings(result.record)
+
+
+def _record_note(folder: Path) -> str:
+    """Where the failed run's record is, when there is one to resume."""
+    from matloom.author.records import RECORD_NAME
+
+    path = Path(folder) / RECORD_NAME
+    if not path.is_file():
+        return ""
+    return f"\n(the record is kept in {path}; fix the cause and rerun with --resume)"
 
 
 def _say_explanation(record: Any) -> None:

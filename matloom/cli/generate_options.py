@@ -3,7 +3,8 @@
 Precedence, lowest first: the defaults (the paper's settings) or a resumed run's recorded
 settings, the settings preset (``--settings``, or ``[matloom] settings`` in matloom.toml for a
 new run), then the flags given on the command line. Model access comes from the model profile
-(``--profile`` or matloom.toml's default) and the model flags.
+(``--profile`` or matloom.toml's default) and the model flags; a resumed run takes the recorded
+servers and key variables only with ``--trust-record`` (:mod:`matloom.author.resume`).
 """
 
 from __future__ import annotations
@@ -80,8 +81,21 @@ def _generator_settings(
         base = resolve_profile(data, params["profile"]) or base
     updates = {_MODEL_FLAGS[k]: params[k] for k in _MODEL_FLAGS if k in given}
     if params.get("extra_body"):
-        updates["extra_body"] = json.loads(params["extra_body"])
+        updates["extra_body"] = _extra_body(params["extra_body"])
     return with_overrides(base, **updates)
+
+
+def _extra_body(text: str) -> dict[str, Any]:
+    """``--extra-body`` as a JSON object (ConfigError in one line otherwise)."""
+    from matloom.author.config import ConfigError
+
+    try:
+        body = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise ConfigError(f"--extra-body is not valid JSON: {err}") from None
+    if not isinstance(body, dict):
+        raise ConfigError("--extra-body must be a JSON object, e.g. '{\"reasoning\": {}}'")
+    return body
 
 
 def _critic_settings(
@@ -132,21 +146,38 @@ def _blender_layouts(_ctx: Any, _param: Any, value: str) -> tuple[str, ...]:
 
 
 def build_config(
-    params: dict[str, Any], given: set[str], base: AuthorConfig | None = None
+    params: dict[str, Any],
+    given: set[str],
+    base: AuthorConfig | None = None,
+    *,
+    trust_record: bool = False,
 ) -> AuthorConfig:
     """The frozen config: the defaults (or ``base``, a resumed run's settings), then the
     settings preset (``--settings`` or matloom.toml's default), then the explicit flags; model
-    access comes from the profile and model flags."""
-    fresh = base is None
+    access comes from the profile and model flags, and from ``base`` only as far as the user
+    confirms it (:func:`matloom.author.resume.resumed_access`)."""
+    from matloom.author.resume import AccessFlags, resumed_access
+
+    recorded = base
     base = base or AuthorConfig()
-    preset = _preset_values(params, given, fresh)
+    preset = _preset_values(params, given, recorded is None)
     update: dict[str, Any] = {
         field: params[flag] for flag, field in _CONFIG_FLAGS.items() if flag in given
     }
     generator = _generator_settings(params, given, base.generator)
     critic = _critic_settings(params, given, generator, base.critic)
     data = {**base.model_dump(), **preset, **update, "generator": generator, "critic": critic}
-    return AuthorConfig.model_validate(data)
+    config = AuthorConfig.model_validate(data)
+    if recorded is None:
+        return config
+    flags = AccessFlags(
+        generator_endpoint=bool({"base_url", "profile"} & given),
+        generator_profile="profile" in given,
+        critic_endpoint=bool({"critic_base_url", "critic_profile"} & given),
+        critic_profile="critic_profile" in given,
+        trust_record=trust_record,
+    )
+    return resumed_access(recorded, config, flags)
 
 
 def model_options(f: Any) -> Any:
@@ -156,8 +187,8 @@ def model_options(f: Any) -> Any:
             "--config",
             "config_file",
             type=click.Path(dir_okay=False),
-            help="Config file (default: $MATLOOM_CONFIG, ./matloom.toml, "
-            "~/.config/matloom/matloom.toml).",
+            help="Config file (default: $MATLOOM_CONFIG, else ~/.config/matloom/matloom.toml; "
+            "a matloom.toml in the current folder is read only when named here).",
         ),
         click.option("--model", help="Generator model id (OpenAI-compatible)."),
         click.option(

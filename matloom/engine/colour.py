@@ -14,6 +14,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from matloom.engine.kernels.mathops import pow_
+
 #: Encoded values at or below this are on the linear segment of the sRGB decode curve.
 SRGB_DECODE_THRESHOLD = 0.04045
 #: Linear values at or below this are on the linear segment of the sRGB encode curve.
@@ -28,6 +30,12 @@ def _float_array(values: ArrayLike) -> np.ndarray:
     return array
 
 
+def _power(base: np.ndarray, exponent: float) -> np.ndarray:
+    """``base ** exponent`` in base's dtype (as numpy's power with a Python float exponent),
+    with the portable power: the same bits on every CPU."""
+    return np.asarray(pow_(base, np.asarray(exponent, dtype=base.dtype)))
+
+
 def srgb_to_linear(values: ArrayLike) -> np.ndarray:
     """Decode sRGB values in [0, 1] to linear light: v/12.92 or ((v + 0.055)/1.055)^2.4.
 
@@ -36,7 +44,7 @@ def srgb_to_linear(values: ArrayLike) -> np.ndarray:
     """
     encoded = _float_array(values)
     with np.errstate(invalid="ignore"):
-        linear = np.asarray(np.power((encoded + 0.055) / 1.055, 2.4))
+        linear = np.asarray(_power((encoded + 0.055) / 1.055, 2.4))
     np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
     return linear
 
@@ -49,6 +57,6 @@ def linear_to_srgb(values: ArrayLike) -> np.ndarray:
     """
     linear = _float_array(values)
     with np.errstate(invalid="ignore"):  # negative inputs: NaN in the discarded branch
-        encoded = np.asarray(1.055 * np.power(linear, 1 / 2.4) - 0.055)
+        encoded = np.asarray(1.055 * _power(linear, 1 / 2.4) - 0.055)
     np.copyto(encoded, linear * 12.92, where=linear <= SRGB_ENCODE_THRESHOLD)
     return encoded

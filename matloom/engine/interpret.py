@@ -14,6 +14,7 @@ overriding its hooks (:meth:`Evaluator.apply` for element-wise ops, :meth:`Evalu
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -22,7 +23,7 @@ import numpy as np
 
 from matloom.engine.backends import Backend
 from matloom.engine.composite import RawLayer
-from matloom.engine.kernels import shapes
+from matloom.engine.kernels import mathops, shapes
 from matloom.engine.kernels.mathops import count_zero
 from matloom.engine.ops import OPS, Kind, Op, operator_ops
 from matloom.lang import ast as A
@@ -212,10 +213,11 @@ class Evaluator:
     def periods_of(self, c: Coords, func: str = "") -> tuple[float, float] | None:
         """The View's periods (W, H) in the frame of ``c``, for a tileable output whose frame
         is an axis-aligned affine map of the grid (Translate, Scale): (|a| W, |e| H). None
-        when the output is not tileable, and (with a note) for a rotated frame or a domain
-        warp other than Translate's, where a noise cannot repeat with the View (a Translate
-        warp keeps its coordinates' periods: it adds periodic offsets); Tile's instance
-        frames need no period (their instances repeat)."""
+        when the output is not tileable, and (with a note) for a rotated frame, a domain
+        warp other than Translate's or a frame whose periods are not finite and positive,
+        where a noise cannot repeat with the View (a Translate warp keeps its coordinates'
+        periods: it adds periodic offsets); Tile's instance frames need no period (their
+        instances repeat)."""
         if self.periods is None:
             return None
         fid = self._frame_id(c)
@@ -230,7 +232,15 @@ class Evaluator:
                     self.stats.notes.append(note)
             return None
         width, height = self.periods
-        return abs(affine[0]) * width, abs(affine[4]) * height
+        periods = abs(affine[0]) * width, abs(affine[4]) * height
+        if not all(math.isfinite(p) and p > 0 for p in periods):
+            # a Scale by a subnormal (or huge) factor: periods past the float range
+            what = func or "a field"
+            note = f"tileable: {what} in a frame scaled past the float range cannot repeat"
+            if note not in self.stats.notes:
+                self.stats.notes.append(note)
+            return None
+        return periods
 
     def transform(self, call: A.Call, c: Coords) -> Coords:
         """Coordinates of ``call``'s operand. Their frame is the composed transform, so a Define
@@ -317,11 +327,12 @@ def _axis_aligned(affine: tuple[float, ...]) -> bool:
 
 def warp_values(func: str, values: list[Any]) -> tuple[Any, Any]:
     """:func:`~matloom.lang.cost.transform_values` of a domain warp, from the field parameters'
-    values (arrays or floats, registry order): Rotate's (cos, sin) through numpy's radians."""
+    values (arrays or floats, registry order): Rotate's (cos, sin) of numpy's radians, with the
+    portable cos and sin (the same bits on every CPU)."""
     if func != "Rotate":
         return values[0], values[1]
     rad = np.radians(values[0])
-    return np.cos(rad), np.sin(rad)
+    return mathops.cos(rad), mathops.sin(rad)
 
 
 def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:

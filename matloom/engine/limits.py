@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 
 from matloom.lang import ast as A
 from matloom.lang.checker import MAX_NODES, MAX_OCTAVES
-from matloom.lang.cost import MAX_EXPANDED_NODES, Cost, expanded_cost
+from matloom.lang.cost import MAX_EXPANDED_NODES, Cost, costliest_call, expanded_cost, over_limit
 
 MEMORY_ENV = "MATLOOM_MAX_MEMORY_MB"
 DEFAULT_MEMORY_MB = 8192
@@ -49,8 +49,10 @@ class Limits:
     max_nodes: int = MAX_NODES
     #: expression-node evaluations of one program, whatever the size (E071 in the checker)
     max_expanded_nodes: int = MAX_EXPANDED_NODES
-    #: expression-node evaluations times texels of one evaluation
-    max_node_texels: int = 1 << 38
+    #: expression-node evaluations (each call weighted by its op's work) times texels of one
+    #: evaluation: 65,536 per texel at 8192x8192, enough for every library entry (the largest
+    #: counts 64,637); about 20 minutes on two cores with the compiled kernels (docs/limits.md)
+    max_node_texels: int = 1 << 42
     max_memory_mb: float | None = None
 
     def memory_mb(self) -> float:
@@ -190,19 +192,22 @@ def check_size(width: int, height: int, tile: int = 1, limits: Limits = DEFAULT_
             )
 
 
-def _check_work(width: int, height: int, cost: Cost, limits: Limits) -> None:
+def _check_work(program: A.Program, width: int, height: int, cost: Cost, limits: Limits) -> None:
     if not cost.over:
         return
     if cost.nodes > limits.max_expanded_nodes:
-        raise LimitError(
-            f"the program needs more than {limits.max_expanded_nodes:,} expression-node "
-            f"evaluations (E071: {cost.define_evaluations:,} Define evaluations in "
-            f"{cost.frames:,} coordinate frames counted before stopping; see docs/limits.md)"
-        )
+        message, hint, _ = over_limit(program, cost, limits.max_expanded_nodes)
+        raise LimitError(f"{message} (E071; {hint})")
+    heavy = costliest_call(program)
+    costliest = (
+        f"; the costliest call is {heavy.call.func} in {heavy.owner} ({heavy.work:,} each)"
+        if heavy is not None and heavy.work > 1
+        else ""
+    )
     raise LimitError(
         f"evaluating {width}x{height} needs more than {cost.nodes - 1:,} expression-node "
         f"evaluations x {width * height:,} texels, more than the limit of "
-        f"{limits.max_node_texels:,} node-texels; lower the size (see docs/limits.md)"
+        f"{limits.max_node_texels:,} node-texels{costliest}; lower the size (see docs/limits.md)"
     )
 
 
@@ -221,7 +226,7 @@ def check_request(
     budget = limits.memory_mb()
     cap = min(limits.max_expanded_nodes, limits.max_node_texels // (width * height))
     cost = program_cost(program, cap, usage.batched)
-    _check_work(width, height, cost, limits)
+    _check_work(program, width, height, cost, limits)
     mb = estimate_memory_mb(width, height, cost, fused=fused, usage=usage)
     if mb > budget:
         raise LimitError(

@@ -101,6 +101,29 @@ def planned_files(
     return names
 
 
+#: The largest seam ratio of a map that counts as tiling (docs/tileable.md: a visible seam
+#: gives 2 to 50, maps that repeat exactly stay below it away from pattern lines on the View's
+#: edge; the examples and the tileable library entries reach at most 1.2 at 512 x 512).
+SEAM_BOUND = 2.0
+
+
+def tiling_fields(maps: MaterialMaps, specs: Sequence[MapSpec]) -> dict[str, Any]:
+    """The manifest's tiling fields of a render (:func:`matloom.engine.tiling.manifest_entry`)
+    with ``tileable`` true only when every exported map's seam ratio is within
+    :data:`SEAM_BOUND`; otherwise false, and ``tileable_reason`` names the maps over it (a
+    tileable View whose content does not repeat, W009/W010, shows as such a seam)."""
+    fields = tiling_entry(maps, specs)
+    over = {k: v for k, v in fields.get("seam_ratio", {}).items() if not v <= SEAM_BOUND}
+    if over:
+        worst = sorted(over.items(), key=lambda kv: (-kv[1] if kv[1] == kv[1] else 0.0, kv[0]))
+        listed = ", ".join(f"{name} {ratio:g}" for name, ratio in worst)
+        fields["tileable"] = False
+        fields["tileable_reason"] = (
+            f"the maps do not repeat seamlessly: seam ratio over {SEAM_BOUND:g} for {listed}"
+        )
+    return fields
+
+
 @dataclass
 class ExportResult:
     """What :func:`export_maps` wrote.
@@ -312,7 +335,7 @@ def write_maps(
             described.pop("float_encoding", None)
         entries[spec.name] = {**described, **override, **_map_stats(maps, spec)}
     manifest = _manifest(maps, selected, entries, program_text, version, unit_m)
-    manifest.update(tiling_entry(maps, selected))  # tileable renders: seam ratios
+    manifest.update(tiling_fields(maps, selected))  # tileable renders: seam ratios
     manifest["encoding"] = {
         "float_format": enc.float_format,
         "bits": enc.bits,

@@ -11,13 +11,15 @@ name; and OpenCV needs an environment variable to enable EXR at all.
 
 from __future__ import annotations
 
+import errno
+import io
 import os
 from pathlib import Path
 
 import numpy as np
 import OpenEXR
 
-from matloom.io.atomic import atomic_write_with
+from matloom.io.atomic import atomic_write_bytes, atomic_write_with
 
 #: Header used for every file: scanline image, lossless ZIP compression.
 _HEADER = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
@@ -40,18 +42,31 @@ PRECISIONS: dict[str, type] = {"float": np.float32, "half": np.float16}
 
 def write_exr(path: str | os.PathLike[str], values: np.ndarray, precision: str = "float") -> Path:
     """Write a (H, W), (H, W, 3) or (H, W, 4) map as a float32 (``"float"``) or half
-    (``"half"``) EXR, atomically (temp file + rename)."""
+    (``"half"``) EXR, atomically (temp file + rename).
+
+    The library encodes into memory and :func:`~matloom.io.atomic.atomic_write_bytes` writes
+    the bytes, so a failing write (a full disk) raises OSError like every other file MatLoom
+    writes: the library's own file writes report it as a RuntimeError, or not at all when the
+    failure comes at close (a truncated file)."""
     if precision not in PRECISIONS:
         raise ValueError(f"EXR precision must be one of {sorted(PRECISIONS)}, got {precision!r}")
     with np.errstate(over="ignore", invalid="ignore"):
         pixels = np.ascontiguousarray(values, dtype=PRECISIONS[precision])
-    channels = _channels_for(pixels)
+    stream = io.BytesIO()
+    with OpenEXR.File(dict(_HEADER), _channels_for(pixels)) as exr_file:
+        try:
+            exr_file.write(stream)
+        except TypeError:  # bindings that write only to a file name (no streams)
+            return atomic_write_with(path, lambda temp: _write_named(exr_file, temp))
+    return atomic_write_bytes(path, stream.getvalue())
 
-    def write(temp: Path) -> None:
-        with OpenEXR.File(dict(_HEADER), channels) as exr_file:
-            exr_file.write(os.fspath(temp))
 
-    return atomic_write_with(path, write)
+def _write_named(exr_file: OpenEXR.File, temp: Path) -> None:
+    """The library writing ``temp`` itself; its write errors become OSError."""
+    try:
+        exr_file.write(os.fspath(temp))
+    except RuntimeError as err:
+        raise OSError(errno.EIO, f"the EXR could not be written ({err})") from None
 
 
 def read_exr(path: str | os.PathLike[str]) -> np.ndarray:

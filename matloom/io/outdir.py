@@ -8,7 +8,10 @@ Every command that writes a folder (``render``, ``generate``, ``sweep``, ``seeds
   it is listed *and* unchanged; anything else (a user's ``notes.txt``, the source program, a
   map the artist edited by hand, a symlink) is foreign. Foreign files are never deleted or
   overwritten: a write that would replace one fails with :class:`OutputError` before anything
-  changes.
+  changes. A path outside the folder or below a symlinked sub-folder is never MatLoom's,
+  whatever an index or an old manifest says: it is never read, adopted, written or deleted
+  (deletes walk the folders with ``O_NOFOLLOW``), and the index and lock file are never
+  followed through a symlink.
 * **Staging.** A :meth:`OutputFolder.batch` is written into a hidden staging folder inside the
   output folder (same file system, so every install is a rename) and installed only when the
   whole batch was written. Install order makes an interrupted install look incomplete: the
@@ -148,7 +151,16 @@ class OutputFolder:
 
         lock_path = self.path / LOCK_NAME
         while True:
-            fd = os.open(lock_path, os.O_RDWR | os.O_CREAT, 0o666)
+            # O_NOFOLLOW: a symlinked lock file must not create or open a file elsewhere
+            try:
+                fd = os.open(lock_path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o666)
+            except OSError as err:
+                if err.errno != errno.ELOOP:
+                    raise
+                raise OutputError(
+                    f"{lock_path} is a symlink; MatLoom never follows one out of its output "
+                    "folder: remove it or choose another -o"
+                ) from None
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
@@ -171,9 +183,10 @@ class OutputFolder:
     # ---------------------------------------------------------------- ownership
 
     def _read_index(self) -> dict[str, _Entry]:
-        path = self.path / INDEX_NAME
+        data = _read_json(self.path / INDEX_NAME)  # never a symlink: nothing read from elsewhere
+        if data is None:
+            return {}
         try:
-            data = json.loads(path.read_text(encoding="utf-8"))
             files = data["files"] if data.get("format") == INDEX_FORMAT[0] else {}
             return {
                 str(rel): _Entry(
@@ -184,18 +197,16 @@ class OutputFolder:
                     e.get("pending"),
                 )
                 for rel, e in files.items()
-                if _is_safe_relative(str(rel))
+                if self._contained(str(rel))
             }
-        except FileNotFoundError:
-            return {}
-        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        except (ValueError, KeyError, TypeError, AttributeError):
             return {}  # an unreadable index owns nothing: every file is treated as foreign
 
     def _adopt_legacy(self) -> None:
         """Index the files an older MatLoom wrote here (before the index existed)."""
         for rel, group in sorted(self._legacy_owned().items()):
             target = self.path / rel
-            if _is_safe_relative(rel) and target.is_file() and not target.is_symlink():
+            if self._contained(rel) and target.is_file() and not target.is_symlink():
                 self._record(rel, group)
         if self._index:
             self._save_index()
@@ -203,14 +214,14 @@ class OutputFolder:
     def _legacy_owned(self) -> dict[str, str | None]:
         """Files an older MatLoom wrote here, with their group, recognised by their manifest."""
         owned: dict[str, str | None] = {}
-        record = _read_json(self.path / "record.json")
+        record = self._read_json_inside("record.json")
         if isinstance(record, dict) and "prompt" in record and "programs" in record:
             owned.update(dict.fromkeys(_LEGACY_RUN))
-            owned.update(
-                dict.fromkeys(f"renders/{p.name}" for p in (self.path / "renders").glob("p*.png"))
-            )
+            renders = self.path / "renders"
+            if self._contained("renders/x") and renders.is_dir():
+                owned.update(dict.fromkeys(f"renders/{p.name}" for p in renders.glob("p*.png")))
         for prefix, group in (("", "render"), ("maps/", "maps")):
-            manifest = _read_json(self.path / prefix / "material.json")
+            manifest = self._read_json_inside(prefix + "material.json")
             if not (isinstance(manifest, dict) and manifest.get("format") == "matloom-material"):
                 continue
             names = set(_LEGACY_RENDER) if group == "render" else {"material.json", "height16.png"}
@@ -220,8 +231,35 @@ class OutputFolder:
             owned.update({prefix + n: group for n in names if prefix + n not in owned})
         return owned
 
+    def _blocking_parent(self, rel: str) -> str | None:
+        """The outermost parent folder of ``rel`` that is a symlink or not a folder, if any."""
+        blocking = None
+        parent = (self.path / rel).parent
+        while parent != self.path:  # ends at the outermost one, the one to name to the user
+            if parent.is_symlink() or (parent.exists() and not parent.is_dir()):
+                blocking = str(parent.relative_to(self.path))
+            parent = parent.parent
+        return blocking
+
+    def _contained(self, rel: str) -> bool:
+        """True when ``rel`` names a path inside the folder reached through real folders only.
+
+        A parent that is a symlink could lead anywhere (the user's documents): such a path is
+        never read, adopted, written or deleted.
+        """
+        return _is_safe_relative(rel) and self._blocking_parent(rel) is None
+
+    def _read_json_inside(self, rel: str) -> Any:
+        """``rel`` parsed as JSON, or None when unreadable or not inside the folder."""
+        return _read_json(self.path / rel) if self._contained(rel) else None
+
     def owns(self, rel: str) -> bool:
-        """True when ``rel`` is absent or is a regular file MatLoom wrote and nobody changed."""
+        """True when ``rel`` is absent or is a regular file MatLoom wrote and nobody changed.
+
+        A path outside the folder or below a symlinked parent is never MatLoom's.
+        """
+        if not self._contained(rel):
+            return False
         target = self.path / rel
         if not os.path.lexists(target):
             return True
@@ -238,13 +276,14 @@ class OutputFolder:
 
     def check_writable(self, names: Iterable[str]) -> None:
         """Raise :class:`OutputError` if writing ``names`` would replace a foreign file."""
-        foreign = sorted(rel for rel in names if not self.owns(rel))
-        for rel in names:
-            parent = (self.path / rel).parent
-            while parent != self.path:
-                if parent.is_symlink() or (parent.exists() and not parent.is_dir()):
-                    foreign.append(str(parent.relative_to(self.path)))
-                parent = parent.parent
+        foreign: list[str] = []
+        for rel in sorted(names):
+            blocking = self._blocking_parent(rel) if _is_safe_relative(rel) else rel
+            if blocking is not None:
+                if blocking not in foreign:
+                    foreign.append(blocking)
+            elif not self.owns(rel):
+                foreign.append(rel)
         if foreign:
             shown = ", ".join(foreign[:3]) + (
                 f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
@@ -282,9 +321,13 @@ class OutputFolder:
             if match and child.is_file() and not child.is_symlink():
                 if match["name"] in self._index:
                     child.unlink(missing_ok=True)
-        # the sibling staging folders (".<name>.tmp-…") of MatLoom before 0.4
+        # the sibling staging folders (".<name>.tmp-…") of MatLoom before 0.4: only this
+        # folder's own (".out.x.tmp-…" belongs to a folder "out.x", not to "out")
         for sibling in self.path.parent.glob(f".{self.path.name}.*-*"):
-            if _TEMP_FILE.match(sibling.name) and sibling.is_dir() and not sibling.is_symlink():
+            match = _TEMP_FILE.match(sibling.name)
+            if match is None or match["name"] != self.path.name:
+                continue
+            if sibling.is_dir() and not sibling.is_symlink():
                 if _looks_like_old_staging(sibling):
                     shutil.rmtree(sibling, ignore_errors=True)
 
@@ -296,8 +339,7 @@ class OutputFolder:
         removed = []
         for rel in sorted(self._index):
             target = self.path / rel
-            if os.path.lexists(target) and self.owns(rel):
-                target.unlink()
+            if os.path.lexists(target) and self.owns(rel) and self._unlink_inside(rel):
                 _remove_empty_parents(target, self.path)
                 removed.append(rel)
             if not os.path.lexists(target):
@@ -362,13 +404,12 @@ class OutputFolder:
         self._save_index()
         # 2. the completion marker goes first ...
         if marker is not None and os.path.lexists(self.path / marker) and self.owns(marker):
-            os.unlink(self.path / marker)
+            self._unlink_inside(marker)
         for rel in staged:
             if rel != marker:
                 self._move(staging, rel)
         for rel in sorted(old - set(staged)):
-            if os.path.lexists(self.path / rel) and self.owns(rel):
-                os.unlink(self.path / rel)
+            if os.path.lexists(self.path / rel) and self.owns(rel) and self._unlink_inside(rel):
                 _remove_empty_parents(self.path / rel, self.path)
             self._index.pop(rel, None)
         # 3. ... and comes back last
@@ -377,6 +418,28 @@ class OutputFolder:
         for rel, digest in digests.items():
             self._record(rel, group, digest)
         self._save_index()
+
+    def _unlink_inside(self, rel: str) -> bool:
+        """Delete the file ``rel``, reaching it through real folders only; False if refused.
+
+        The walk opens each parent with ``O_NOFOLLOW`` relative to the one before, so a parent
+        swapped for a symlink after :meth:`owns` looked cannot redirect the delete elsewhere.
+        """
+        parts = Path(rel).parts
+        fd = os.open(self.path, os.O_RDONLY | os.O_DIRECTORY)
+        try:
+            for part in parts[:-1]:
+                inner = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=fd)
+                os.close(fd)
+                fd = inner
+            os.unlink(parts[-1], dir_fd=fd)
+        except OSError as err:
+            if err.errno in (errno.ENOENT, errno.ELOOP, errno.ENOTDIR):
+                return False
+            raise
+        finally:
+            os.close(fd)
+        return True
 
     def _move(self, staging: Path, rel: str) -> None:
         target = self.path / rel
@@ -396,7 +459,7 @@ def _remove_empty_parents(path: Path, root: Path) -> None:
 
 def _is_safe_relative(rel: str) -> bool:
     parts = Path(rel).parts
-    return bool(parts) and not Path(rel).is_absolute() and ".." not in parts
+    return bool(parts) and not Path(rel).is_absolute() and ".." not in parts and "\0" not in rel
 
 
 def _require_safe(rel: str) -> None:

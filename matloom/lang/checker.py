@@ -6,7 +6,7 @@ import math
 import sys
 
 from matloom.lang import ast as A
-from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
+from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost, over_limit
 from matloom.lang.diagnostics import Diagnostic, Reporter, Severity, Span, hint_for
 from matloom.lang.lexer import as_float
 from matloom.lang.parser import MAX_NESTING
@@ -60,7 +60,8 @@ class Checker(Reporter):
         self._check_expanded_cost(program)
         self._warn_unused(program)
         self._warn_hidden(program)
-        if program.tileable:
+        # the tileable analysis reads parameters as the evaluator does: only valid ones
+        if program.tileable and not any(d.is_error for d in self.diags):
             from matloom.lang.tileable import tileable_warnings
 
             self.diags.extend(tileable_warnings(program, self.src))
@@ -92,22 +93,21 @@ class Checker(Reporter):
 
     def _check_expanded_cost(self, program: A.Program) -> None:
         """E071: the expression nodes an evaluation visits, each Define once per distinct
-        coordinate frame it is used in (:mod:`matloom.lang.cost`), whatever the image size.
+        coordinate frame it is used in and each call weighted by its op's work (the loops its
+        parameters set, :mod:`matloom.lang.cost`), whatever the image size.
         Checked only when nothing else is wrong (the count then stops at the limit)."""
         if any(d.is_error for d in self.diags):
             return
         cost = expanded_cost(program, MAX_EXPANDED_NODES)
         if cost.over:
+            message, hint, call = over_limit(program, cost, MAX_EXPANDED_NODES)
+            span = program.span if call is None else _span_of(call, program.span)
             self.diag(
                 "E071",
-                f"program needs more than {MAX_EXPANDED_NODES:,} expression-node evaluations, "
-                "the limit: each Define is evaluated once in every distinct coordinate frame "
-                f"(Translate/Scale/Rotate) it is used in ({cost.define_evaluations:,} Define "
-                f"evaluations in {cost.frames:,} frames counted before stopping)",
-                program.span,
+                message,
+                span,
                 expected=f"at most {MAX_EXPANDED_NODES:,} node evaluations",
-                hint="transforms of Defines that combine transformed Defines multiply the work; "
-                "transform a Define once and reuse it",
+                hint=hint,
             )
 
     def _check_view(self, program: A.Program) -> None:

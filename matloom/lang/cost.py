@@ -8,8 +8,10 @@ sampling grid to the coordinates an expression is evaluated at (``Translate``, `
 ``Translate(Translate(d, 1, 0), 2, 0)`` and ``Translate(Translate(d, 2, 0), 1, 0)`` are one
 frame, and so are two rotations applied in either order. :class:`FrameTable` numbers the distinct frames for the evaluator and for
 :func:`expanded_cost`, which counts, without evaluating anything, the expression nodes the
-evaluator will visit: each Define once per distinct frame it is used in. That count times the
-texel count bounds the work of an evaluation (see ``docs/limits.md``).
+evaluator will visit: each Define once per distinct frame it is used in, and each call weighted by
+its op's *work* (``Op.work``, :mod:`matloom.engine.ops.work`: a bound, from the call's static
+parameters, of every loop its kernels run, in units of one element-wise operation). That count
+times the texel count bounds the work of an evaluation (see ``docs/limits.md``).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from typing import Any
 from matloom.lang import ast as A
 from matloom.lang.static import is_static, param_value, static_number
 from matloom.vocab import FUNCTIONS, Kind
+from matloom.vocab.spec import Returns
 
 MAX_EXPANDED_NODES = 200_000
 """Most expression-node evaluations one program may need (E071), whatever the image size."""
@@ -177,6 +180,8 @@ class Cost:
     channel_fields: int
     layers: int
     over: bool
+    #: (name, frames) of the Define evaluated in the most distinct frames, if any
+    busiest_define: tuple[str, int] | None = None
 
 
 def _field_children(node: A.Node) -> tuple[A.Node, ...]:
@@ -191,10 +196,31 @@ def _field_children(node: A.Node) -> tuple[A.Node, ...]:
     return tuple(a.value for a in node.args if a.param in fields)
 
 
-def _shape_nodes(node: A.Call) -> int:
-    """Extra nodes of a Fill/Stroke: its shape and the shape's path segments."""
-    shape = node.arg("shape")
-    return 1 + len(shape.extra) if isinstance(shape, A.Call) else 0
+def op_work(call: A.Call) -> int:
+    """Node evaluations one evaluation of ``call`` counts by itself: its op's ``work``
+    (:mod:`matloom.engine.ops.work`: a number, or a rule over the call's static parameters
+    that bounds every loop its kernels run), at least 1."""
+    from matloom.engine.ops import OPS
+
+    op = OPS.get(call.func)
+    work = 1 if op is None else op.work
+    try:
+        if callable(work):
+            work = work(lambda name: param_value(call, name))
+        return max(1, math.ceil(work))
+    except (ValueError, TypeError, ArithmeticError, AssertionError, KeyError):
+        return 1  # parameters the checker rejects (not constants, out of range)
+
+
+def call_work(call: A.Call) -> int:
+    """:func:`op_work` of ``call``, with a Fill/Stroke's shape and its path segments (each
+    segment's edges are drawn on every sample)."""
+    work = op_work(call)
+    shape = call.arg("shape") if call.func in _SHAPED else None
+    if isinstance(shape, A.Call):
+        work += op_work(shape)
+        work += sum(op_work(s) for s in shape.extra if isinstance(s, A.Call))
+    return work
 
 
 def _transform_values(node: A.Call) -> tuple[float, float] | None:
@@ -204,8 +230,9 @@ def _transform_values(node: A.Call) -> tuple[float, float] | None:
         return None
 
 
-#: What the walk needs of a node: ("ref", name), ("transform", func, values or None, body) or
-#: ("field", extra nodes, field children, whether it may allocate an array).
+#: What the walk needs of a node: ("ref", name), ("transform", func, values or None, body,
+#: warp parameters, instances, extra nodes) or ("field", extra nodes, field children, arrays
+#: it may allocate); extra nodes: the node's work beyond 1 (:func:`call_work`).
 _Info = tuple[Any, ...]
 _SHAPED = ("Fill", "Stroke")
 #: Functions whose value is a scalar when their field operands are (as numpy gives it).
@@ -237,11 +264,12 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
         warp = field_params(node)
         values = None if warp else _transform_values(node)
         params = tuple(node.arg(name) for name in warp)
-        return ("transform", node.func, values, node.arg("expr"), params, 1)
+        return ("transform", node.func, values, node.arg("expr"), params, 1, op_work(node) - 1)
     spec = FUNCTIONS.get(node.func) if isinstance(node, A.Call) else None
     if spec is not None and spec.instances:  # instancing (Tile): one frame per instance
-        return ("transform", node.func, None, node.arg("expr"), (), spec.instances)
-    extra = _shape_nodes(node) if isinstance(node, A.Call) and node.func in _SHAPED else 0
+        extra = op_work(node) - 1
+        return ("transform", node.func, None, node.arg("expr"), (), spec.instances, extra)
+    extra = call_work(node) - 1 if isinstance(node, A.Call) else 0
     axis = isinstance(node, A.Call) and node.func in ("X", "Y")
     if axis or _constant(node, constants):
         return ("field", extra, _field_children(node), 0)
@@ -294,6 +322,7 @@ class _Walk:
                     self.seen.add(key)
                     stack.append((self.defines[info[1]], frame, held))
             elif info[0] == "transform":
+                self.nodes += info[6]
                 for _ in range(info[5]):  # Tile: one frame per instance
                     child = self.child_frame(info[1], info[2], frame)
                     turned = child != frame and self.table.is_rotated(child)
@@ -342,4 +371,76 @@ def expanded_cost(
         channel_fields=sum(1 for r in roots if not is_static(r)),
         layers=len(program.layers),
         over=walk.nodes > cap,
+        busiest_define=_busiest(walk.seen),
     )
+
+
+def _busiest(seen: set[tuple[str, int]]) -> tuple[str, int] | None:
+    """(name, frames) of the Define evaluated in the most frames."""
+    counts: dict[str, int] = {}
+    for name, _ in seen:
+        counts[name] = counts.get(name, 0) + 1
+    return max(counts.items(), key=lambda kv: kv[1], default=None)
+
+
+@dataclass(frozen=True)
+class Costliest:
+    """The call of a program that counts the most node evaluations by itself."""
+
+    call: A.Call
+    work: int
+    #: where it is written: "Define 'name'" or "layer N"
+    owner: str
+
+
+def costliest_call(program: A.Program) -> Costliest | None:
+    """The field call with the largest :func:`call_work` (the first such in evaluation order),
+    or None when the program has no call."""
+    best: Costliest | None = None
+    for owner, expr in A.program_expressions(program):
+        for node in A.walk(expr):
+            spec = FUNCTIONS.get(node.func) if isinstance(node, A.Call) else None
+            if spec is None or spec.returns is not Returns.FIELD:
+                continue
+            work = call_work(node)  # type: ignore[arg-type]
+            if best is None or work > best.work:
+                where = f"Define '{owner[1]}'" if owner[0] == "define" else f"layer {owner[1]}"
+                best = Costliest(node, work, where)  # type: ignore[arg-type]
+    return best
+
+
+#: A single call counting at least 1/_DOMINANT_SHARE of the limit is named as the cause.
+_DOMINANT_SHARE = 10
+
+
+def over_limit(program: A.Program, cost: Cost, limit: int) -> tuple[str, str, A.Call | None]:
+    """(message, hint, call to point at) for a program counting more than ``limit`` node
+    evaluations: the call whose own work is a large share of it (a loop its parameters make
+    long), else the Define evaluated in the most coordinate frames."""
+    from matloom.engine.ops.work import HINTS
+    from matloom.lang.printer import format_expr
+
+    heavy = costliest_call(program)
+    if heavy is not None and heavy.work * _DOMINANT_SHARE >= limit:
+        text = format_expr(heavy.call)
+        text = text if len(text) <= 80 else text[:77] + "..."
+        message = (
+            f"{heavy.call.func} in {heavy.owner} counts {heavy.work:,} node evaluations per "
+            f"sample by itself ({text}), and the program more than {limit:,} expression-node "
+            "evaluations, the limit"
+        )
+        hint = HINTS.get(heavy.call.func, "lower the parameters that set its work")
+        return message, hint + " (see docs/limits.md)", heavy.call
+    busiest = cost.busiest_define
+    where = f"; Define '{busiest[0]}' in {busiest[1]:,} frames" if busiest else ""
+    message = (
+        f"program needs more than {limit:,} expression-node evaluations, the limit: each Define "
+        "is evaluated once in every distinct coordinate frame (Translate/Scale/Rotate) it is "
+        f"used in ({cost.define_evaluations:,} Define evaluations in {cost.frames:,} frames "
+        f"counted before stopping{where})"
+    )
+    hint = (
+        "transforms of Defines that combine transformed Defines multiply the work; transform a "
+        "Define once and reuse it"
+    )
+    return message, hint, None

@@ -10,10 +10,11 @@ from matloom.lang.checker import MAX_NODES
 from matloom.lang.cost import field_params
 from matloom.lang.diagnostics import Diagnostic, ProgramError
 from matloom.lang.rewrite import map_expr, map_program
+from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 from matloom.lang.static import static_number
 
 
-def inline_defines(program: A.Program) -> A.Program:
+def inline_defines(program: A.Program, program_seed: int = 0) -> A.Program:
     """Program with no Defines; every reference replaced by the (recursively inlined) expression.
 
     Except: a Define that makes a field parameter a per-sample field of X()/Y() only (e.g.
@@ -21,6 +22,9 @@ def inline_defines(program: A.Program) -> A.Program:
     expression is evaluated once at the origin (see ``ParamSpec.field``).
 
     Explicit noise seeds are kept verbatim, so the inlined program evaluates to the same maps.
+    Omitted seeds are made explicit first (from ``program_seed``, the render default 0), as
+    evaluation would: written out, a named noise's copies would each draw a seed of their own
+    and the numbering of every later seedless call would shift.
     Comments of the removed Defines move to the program's leading comments (printed just before
     ``Material(``), in source order, so ``fmt --inline`` loses no comment text.
     Raises :class:`ProgramError` (E070) if the result would exceed the node limit: Defines that
@@ -34,6 +38,8 @@ def inline_defines(program: A.Program) -> A.Program:
             "E070", message, program.span, expected=f"at most {MAX_NODES} nodes", hint=hint
         )
         raise ProgramError([too_big])
+    if program.defines and has_seedless_noise(program):
+        program = canonicalize_seeds(program, program_seed)
     resolved: dict[str, A.Node] = {}
 
     def sub(node: A.Node) -> A.Node:

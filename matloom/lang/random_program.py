@@ -18,7 +18,8 @@ corner radius, ``to_01``, Threshold sides) are written with probability ``option
 optional values are always drawn, as the reference does. Noise seeds are always written.
 
 One ``random.Random(seed)`` drives everything, so a seed always gives the same program. Output is
-canonical text that checks without errors; the warnings W001 (unused Define) and W002 (hidden or
+canonical text that checks without errors (the work limit E071 included: a draw over it is
+redrawn from a derived seed); the warnings W001 (unused Define) and W002 (hidden or
 invisible layer) are avoided by construction, so generated programs are warning-free in practice.
 """
 
@@ -29,6 +30,7 @@ import random
 from dataclasses import dataclass
 
 from matloom.lang import ast as A
+from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
 from matloom.lang.printer import format_program
 from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import CHANNELS, FUNCTIONS, FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
@@ -132,7 +134,19 @@ def random_program_ast(
         raise ValueError(f"a program needs at least one layer, got layers={layers}")
     if defines is not None and defines < 0:
         raise ValueError(f"defines must be >= 0, got {defines}")
-    return _Generator(random.Random(seed), config).program(layers, defines)
+    program = _Generator(random.Random(seed), config).program(layers, defines)
+    # "always valid" includes the work limit (E071): a draw over it (about 1 in 1,000 with the
+    # default config: many frames of costly calls) is replaced by a draw of a derived seed
+    for attempt in range(1, _MAX_REDRAWS + 1):
+        if not expanded_cost(program, MAX_EXPANDED_NODES).over:
+            return program
+        rng = random.Random(f"{seed}/{attempt}")
+        program = _Generator(rng, config).program(layers, defines)
+    raise ValueError(f"seed {seed}: every draw of this config exceeds the work limit (E071)")
+
+
+#: Draws tried for one seed before giving up (a config whose programs are all too costly).
+_MAX_REDRAWS = 100
 
 
 def _number(value: float) -> A.Node:

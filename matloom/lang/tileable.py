@@ -8,7 +8,9 @@ docs/tileable.md); what it cannot make periodic is reported here, statically, fo
   Stroke) evaluated under a Rotate (other than by a multiple of 180 degrees) or a domain warp
   other than Translate's: its periods are not the View's; a pattern whose cells do not divide
   the View (naming the nearest parameter value and the nearest View that tile); a Hash whose
-  cells do not divide the View.
+  cells do not divide the View; an fBm, Worley or Tile with more cells per View period than
+  a lattice can wrap (``MAX_PERIOD_CELLS``, or a count past the float range), or under a
+  Scale that puts the View's periods past the float range: the engine leaves those unwrapped.
 * **W010**: X()/Y() used non-periodically: not inside Fract, Mod, Sin, Cos or Hash with a whole
   number of cycles per View period (as a term of an affine argument: ``Fract(Y() * 18 +
   noise)`` is periodic when 18 times the View's height is whole).
@@ -22,6 +24,8 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from matloom.engine.kernels.opensimplex import octave_schedule
+from matloom.engine.kernels.periodic import MAX_PERIOD_CELLS, simplex_wraps, wraps
 from matloom.lang import ast as A
 from matloom.lang.affine import WRAPPERS, coord_coeffs, periodic_wrap, whole, wrapper_cycles
 from matloom.lang.diagnostics import Diagnostic, Severity, Span, caret_excerpt
@@ -45,6 +49,8 @@ _SHAPES = tuple(
 )
 #: What cannot repeat under a Rotate or a Scale/Rotate warp.
 _FRAMED = _NOISE + _PATTERNS + _SHAPES
+#: The lattices the engine snaps to whole cells per period and wraps (Hash wraps its operands).
+_LATTICES = tuple(name for name in _NOISE if name != "Hash")
 
 
 def make_tileable(program: A.Program) -> A.Program:
@@ -54,13 +60,32 @@ def make_tileable(program: A.Program) -> A.Program:
 
 
 def tileable_warnings(program: A.Program, source: str = "") -> list[Diagnostic]:
-    """W009/W010 for ``program`` rendered tileable (whatever its View says)."""
+    """W009/W010 for ``program`` rendered tileable (whatever its View says); none for a View
+    without finite, non-zero periods (the checker's E061)."""
     x1, y1, x2, y2 = program.view_tuple
-    return _Walker(program, source).run((abs(x2 - x1), abs(y2 - y1)))
+    periods = (abs(x2 - x1), abs(y2 - y1))
+    if not _valid_periods(periods):
+        return []
+    return _Walker(program, source).run(periods)
 
 
 def _fmt(v: float) -> str:
     return f"{v:.4g}"
+
+
+def _valid_periods(periods: tuple[float, float]) -> bool:
+    return all(math.isfinite(p) and p > 0 for p in periods)
+
+
+def _quotient(a: float, b: float) -> float:
+    """a / b, inf when b is 0 (no whole number of cells of size 0 fill a period)."""
+    return a / b if b else math.inf
+
+
+def _nearest_count(n: float) -> int | None:
+    """The whole number (>= 1) of cells nearest to ``n``; None when ``n`` is not finite (a
+    size or frequency that over- or underflows the period): no nearest value to suggest."""
+    return max(1, round(n)) if math.isfinite(n) else None
 
 
 class _Walker:
@@ -134,6 +159,8 @@ class _Walker:
             )
         elif not isinstance(frame, str) and func in _PATTERNS:
             self.pattern(node, frame)
+        elif not isinstance(frame, str) and func in _LATTICES:
+            self.lattice(node, frame)
         if func == "Tile":  # the motif repeats with its instances
             return
         if func in WRAPPERS and not isinstance(frame, str):
@@ -153,7 +180,8 @@ class _Walker:
                 inner = "a Scale warp"
             else:
                 sx, sy = param_value(node, "sx"), param_value(node, "sy")
-                inner = (frame[0] / abs(sx), frame[1] / abs(sy))
+                scaled = (_quotient(frame[0], abs(sx)), _quotient(frame[1], abs(sy)))
+                inner = scaled if _valid_periods(scaled) else "a Scale past the float range"
         elif node.func == "Rotate":
             if fields:
                 inner = "a Rotate warp"
@@ -171,13 +199,15 @@ class _Walker:
                 continue
             cycles = (coeffs[0] * frame[0] / cycle, coeffs[1] * frame[1] / cycle)
             what = "cells" if node.func == "Hash" else "cycles"
+            nearest = [round(c) if math.isfinite(c) else None for c in cycles]
+            example = "" if None in nearest else f" (e.g. {nearest[0]} x {nearest[1]})"
             self.warn(
                 "W009" if node.func == "Hash" else "W010",
                 f"tileable: {node.func}(...) has {_fmt(cycles[0])} x {_fmt(cycles[1])} {what}"
                 " per View period, not whole numbers, so the output has a seam",
                 node.span,
-                hint="scale its argument so that the View holds a whole number of "
-                f"{what} (e.g. {round(cycles[0])} x {round(cycles[1])})",
+                hint=f"scale its argument so that the View holds a whole number of {what}"
+                + example,
             )
             return True
         return False
@@ -191,6 +221,20 @@ class _Walker:
         if msg:
             self.warn("W009", f"tileable: {msg}", node.span, hint=hint)
 
+    def lattice(self, node: A.Call, frame: tuple[float, float]) -> None:
+        """W009 for an fBm, Worley or Tile whose cells per View period the engine cannot
+        wrap (:func:`~matloom.engine.kernels.periodic.wraps`): it is evaluated unwrapped."""
+        if _lattice_wraps(node, frame):
+            return
+        self.warn(
+            "W009",
+            f"tileable: {node.func} has more than {MAX_PERIOD_CELLS:,} cells per View period "
+            "(or a count past the float range), too many to wrap, so it does not repeat with "
+            "the View",
+            node.span,
+            hint="use a lower frequency (larger cells) or a smaller View",
+        )
+
 
 def _bricks_advice(node: A.Call, frame: tuple[float, float]) -> tuple[str, str | None]:
     bw, bh = float(param_value(node, "brick_width")), float(param_value(node, "brick_height"))
@@ -199,60 +243,97 @@ def _bricks_advice(node: A.Call, frame: tuple[float, float]) -> tuple[str, str |
     along_p, across_p = (frame[0], frame[1]) if rows else (frame[1], frame[0])
     size_a, size_c = (bw, bh) if rows else (bh, bw)
     names = ("brick_width", "brick_height") if rows else ("brick_height", "brick_width")
-    n_a, n_c = along_p / size_a, across_p / size_c
+    n_a, n_c = _quotient(along_p, size_a), _quotient(across_p, size_c)
     bad = []
     fixes = []
-    if whole(n_a) is None:
-        k = max(1, round(n_a))
+    if whole(n_a) is None or not wraps(n_a):
         bad.append(f"{names[0]}={_fmt(size_a)} gives {_fmt(n_a)} bricks per View period")
-        fixes.append(f"{names[0]}={_fmt(along_p / k)}")
-    if whole(n_c) is None:
-        k = max(1, round(n_c))
+        fixes.append(_size_fix(names[0], along_p, n_a))
+    if whole(n_c) is None or not wraps(n_c):
         bad.append(f"{names[1]}={_fmt(size_c)} gives {_fmt(n_c)} courses per View period")
-        fixes.append(f"{names[1]}={_fmt(across_p / k)}")
-    courses = max(1, round(n_c))
-    if whole(offset * courses) is None:
+        fixes.append(_size_fix(names[1], across_p, n_c))
+    courses = _nearest_count(n_c) or 1
+    shift = offset * courses
+    if whole(shift) is None or not wraps(shift):
         bad.append(f"offset={_fmt(offset)} does not repeat over {courses} courses")
-        fixes.append(f"offset={_fmt(round(offset * courses) / courses)}")
+        fixes.append(f"offset={_fmt(round(shift) / courses)}" if wraps(shift) else "")
     if not bad:
         return "", None
-    view = _view_hint(frame, along_p, size_a, across_p, size_c, rows)
-    return f"Bricks: {'; '.join(bad)}", f"nearest tiling: {', '.join(fixes)} (or {view})"
+    view = _view_hint(along_p, size_a, across_p, size_c, rows)
+    hint = f"nearest tiling: {', '.join(f for f in fixes if f) or 'none in range'}"
+    return f"Bricks: {'; '.join(bad)}", hint + (f" (or {view})" if view else "")
 
 
-def _view_hint(
-    frame: tuple[float, float],
-    along_p: float,
-    size_a: float,
-    across_p: float,
-    size_c: float,
-    rows: bool,
-) -> str:
-    """The nearest View (from the origin of the frame's periods) that the pattern tiles."""
-    wa = max(1, round(along_p / size_a)) * size_a
-    wc = max(1, round(across_p / size_c)) * size_c
+def _size_fix(name: str, period: float, count: float) -> str:
+    """``name=value``: the size that fits the whole number of cells nearest to ``count`` in
+    ``period`` ("" when there is none in range, as for a count past the float range)."""
+    k = _nearest_count(count)
+    return "" if k is None or not wraps(k) else f"{name}={_fmt(period / k)}"
+
+
+def _view_hint(along_p: float, size_a: float, across_p: float, size_c: float, rows: bool) -> str:
+    """The nearest View (from the origin of the frame's periods) that the pattern tiles ("" when
+    a size over- or underflows the period)."""
+    ka, kc = _nearest_count(_quotient(along_p, size_a)), _nearest_count(_quotient(across_p, size_c))
+    if ka is None or kc is None:
+        return ""
+    wa, wc = ka * size_a, kc * size_c
     w, h = (wa, wc) if rows else (wc, wa)
     return f"a View {_fmt(w)} x {_fmt(h)} in its frame"
 
 
 def _weave_advice(node: A.Call, frame: tuple[float, float]) -> tuple[str, str | None]:
-    base = float(param_value(node, "base_freq"))
-    fx = param_value(node, "base_freq_x")
-    fy = param_value(node, "base_freq_y")
-    fx, fy = float(base if fx is None else fx), float(base if fy is None else fy)
+    fx, fy = _frequencies(node)
     repeat = int(param_value(node, "over")) + int(param_value(node, "under"))
     shift = int(param_value(node, "shift"))
     rows = repeat // math.gcd(shift, repeat) if shift % repeat else 1
     cols_n, rows_n = fx * frame[0] / repeat, fy * frame[1] / rows
     bad, fixes = [], []
-    if whole(cols_n) is None:
-        k = max(1, round(cols_n))
+    if whole(cols_n) is None or not wraps(cols_n):
         bad.append(f"{_fmt(fx * frame[0])} thread cells across the View (repeat {repeat})")
-        fixes.append(f"base_freq_x={_fmt(k * repeat / frame[0])}")
-    if whole(rows_n) is None:
-        k = max(1, round(rows_n))
+        fixes.append(_freq_fix("base_freq_x", cols_n, repeat, frame[0]))
+    if whole(rows_n) is None or not wraps(rows_n):
         bad.append(f"{_fmt(fy * frame[1])} thread cells up the View (repeat {rows})")
-        fixes.append(f"base_freq_y={_fmt(k * rows / frame[1])}")
+        fixes.append(_freq_fix("base_freq_y", rows_n, rows, frame[1]))
     if not bad:
         return "", None
-    return f"Weave: {'; '.join(bad)}", f"nearest tiling: {', '.join(fixes)}"
+    return (
+        f"Weave: {'; '.join(bad)}",
+        f"nearest tiling: {', '.join(f for f in fixes if f) or 'none in range'}",
+    )
+
+
+def _freq_fix(name: str, repeats: float, repeat: int, period: float) -> str:
+    """``name=value``: the frequency that fits the whole number of repeats nearest to
+    ``repeats`` in ``period`` ("" when there is none in range)."""
+    k = _nearest_count(repeats)
+    return "" if k is None or not wraps(k) else f"{name}={_fmt(k * repeat / period)}"
+
+
+def _lattice_wraps(node: A.Call, frame: tuple[float, float]) -> bool:
+    """Whether the engine can wrap the lattice of an fBm, Worley or Tile in a frame of periods
+    ``frame`` (:func:`~matloom.engine.kernels.periodic.wraps`; as ``simplex_wraps``,
+    ``plan_worley`` and ``TileParams.tiled`` decide)."""
+    px, py = frame
+    if node.func == "Tile":
+        across, up = (
+            _quotient(px, float(param_value(node, "width"))),
+            _quotient(py, float(param_value(node, "height"))),
+        )
+        if not (wraps(across) and wraps(up)):
+            return False
+        return wraps(float(param_value(node, "offset")) * max(1, round(up)))
+    fx, fy = _frequencies(node)
+    if node.func == "fBm":
+        octaves = int(param_value(node, "octaves"))
+        lacunarity, gain = float(param_value(node, "lacunarity")), float(param_value(node, "gain"))
+        schedule = octave_schedule(octaves, lacunarity, gain, fx, fy)
+        return simplex_wraps(schedule.freqs_x, schedule.freqs_y, frame)
+    return wraps(fx * px) and wraps(fy * py)
+
+
+def _frequencies(node: A.Call) -> tuple[float, float]:
+    """(fx, fy) of a noise: ``base_freq_x``/``base_freq_y``, each defaulting to ``base_freq``."""
+    base = float(param_value(node, "base_freq"))
+    fx, fy = param_value(node, "base_freq_x"), param_value(node, "base_freq_y")
+    return float(base if fx is None else fx), float(base if fy is None else fy)

@@ -402,20 +402,31 @@ class _Reader:
     # ------------------------------------------------------------------ scale and numbers
     def scale(self) -> None:
         factors: list[float] = []
+        #: (scale word, token it sizes): a word said again for the same noun counts once
+        #: ("tiny tiny tiles"; 1,500 of them made the View 0 or infinite)
+        seen: set[tuple[str, int]] = set()
         for i, w in enumerate(self.t):
             if w not in self.w.scale or not self.free(i):
                 continue
+            start = i + 1  # a run of scale words ("tiny tiny tiny tiles") sizes the same noun
+            while self.at(start) in self.w.scale:
+                start += 1
             target = next(
                 (
                     self.t[k]
-                    for k in range(i + 1, min(i + 4, len(self.t)))
+                    for k in range(start, min(start + 3, len(self.t)))
                     if self.t[k].isalpha() and self.t[k] not in self.w.scale
                 ),
                 "",
             )
             if not target or target in _SCALE_SKIP or target in self.w.stop_words:
                 continue
-            overlay = self.overlay_at(self.t.index(target, i + 1))
+            sized = self.t.index(target, i + 1)
+            if (w, sized) in seen:
+                self.use("scale", i)
+                continue
+            seen.add((w, sized))
+            overlay = self.overlay_at(sized)
             if overlay is not None:  # "small cracks": the overlay's features, not the View
                 overlay.scale *= self.w.scale[w]
                 self.use("scale", i)

@@ -6,7 +6,8 @@ An entry's document is its name (twice), description, tags (twice), synonyms, pr
 (1.3 in the head clause, before the first "with" or comma), an overlay word 0.35 (so that
 "rusty corrugated metal" finds corrugated metal and adds rust, while "rusty metal" still finds
 rusted metal), a finish word 0.6, a form noun ("plate", "sheet") 0.3, colour 0.1, scale and size
-words 0.25. An entry is a candidate only when a material, object or condition word matched it
+words 0.25. A repeated word counts once, at its largest weight; so does a repeated synonym
+phrase. An entry is a candidate only when a material, object or condition word matched it
 (``REASONS``): colour and finish words alone ("glossy teal") pick nothing. Synonyms
 (``data/synonyms.toml``) add their expansion terms at 0.6 of the source word's weight. An entry
 whose synonym or multi-word tag appears in the prompt as a phrase gains ``PHRASE_BONUS`` per
@@ -205,7 +206,7 @@ class Index:
             if word in self.materials and rule in REASONS and rule != "overlay":
                 w *= MATERIAL_WEIGHT
             s = self.stem(word)
-            weights[s] = weights.get(s, 0.0) + w
+            weights[s] = max(weights.get(s, 0.0), w)  # a repeated word counts once
             sources.setdefault(s, set()).add(i)
             order.append(s)
         words = req.words_at()
@@ -213,10 +214,23 @@ class Index:
             joined = self.stem(a + b)  # "honey comb" -> honeycomb, "zig zag" -> zigzag
             if j == i + 1 and self.bm25 is not None and joined in self.bm25.idf:
                 w = max(WEIGHTS.get(self.rule(req, k), 1.0) for k in (i, j))
-                weights[joined] = weights.get(joined, 0.0) + w
+                weights[joined] = max(weights.get(joined, 0.0), w)
                 sources.setdefault(joined, set()).update((i, j))
                 order.append(joined)
+        self.add_synonyms(words, weights, sources)
+        return weights, sources, order
+
+    def add_synonyms(
+        self, words: list[tuple[int, str]], weights: dict[str, float], sources: dict[str, set[int]]
+    ) -> None:
+        """Add the expansion terms of every synonym phrase of ``words`` to ``weights``.
+
+        Each distinct phrase adds once, however often it is said: a synonym that expands to
+        its own stem ("bricks" -> "brick") would otherwise grow its weight geometrically with
+        every repeat (infinite at about 1,500).
+        """
         stems = [(i, self.stem(w)) for i, w in words]
+        seen: set[tuple[str, ...]] = set()
         for n in (3, 2, 1):
             for k in range(len(stems) - n + 1):
                 chunk = stems[k : k + n]
@@ -225,11 +239,14 @@ class Index:
                 key = tuple(s for _, s in chunk)
                 if key not in self.synonyms:
                     continue
+                for s in self.synonyms[key]:
+                    sources.setdefault(s, set()).update(i for i, _ in chunk)
+                if key in seen:
+                    continue
+                seen.add(key)
                 base = max(weights.get(s, 0.25) for s in key)
                 for s in self.synonyms[key]:
                     weights[s] = weights.get(s, 0.0) + SYNONYM_WEIGHT * base
-                    sources.setdefault(s, set()).update(i for i, _ in chunk)
-        return weights, sources, order
 
     def rank(self, req: Request) -> list[Candidate]:
         """Every entry with a positive score, best first."""

@@ -64,8 +64,9 @@ LIT_LAYOUT_NOTE: str = (
     "lit preview: the swatch seen head-on by a camera "
     f"{M.CAMERA_DISTANCE:g} half-widths above it, shaded with GGX microfacets "
     "(metallic/roughness; F0 from ior for dielectrics, base colour for metals), a clear coat "
-    f"(roughness {M.COAT_ROUGHNESS:g}), a sheen lobe, subsurface wrap and anisotropy along "
-    "anisotropy_angle. Studio: a sky gradient (bright at the top, dark at the bottom), a large "
+    f"(roughness {M.COAT_ROUGHNESS:g}), a sheen lobe, subsurface wrap and anisotropy (brush "
+    "lines along anisotropy_angle, the highlight stretched across them). Studio: a sky "
+    "gradient (bright at the top, dark at the bottom), a large "
     "softbox above the camera and a thin strip light below it, which smooth and metallic "
     "surfaces reflect as a gradient with a bright band in the upper part of the swatch (rough "
     "ones as a soft glow); a grazing key light from the upper left at "
@@ -145,7 +146,9 @@ def _shade_band(
     degrees = angle.astype(np.float64)
     rotated = (aniso > 0.0) & (degrees != 0.0) & np.isfinite(degrees)
     theta = np.radians(np.where(rotated, degrees, 0.0))
-    tangent = (np.where(rotated, np.cos(theta), 1.0), np.where(rotated, np.sin(theta), 0.0))
+    # the angle is the brushing direction; the GGX tangent (larger alpha: the stretch) is across
+    # it, at angle + 90 (ANISOTROPY_STRETCH_OFFSET_DEG): (cos, sin) of that is (-sin, cos)
+    tangent = (np.where(rotated, -np.sin(theta), 0.0), np.where(rotated, np.cos(theta), 1.0))
     scalars = (
         _unit(alpha),
         _unit(metallic),

@@ -23,7 +23,8 @@ intensity I receives I):
   weak fill light from the lower right.
 
 Shading: GGX microfacets with height-correlated Smith visibility and Schlick Fresnel (anisotropic
-for the base lobe, stretched along the tangent rotated by ``anisotropy_angle``), F0 from the ior
+for the base lobe, stretched along the tangent, which is across the brushing direction
+``anisotropy_angle``, at angle + 90, as real grooves stretch it), F0 from the ior
 for dielectrics and from the base colour for metals, Karis' analytic split-sum term for the
 environment; a clear coat (second GGX lobe, ior 1.5, :data:`COAT_ROUGHNESS`) attenuating what
 is under it; a Charlie sheen lobe (roughness 0.5) with its directional albedo; wrap-lit diffuse
@@ -302,8 +303,8 @@ def shade_texel(
     ``px, py``: swatch coordinates; ``base``/``emissive``: linear (r, g, b), base in [0, 1],
     emissive >= 0; ``scalars`` = (coverage, metallic, roughness, sheen, coat, transmission,
     subsurface, anisotropy, ior, ao), already finite and clamped (ior to [1, 3]); ``normal``:
-    unit (x, y, z); ``tangent``: unit in-plane (cos, sin) of the anisotropy angle; ``key`` and
-    ``fill``: (lx, ly, lz, intensity) of the two lights.
+    unit (x, y, z); ``tangent``: unit in-plane (cos, sin) of the stretch (anisotropy angle +
+    90); ``key`` and ``fill``: (lx, ly, lz, intensity) of the two lights.
     """
     cover, metal, rough, sheen, coat, trans, ss, aniso, eta, ao = scalars
     nx, ny, nz = normal

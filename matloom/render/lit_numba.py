@@ -90,10 +90,10 @@ def _load_row(maps: tuple, i: int, s: np.ndarray) -> None:
         s[16, j], s[17, j], s[18, j] = nx, ny, nz
     for j in range(alpha.shape[1]):
         degrees = np.float64(angle[i, j])
-        s[19, j], s[20, j] = 1.0, 0.0
+        s[19, j], s[20, j] = 0.0, 1.0  # the stretch is across the brushing (angle + 90)
         if s[7, j] > 0.0 and degrees != 0.0 and math.isfinite(degrees):
             theta = math.radians(degrees)
-            s[19, j], s[20, j] = math.cos(theta), math.sin(theta)
+            s[19, j], s[20, j] = -math.sin(theta), math.cos(theta)
 
 
 @jit(**_OPTIONS)

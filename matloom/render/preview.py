@@ -20,12 +20,13 @@ takes v^(1/2.4) of the albedo and of the soft-knee emissive in float32, which mo
 (``benchmarks/preview.py``). Both reproduce all 30 reference previews of the parity fixtures
 byte for byte.
 
-Anisotropy: the reference widens the Blinn-Phong lobe by 1 / (1 + 4 anisotropy), its stretch
-direction being the tangent +x. ``anisotropy_angle`` (degrees counter-clockwise from +x) rotates
-that tangent: the exponent is then multiplied by :func:`anisotropy_direction_factor`, the ratio
-of the Ashikhmin-Shirley exponents with the rotated and the unrotated tangent. It is exactly 1
-where the angle is 0 (so every preview without the channel is unchanged, byte for byte) and
-where the anisotropy is 0; otherwise the highlight dims or brightens as the stretch turns
+Anisotropy: the reference widens the Blinn-Phong lobe by 1 / (1 + 4 anisotropy); we read that
+as brush lines along +x, the highlight stretched across them, along +y (as real grooves stretch
+it). ``anisotropy_angle`` (the brushing direction, degrees counter-clockwise from +x) turns the
+stretch to angle + 90: the exponent is then multiplied by :func:`anisotropy_direction_factor`,
+the ratio of the Ashikhmin-Shirley exponents with the turned and the unturned stretch. It is
+exactly 1 where the angle is 0 (so every preview without the channel is unchanged, byte for
+byte) and where the anisotropy is 0; otherwise the highlight dims or brightens as the stretch turns
 across or along the half vector's in-plane direction. Angles are axial (180 = 0).
 
 Non-finite inputs never raise. They follow the reference's arithmetic (NaN propagates through
@@ -132,13 +133,15 @@ def _soft_knee_power(emissive: np.ndarray) -> np.ndarray:
 def anisotropy_direction_factor(
     angle_deg: np.ndarray, anisotropy: np.ndarray, half: np.ndarray
 ) -> np.ndarray:
-    """Per texel, the factor that turns the reference's exponent (stretch along +x) into the
-    exponent with the stretch along ``angle_deg`` (degrees counter-clockwise from +x).
+    """Per texel, the factor that turns the reference's exponent (brushing along +x, stretch
+    along +y) into the exponent with the brushing along ``angle_deg`` (degrees counter-clockwise
+    from +x), the stretch across it.
 
-    With the tangent t = (cos angle, sin angle), the in-plane half vector h = (H_x, H_y) and
-    k = 1 / (1 + 4 a) (``anisotropy`` a, already clamped to [0, 1]), the Ashikhmin-Shirley
-    exponent is proportional to k (h.t)^2 + (h.b)^2 = |h|^2 - (1 - k) (h.t)^2; the factor is
-    its value at the angle over its value at 0. It is exactly 1 where the angle is 0, where
+    With the stretch t = (cos(angle + 90), sin(angle + 90)) = (-sin angle, cos angle), the
+    in-plane half vector h = (H_x, H_y) and k = 1 / (1 + 4 a) (``anisotropy`` a, already
+    clamped to [0, 1]), the Ashikhmin-Shirley exponent is proportional to
+    k (h.t)^2 + (h.b)^2 = |h|^2 - (1 - k) (h.t)^2; the factor is its value at the angle over
+    its value at 0. It is exactly 1 where the angle is 0, where
     a = 0 and when h = 0 (a head-on half vector has no direction to compare with). NaN
     angles give NaN, as every other NaN map does. float64, shared by both shaders.
     """
@@ -146,10 +149,10 @@ def anisotropy_direction_factor(
     in_plane = hx * hx + hy * hy
     with np.errstate(all="ignore"):
         theta = np.radians(np.asarray(angle_deg, dtype=np.float64))
-        along = hx * np.cos(theta) + hy * np.sin(theta)
+        along = hy * np.cos(theta) - hx * np.sin(theta)  # h.t, t across the brushing
         quadrupled = 4.0 * np.asarray(anisotropy, dtype=np.float64)
         stretch = quadrupled / (1.0 + quadrupled)  # 1 - k
-        at_zero = in_plane - stretch * (hx * hx)
+        at_zero = in_plane - stretch * (hy * hy)
         factor = (in_plane - stretch * (along * along)) / at_zero
     return np.where((angle_deg == 0) | (at_zero == 0), 1.0, factor)
 

@@ -10,6 +10,13 @@ from matloom.vocab.spec import Blend, ChannelSpec
 
 C = ChannelSpec
 
+#: ``anisotropy_angle`` is the brushing direction an artist writes (the brush lines run along
+#: it). Real grooves spread the normals across themselves, so the highlight stretches across the
+#: lines. Every consumer's anisotropy direction (glTF KHR_materials_anisotropy, Blender's
+#: tangent, OpenPBR's tangent, the lit preview's GGX tangent) is the direction of the *larger*
+#: roughness, i.e. of the stretch: each gets ``anisotropy_angle + ANISOTROPY_STRETCH_OFFSET_DEG``.
+ANISOTROPY_STRETCH_OFFSET_DEG = 90.0
+
 CHANNELS: dict[str, ChannelSpec] = {
     c.name: c
     for c in (
@@ -113,9 +120,13 @@ CHANNELS: dict[str, ChannelSpec] = {
             ("value",),
             (0.0,),
             "0..1",
-            "anisotropic highlight stretch along x, or along .anisotropy_angle (brushed metal)",
+            "anisotropic highlight of brushed metal: brush lines along x, or along "
+            ".anisotropy_angle; the highlight stretches across the lines, as on real grooves",
             ".anisotropy(0.6)",
-            map_doc="anisotropy magnitude 0..1 (direction: tangent/X rotated by anisotropy_angle)",
+            map_doc=(
+                "anisotropy magnitude 0..1 (brush lines along tangent/X rotated by "
+                "anisotropy_angle; the highlight stretches across them)"
+            ),
             search=(0, 1),
         ),
         C(
@@ -123,12 +134,15 @@ CHANNELS: dict[str, ChannelSpec] = {
             ("degrees",),
             (0.0,),
             "degrees counter-clockwise from +x (unclamped; 180 is the same direction as 0)",
-            "direction of the anisotropic highlight's stretch; layers blend the angle linearly",
+            "brushing direction (the direction the brush lines or grooves run); the highlight "
+            "stretches across it, at angle + 90, as on real grooves; layers blend the angle "
+            "linearly",
             ".anisotropy_angle(45)",
             map_doc=(
-                "direction of the anisotropic stretch, degrees counter-clockwise from +x "
-                "(tangent/X) toward +y (up); axial, so angle and angle + 180 are the same; "
-                "layers blend the angle linearly (value_range: the blended degrees)"
+                "brushing direction (the brush lines run along it; the highlight stretches "
+                "across it, at angle + 90), degrees counter-clockwise from +x (tangent/X) toward "
+                "+y (up); axial, so angle and angle + 180 are the same; layers blend the angle "
+                "linearly (value_range: the blended degrees)"
             ),
             clamp_lo=None,
             clamp_hi=None,

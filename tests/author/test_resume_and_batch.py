@@ -66,7 +66,8 @@ def test_resume_after_kill_mid_run(server: ChatServer, tmp_path: Path) -> None:
     assert before.turns[-1].accepted is False  # P2's turn was in flight
     seen = len(server.requests)
 
-    result = CliRunner().invoke(cli, ["generate", "--resume", "-o", str(run)])
+    # The run folder is ours: its recorded server may be used (without a new --base-url).
+    result = CliRunner().invoke(cli, ["generate", "--resume", "--trust-record", "-o", str(run)])
     assert result.exit_code == 0, result.stderr
     after = validate_record_file(run / "record.json")
     new = server.requests[seen:]

@@ -169,7 +169,7 @@ def test_resume_after_a_failed_revision_keeps_the_library_p0(
     assert len(before.programs) == 1 and len(before.critiques) == 1
     seen = len(server.requests)
 
-    resumed = run_cli("generate", "--resume", "-o", str(run))
+    resumed = run_cli("generate", "--resume", "-o", str(run), "--base-url", server.base_url)
     assert resumed.exit_code == 0, resumed.stderr
     after = validate_record_file(run / "record.json")
     new = server.requests[seen:]

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from matloom.blender import tempdirs
 from matloom.blender.runner import Blender
 from matloom.io.outdir import STAGING_PREFIX, OutputFolder
 
@@ -25,8 +26,10 @@ ROOT = Path(__file__).resolve().parents[2]
 PLANK = ROOT / "docs" / "examples" / "01_plank_floor.mat"
 
 
-def _start(blender: Blender, out: Path) -> subprocess.Popen[str]:
+def _start(blender: Blender, out: Path, tmpdir: Path | None = None) -> subprocess.Popen[str]:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    if tmpdir is not None:
+        env["TMPDIR"] = str(tmpdir)
     flag = "MATLOOM_BLENDER_PYTHON" if blender.kind == "bpy" else "MATLOOM_BLENDER"
     env[flag] = blender.path
     return subprocess.Popen(
@@ -50,11 +53,12 @@ def _wait_for_render(proc: subprocess.Popen[str]) -> None:
 
 
 def _children(pid: int) -> list[int]:
+    """The Blender worker processes of ``pid`` (not, e.g., a background kernel compiler)."""
     found = []
     for task in Path(f"/proc/{pid}/task").iterdir():
         text = (task / "children").read_text()
         found += [int(p) for p in text.split()]
-    return found
+    return [p for p in found if b"worker.py" in Path(f"/proc/{p}/cmdline").read_bytes()]
 
 
 def _gone(pid: int, seconds: float = 20.0) -> bool:
@@ -99,9 +103,12 @@ def test_blender_killed_mid_render(blender: Blender, tmp_path: Path) -> None:
 @pytest.mark.skipif(not Path("/proc/self/task").is_dir(), reason="needs Linux /proc")
 def test_matloom_killed_mid_render(blender: Blender, tmp_path: Path) -> None:
     """SIGKILL to MatLoom: Blender ends too (it watches its parent), nothing appears under the
-    final name, and the next MatLoom run in the folder removes the staging it left."""
+    final name, and the next MatLoom run in the folder removes the staging it left; the next
+    `matloom blender` run removes its temporary folders (issue 22, defect 17)."""
     out = tmp_path / "out"
-    proc = _start(blender, out)
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    proc = _start(blender, out, tmp)
     _wait_for_render(proc)
     (worker,) = _children(proc.pid)
     assert proc.poll() is None and not _gone(worker, 0)
@@ -113,3 +120,7 @@ def test_matloom_killed_mid_render(blender: Blender, tmp_path: Path) -> None:
     with OutputFolder(out):
         pass  # any MatLoom command opening the folder cleans what a killed run left
     assert _leftovers(out) == []
+    leaked = sorted(tmp.glob(f"{tempdirs.PREFIX}*"))
+    assert leaked, "the killed run had a temporary folder (the program's maps, the job)"
+    assert sorted(tempdirs.clean_stale(tmp)) == leaked  # what the next run does first
+    assert list(tmp.iterdir()) == []

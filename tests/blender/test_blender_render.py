@@ -41,8 +41,12 @@ Material(
 """
 
 
-def _run(blender: Blender, *args: str) -> subprocess.CompletedProcess[str]:
+def _run(
+    blender: Blender, *args: str, tmpdir: Path | None = None
+) -> subprocess.CompletedProcess[str]:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    if tmpdir is not None:
+        env["TMPDIR"] = str(tmpdir)
     flag = "MATLOOM_BLENDER_PYTHON" if blender.kind == "bpy" else "MATLOOM_BLENDER"
     env[flag] = blender.path
     res = subprocess.run(
@@ -175,12 +179,17 @@ def test_material_only_blend_is_an_asset(blender: Blender, tmp_path: Path) -> No
     assert all(image["packed"] for image in data["images"].values())
 
 
-def test_single_png(blender: Blender, tmp_path: Path) -> None:
-    """The issue's form: `matloom blender PROGRAM --layout staged -o out.png`."""
+def test_single_png(
+    blender: Blender, tmp_path: Path, tmp_path_factory: pytest.TempPathFactory
+) -> None:
+    """The issue's form: `matloom blender PROGRAM --layout staged -o out.png`. Nothing is left
+    in $TMPDIR (Blender's own `blender_*` folder goes inside MatLoom's and goes with it)."""
     target = tmp_path / "out.png"
-    res = _run(blender, str(PLANK), "--layout", "staged", "-o", str(target))
+    tmpdir = tmp_path_factory.mktemp("tmpdir")
+    res = _run(blender, str(PLANK), "--layout", "staged", "-o", str(target), tmpdir=tmpdir)
     assert res.stdout.split() == [str(target)]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.png"]
+    assert list(tmpdir.iterdir()) == []
     assert written_by_matloom(target)
     image = _image(target)
     assert image.shape == (64, 64, 4) and image[..., :3].std() > 0.02

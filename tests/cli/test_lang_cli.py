@@ -129,6 +129,26 @@ def test_fmt_inline(files: dict[str, Path]) -> None:
     assert inlined.defines == () and result.stdout.count("Bricks(") == 3
 
 
+def test_fmt_inline_of_seedless_named_noise_renders_the_same_maps(
+    files: dict[str, Path], tmp_path: Path
+) -> None:
+    # `seedless.mat` uses Define(n, fBm(...)) without a seed four times: the printed program
+    # must render bit for bit what the file renders (`render` with its default program seed)
+    result = run_cli("fmt", "--inline", str(files["seedless"]))
+    assert result.returncode == 0, result.stderr
+    inlined = tmp_path / "inlined.mat"
+    inlined.write_text(result.stdout, encoding="utf-8")
+    hashes = []
+    for path in (files["seedless"], inlined):
+        out = tmp_path / f"render-{path.stem}"
+        rendered = run_cli("render", str(path), "-o", str(out), "--size", "32", "--format", "exr")
+        assert rendered.returncode == 0, rendered.stderr
+        manifest = json.loads((out / "material.json").read_text(encoding="utf-8"))
+        maps = {m["file"] for m in manifest["maps"] if m.get("file")}
+        hashes.append({f: h for f, h in manifest["files"].items() if f in maps})
+    assert len(hashes[0]) >= 14 and hashes[0] == hashes[1]
+
+
 # ---------------------------------------------------------------------------- seeds
 def test_seeds_prints_original_and_three_variants(files: dict[str, Path]) -> None:
     result = run_cli("seeds", str(files["tile"]), "--variants", "3")

@@ -270,6 +270,20 @@ def test_gallery_keeps_foreign_files(project: Path) -> None:
     assert (project / "sub" / "thesis.tex").exists() and (project / "sub" / "index.html").exists()
 
 
+def test_render_never_deletes_through_a_symlinked_subfolder(project: Path) -> None:
+    """Issue 22, defect 1: an old-style manifest listing ``sub/thesis.tex`` with ``sub`` a
+    symlink to the user's folder made ``render`` adopt the thesis and delete it as stale."""
+    out = project / "out"
+    out.mkdir()
+    (out / "sub").symlink_to(project / "sub")
+    manifest = {"format": "matloom-material", "maps": [{"file": "sub/thesis.tex"}]}
+    (out / "material.json").write_text(json.dumps(manifest))
+    res = matloom("render", "prog.mat", "-o", "out", "--size", "16", cwd=project)
+    assert res.returncode == 0, res.stderr
+    assert (project / "sub" / "thesis.tex").read_text() == "\\section{precious}"
+    assert "sub/thesis.tex" not in json.loads((out / ".matloom-files.json").read_text())["files"]
+
+
 def test_fmt_write_keeps_mode_and_symlink(tmp_path: Path) -> None:
     real = tmp_path / "real.mat"
     real.write_text("Material(Layer(1).roughness(0.5))\n")

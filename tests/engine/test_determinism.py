@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import hashlib
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -99,3 +100,113 @@ def test_inlined_random_programs_evaluate_identically():
         a, b = evaluate(text, 24, 20), evaluate(inlined, 24, 20)
         for key in ARRAY_FIELDS:
             np.testing.assert_array_equal(getattr(a, key), getattr(b, key), err_msg=f"{seed}:{key}")
+
+
+# ------------------------------------------------------------------ the same maps on every CPU
+#: numpy's run-time dispatch groups turned off, one setting after the other: none (the CPU's
+#: best), the AVX-512 groups (an AVX2 machine), and AVX2 as well (an x86-64-v2 machine).
+CPU_SETTINGS: tuple[tuple[str, ...], ...] = (
+    (),
+    ("X86_V4", "AVX512_ICL", "AVX512_SPR"),
+    ("X86_V4", "AVX512_ICL", "AVX512_SPR", "X86_V3"),
+)
+#: Evaluates every program of the job (JSON on stdin) on every backend it names and prints the
+#: SHA-256 of every map, with the dispatch groups numpy runs with.
+_HASH_WORKER = r"""
+import hashlib, json, sys, warnings
+import numpy as np
+try:
+    from numpy._core import _multiarray_umath as umath
+except ImportError:  # numpy < 2
+    from numpy.core import _multiarray_umath as umath
+from matloom.engine.evaluate import evaluate
+from matloom.engine.maps import ARRAY_FIELDS
+job = json.load(sys.stdin)
+warnings.simplefilter("ignore")  # division-by-zero and NaN warnings of random programs
+hashes = {}
+for backend in job["backends"]:
+    for name, text in job["programs"].items():
+        maps = evaluate(text, job["width"], job["height"], backend=backend)
+        for key in ARRAY_FIELDS:
+            array = np.ascontiguousarray(getattr(maps, key))
+            digest = hashlib.sha256(f"{array.dtype}{array.shape}".encode() + array.tobytes())
+            hashes[f"{backend}:{name}:{key}"] = digest.hexdigest()
+active = sorted(k for k in umath.__cpu_dispatch__ if umath.__cpu_features__.get(k))
+json.dump({"active": active, "hashes": hashes}, sys.stdout)
+"""
+
+
+def _dispatch_groups() -> set[str]:
+    """The dispatch groups this numpy build has and this CPU runs (naming another one in
+    NPY_DISABLE_CPU_FEATURES is ignored or, for a baseline group, an import error)."""
+    try:
+        from numpy._core import _multiarray_umath as umath
+    except ImportError:  # numpy < 2
+        from numpy.core import _multiarray_umath as umath
+    return {k for k in umath.__cpu_dispatch__ if umath.__cpu_features__.get(k)}
+
+
+def determinism_programs() -> dict[str, str]:
+    """All docs examples, 30 library entries (every 16th of the sorted list) and 50 random
+    programs (25 of language 1, 25 of language 2)."""
+    from matloom.lang.random_program import RandomConfig, random_program
+    from matloom.library.index import library
+
+    programs = {
+        f"{p.parent.parent.name}/{p.name}": p.read_text()
+        for folder in (ROOT / "docs" / "examples", ROOT / "matloom" / "examples")
+        for p in sorted(folder.glob("*.mat"))
+    }
+    entries = sorted(library().entries.values(), key=lambda e: e.name)
+    step = max(1, len(entries) // 30)
+    programs |= {f"library/{e.name}": e.program for e in entries[::step][:30]}
+    for language in (1, 2):
+        config = RandomConfig(language=language)
+        for seed in range(25):
+            programs[f"random{language}/{seed}"] = random_program(seed, config=config)
+    return programs
+
+
+def test_maps_are_identical_on_every_cpu_dispatch():
+    """Every map of every program is bit-identical whichever SIMD code numpy dispatches to
+    (AVX-512, AVX2, baseline) and with numba compiling for a generic CPU, on both backends:
+    the transcendental functions are portable (kernels.portable_math), not the CPU's."""
+    import os
+
+    from matloom.engine.backends import available_backends
+
+    programs = determinism_programs()
+    assert len(programs) >= 13 + 30 + 50
+    here = _dispatch_groups()
+    job = json.dumps(
+        {"programs": programs, "backends": available_backends(), "width": 48, "height": 40}
+    )
+    runs = []
+    for setting in CPU_SETTINGS:
+        env = {**os.environ, "PYTHONPATH": str(ROOT)}
+        env.pop("NPY_DISABLE_CPU_FEATURES", None)
+        disabled = [g for g in setting if g in here]
+        if setting:
+            env["NPY_DISABLE_CPU_FEATURES"] = " ".join(disabled)
+            env["NUMBA_CPU_NAME"] = "generic"
+        proc = subprocess.Popen(
+            [sys.executable, "-c", _HASH_WORKER],
+            env=env,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        runs.append((setting, disabled, proc))
+    results = []
+    for setting, disabled, proc in runs:
+        out, err = proc.communicate(job, timeout=600)
+        assert proc.returncode == 0, f"{setting}: {err[-2000:]}"
+        result = json.loads(out)
+        assert not set(disabled) & set(result["active"]), f"{setting} still dispatched"
+        results.append((setting, result["hashes"]))
+    reference = results[0][1]
+    assert len(reference) == len(programs) * len(available_backends()) * len(ARRAY_FIELDS)
+    for setting, hashes in results[1:]:
+        differing = sorted(k for k in reference if hashes[k] != reference[k])
+        assert not differing, f"NPY_DISABLE_CPU_FEATURES={' '.join(setting)}: {differing[:20]}"

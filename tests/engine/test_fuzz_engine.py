@@ -85,6 +85,14 @@ EXTREME_VIEWS: tuple[str, ...] = (
     "View(-1e-320, 0, 1e-320, 1)",
     "View(-3e38, -3e38, 3e38, 3e38)",  # a span past the float32 sample grid
     "View(0, 0, 3e38, 3e38)",  # just inside it
+    # tileable Views at the same extremes (the registry-wide tileable fuzz is
+    # tests/engine/test_fuzz_tileable.py)
+    "View(-1e308, -1e308, 1e308, 1e308, tileable=True)",
+    "View(0, 0, 5e-324, 1, tileable=True)",
+    "View(0, 0, 0 / 0, 1, tileable=True)",
+    "View(-3e38, -3e38, 3e38, 3e38, tileable=True)",
+    "View(0, 0, 3e38, 3e38, tileable=True)",
+    "View(0, 0, 1e-300, 1e-300, tileable=True)",
 )
 
 _SENTINEL = 918273645

@@ -150,6 +150,53 @@ def test_evaluate_refuses_an_unchecked_program_over_the_node_limit() -> None:
         evaluate(program, 8, 8, limits=limits)
 
 
+def test_evaluate_refuses_the_unchecked_weave_of_the_issue_before_any_work() -> None:
+    """Issue 22 #2: an unchecked program (no E071 from the checker) with the 2^20-step Weave
+    search is refused by the engine's count, naming the call, instead of running for seconds
+    (hours inside Tiles)."""
+    from matloom.lang.parser import parse_source
+
+    text = (
+        'Define(cloth, Weave(over=1048576, under=1, shift=2, output="along"))\n'
+        "Material(Layer(1).height(Tile(Translate(cloth, 0.5, 0), 1, 1, seed=1)))\n"
+    )
+    program, diags = parse_source(text)  # parsed, not checked
+    assert program is not None and not diags
+    with pytest.raises(LimitError, match=r"Weave in Define 'cloth' counts [\d,]+ node") as err:
+        evaluate(program, 4, 4)
+    assert "\n" not in str(err.value) and "E071" in str(err.value)
+
+
+def test_the_largest_texel_limit_names_the_costliest_call() -> None:
+    program = prepare("Material(Layer(1).height(Worley(seed=1) + fBm(octaves=16, seed=2)))")
+    nodes = expanded_cost(program).nodes
+    limits = Limits(max_node_texels=nodes * 64)
+    with pytest.raises(LimitError, match="costliest call is Worley in layer 0"):
+        evaluate(program, 9, 8, limits=limits)
+
+
+def test_every_library_entry_and_docs_example_fits_at_the_largest_size() -> None:
+    """The work weights and the node-texel budget together: every shipped program renders at
+    8192x8192 (the weights were measured, the budget was set so that none is refused)."""
+    from pathlib import Path
+
+    from matloom.lang.parser import parse_source
+    from matloom.library import library
+
+    texts = {name: entry.program for name, entry in library().entries.items()}
+    examples = Path(__file__).resolve().parents[2] / "docs" / "examples"
+    texts |= {p.name: p.read_text() for p in sorted(examples.glob("*.mat"))}
+    assert len(texts) > 400
+    cap = Limits().max_node_texels // (8192 * 8192)
+    over = []
+    for name, text in texts.items():
+        program, _ = parse_source(text)  # parsed only: the library tests check them
+        assert program is not None, name
+        if expanded_cost(program, cap).over:
+            over.append(name)
+    assert not over
+
+
 def test_node_texel_limit_depends_on_the_size() -> None:
     program = prepare(chain(4))
     nodes = expanded_cost(program).nodes

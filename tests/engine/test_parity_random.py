@@ -13,6 +13,16 @@ except where the reference is numerically wrong (docs/compatibility.md, "Random 
   MatLoom keeps the float64 result; a rounding of one float32 ulp is then amplified (division by
   ~1e-8, ``Cos`` near 1 under ``Floor``). Only the arrays listed in :data:`FLOAT32_ARTEFACTS`
   may differ, at no more texels than listed; every other array matches.
+* cause D -- the reference's transcendental functions are numpy's SIMD code of the reference
+  author's CPU (AVX-512), whose last bit is CPU-specific: its float64 ``power`` is not correctly
+  rounded in ~5 % of cases (sRGB decode ``x ** 2.4``: rand_s009, rand_s375), and it computes
+  ``Sin``/``Cos``/``Log`` of float32 grids in float32 (numpy's float32 routines, up to 1.5 ulp;
+  rand_s306). MatLoom uses portable functions (kernels.portable_math: fdlibm's algorithms, below
+  1 ulp, float32 results rounded from float64) that give the same bits on every CPU; a last-bit
+  difference then moves a ``Floor``/``Threshold`` and whole texels. Only the arrays listed in
+  :data:`CPU_SPECIFIC_REFERENCE` may differ, at no more texels than listed; the counts are the
+  same with numpy's AVX-512 and AVX2 code turned off (``NPY_DISABLE_CPU_FEATURES``), which
+  before the portable functions changed them.
 """
 
 from __future__ import annotations
@@ -60,6 +70,24 @@ FLOAT32_ARTEFACTS = {
     ("rand_s255", (48, 32)): {"basecolor_linear": 11},
     ("rand_s378", (48, 32)): {"height": 2},
 }
+
+
+#: Cause D: (program, size) -> {array: most texels beyond tolerance}, the same on every CPU.
+CPU_SPECIFIC_REFERENCE = {
+    ("rand_s009", (64, 64)): {"basecolor_linear": 2},
+    ("rand_s306", (64, 64)): {"anisotropy": 3},
+    ("rand_s306", (48, 32)): {"anisotropy": 5},
+    ("rand_s375", (64, 64)): {"basecolor_linear": 64},
+    ("rand_s375", (48, 32)): {"basecolor_linear": 48},
+}
+
+
+def _allowed(name: str, size: tuple[int, int]) -> dict[str, int]:
+    """Texels allowed beyond tolerance per array: causes C and D."""
+    return {
+        **FLOAT32_ARTEFACTS.get((name, size), {}),
+        **CPU_SPECIFIC_REFERENCE.get((name, size), {}),
+    }
 
 
 def _separable_reference_skew(
@@ -128,7 +156,7 @@ def test_random_program_matches_reference(name, backend):
         assert any(differing.values()), f"{name} now matches: remove it from FLOAT32_SKEW"
         return  # checked on the reference-skew backend below
     for size, found in differing.items():
-        allowed = FLOAT32_ARTEFACTS.get((name, size), {})
+        allowed = _allowed(name, size)
         over = {k: n for k, n in found.items() if n > allowed.get(k, 0)}
         assert not over, f"{name} {size}: texels beyond tolerance {over}"
 
@@ -148,6 +176,15 @@ def test_float32_artefacts_are_listed_exactly():
     for (name, size), allowed in FLOAT32_ARTEFACTS.items():
         found = _excesses(name, size, REFERENCE_SKEW)
         assert set(found) == set(allowed), f"{name} {size}: differs in {found}, listed {allowed}"
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_cpu_specific_reference_differences_are_listed_exactly(backend):
+    """Every listed cause-D difference occurs exactly as counted, on every CPU (the portable
+    functions leave nothing CPU-dependent: a count that moves is a new difference)."""
+    for (name, size), allowed in CPU_SPECIFIC_REFERENCE.items():
+        found = _excesses(name, size, backend)
+        assert found == allowed, f"{name} {size}: differs in {found}, listed {allowed}"
 
 
 def test_skew_emulation_changes_only_large_coordinates():

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from matloom.io.export import export_maps
+
 try:
     import MaterialX as mx
 except ImportError:  # pragma: no cover - depends on the extra
@@ -94,3 +96,33 @@ def test_usd_stage_has_a_preview_surface(render_presets, program) -> None:
     assert sources["diffuseColor"][0] == f"./{program}_basecolor.png"
     custom = material.GetPrim().GetCustomDataByKey("matloom_physical_size")
     assert custom["unit_m"] == pytest.approx(0.25)
+
+
+#: Ordinary names that are not identifiers: a file's stem starting with a digit, a leading '-'.
+ODD_NAMES = ["01_bricks", "-lead"]
+
+
+@NEEDS_USD
+@pytest.mark.parametrize("name", ODD_NAMES)
+def test_usd_opens_a_layer_named_like_a_file(preset_maps, tmp_path, name: str) -> None:
+    result = export_maps(preset_maps("full"), tmp_path, presets=["usd"], unit_m=0.25, name=name)
+    stage = Usd.Stage.Open(str(result.out_dir / "usd" / f"{name}.usda"))
+    assert stage is not None and stage.GetDefaultPrim().IsValid()
+    (material,) = [p for p in stage.Traverse() if p.IsA(UsdShade.Material)]
+    surface = UsdShade.Material(material).ComputeSurfaceSource()[0]
+    assert surface.GetIdAttr().Get() == "UsdPreviewSurface"
+    reader = UsdShade.Shader(surface.GetInput("diffuseColor").GetConnectedSources()[0][0].source)
+    assert reader.GetInput("file").Get().path == f"./{name}_basecolor.png"
+
+
+@NEEDS_MTLX
+@pytest.mark.parametrize("name", ODD_NAMES)
+def test_materialx_validates_a_document_named_like_a_file(preset_maps, tmp_path, name) -> None:
+    result = export_maps(preset_maps("full"), tmp_path, presets=["mtlx"], unit_m=0.25, name=name)
+    doc = _load_mtlx(result.out_dir / "mtlx" / f"{name}.mtlx")
+    valid, message = doc.validate()
+    assert valid, message
+    (material,) = doc.getMaterialNodes()
+    shader = doc.getNode(material.getInput("surfaceshader").getNodeName())
+    base = doc.getNode(shader.getInput("base_color").getNodeName()).getInput("file")
+    assert base.getValueString() == f"{name}_basecolor.png"

@@ -174,6 +174,37 @@ def test_inlined_output_of_a_long_define_chain_reparses() -> None:
     assert matloom.parse(inlined_text).defines == ()
 
 
+#: named noises without a seed, used more than once and next to seedless inline noise
+_SEEDLESS_NAMED = [
+    _fixture("seedless"),
+    "Define(grain, fBm(base_freq=6, to_01=True))\n"
+    "Define(cells, Worley(base_freq=4, to_01=True))\n"
+    "Material(Layer(1).basecolor(grain * 200, cells * 180, 60)"
+    ".roughness(fBm(base_freq=9, to_01=True) * 0.5 + grain * 0.5).height(cells * 0.02 + grain * 0.01))",
+]
+
+
+def _map_hashes(program: A.Program | str) -> dict[str, str]:
+    import hashlib
+
+    from matloom.engine.evaluate import evaluate
+    from matloom.engine.maps import ARRAY_FIELDS
+
+    maps = evaluate(program, 32, 32)
+    return {
+        k: hashlib.sha256(np.ascontiguousarray(getattr(maps, k)).tobytes()).hexdigest()
+        for k in ARRAY_FIELDS
+    }
+
+
+@pytest.mark.parametrize("source", _SEEDLESS_NAMED, ids=["seedless-fixture", "two-named"])
+def test_inlining_seedless_named_noise_keeps_every_map_bit_identical(source: str) -> None:
+    # `fmt --inline` prints this text: rendering it must give the maps the original gives
+    inlined_text = format_program(inline_defines(matloom.parse(source)))
+    assert "Define(" not in inlined_text
+    assert _map_hashes(inlined_text) == _map_hashes(source)
+
+
 # ---------------------------------------------------------------------------- dependencies
 def _literal_ref(deps, line_no: int, needle: str, source: str):
     line = source.splitlines()[line_no - 1]

@@ -3,6 +3,9 @@ requests and a report of the words nothing used."""
 
 from __future__ import annotations
 
+import math
+import warnings
+
 import pytest
 
 from matloom.library import author, search
@@ -139,3 +142,31 @@ def test_an_entry_named_for_a_motif_needs_the_motif_asked_for() -> None:
 def test_a_named_material_beats_an_entry_that_only_matches_the_category() -> None:
     # "tiles" is a category word, "slate" a material: a travertine tile entry is not slate
     assert author("grey slate floor tiles in random sizes with dark grout").entry == "slate"
+
+
+@pytest.mark.parametrize(
+    ("prompt", "word"),
+    [
+        ("red brick wall", "brick"),
+        ("huge bricks", "bricks"),
+        ("rusty corrugated metal", "rusty"),
+        ("rusty corrugated metal", "metal"),
+        ("mossy cobblestone", "mossy"),
+        ("tiny tiles", "tiny"),
+        ("huge bricks", "huge"),
+        ("small cracks on concrete", "small"),
+    ],
+)
+def test_a_repeated_word_counts_as_one_mention(prompt: str, word: str) -> None:
+    # a word said 1,500 times asks for no more than a word said once: the scores stay finite
+    # (no numpy overflow warning) and the pick is the one-mention pick
+    once = author(prompt)
+    repeated = prompt.replace(word, " ".join([word] * 1500), 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        many = author(repeated)
+    assert many.entry == once.entry
+    assert [c.name for c in many.candidates[:3]] == [c.name for c in once.candidates[:3]]
+    assert all(math.isfinite(c.score) for c in many.candidates)
+    # scale words too: the size they ask for is the one-mention size, not 0.45**1500
+    assert many.unit_m == once.unit_m and many.overlay_notes == once.overlay_notes

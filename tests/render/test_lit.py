@@ -184,8 +184,9 @@ def test_uncovered_texels_show_the_backdrop_whatever_the_material() -> None:
     assert np.array_equal(a, b)
 
 
-def test_anisotropy_stretches_the_reflection_along_its_angle() -> None:
-    """The image varies little along the tangent (the stretch) and much across it."""
+def test_anisotropy_stretches_the_reflection_across_its_angle() -> None:
+    """The angle is the brushing direction: the image varies little across it (the stretch,
+    as on real grooves: tests/render/test_lit_brushing.py) and much along it."""
     lum = {}
     for angle in (0.0, 45.0, 90.0, 135.0):
         maps = make_maps(
@@ -200,11 +201,11 @@ def test_anisotropy_stretches_the_reflection_along_its_angle() -> None:
         b = img[max(-drow, 0) : N + min(-drow, 0), max(-dcol, 0) : N + min(-dcol, 0)]
         return float(np.abs(a - b).mean())
 
-    # image steps along each tangent: +x is (0, 1); +y (up) is one row up, (-1, 0)
+    # image steps along each brushing direction: +x is (0, 1); +y (up) is one row up, (-1, 0)
     along = {0.0: (0, 1), 45.0: (-1, 1), 90.0: (-1, 0), 135.0: (-1, -1)}
     across = {0.0: (-1, 0), 45.0: (1, 1), 90.0: (0, 1), 135.0: (-1, 1)}
     for angle, img in lum.items():
-        assert 4 * change(img, *along[angle]) < change(img, *across[angle]), angle
+        assert 4 * change(img, *across[angle]) < change(img, *along[angle]), angle
 
 
 def test_angle_without_anisotropy_changes_nothing() -> None:

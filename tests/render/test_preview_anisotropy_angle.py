@@ -68,8 +68,9 @@ def test_direction_factor() -> None:
     angles = np.array([0.0, 45.0, 135.0, 225.0, -45.0, 90.0])
     full = anisotropy_direction_factor(angles, np.ones(6), half)
     assert full[0] == 1.0  # exactly: the reference's exponent
-    # the default half vector lies along 45 degrees: k = 1 / 5, factors 2k / (1 + k), 2 / (1 + k)
-    np.testing.assert_allclose(full[1:5], [1 / 3, 5 / 3, 1 / 3, 5 / 3], rtol=1e-12)
+    # the default half vector lies along 45 degrees; the stretch is across the brushing angle,
+    # along it for 135 and -45: k = 1 / 5, factors 2k / (1 + k), 2 / (1 + k)
+    np.testing.assert_allclose(full[1:5], [5 / 3, 1 / 3, 5 / 3, 1 / 3], rtol=1e-12)
     assert 1 / 3 < full[5] < 5 / 3
     # no anisotropy, or a head-on half vector: the angle has no effect, exactly
     assert np.all(anisotropy_direction_factor(angles, np.zeros(6), half) == 1.0)
@@ -90,11 +91,12 @@ def _brushed(angle: str, size: int = 24) -> MaterialMaps:
 @pytest.mark.parametrize("backend", SHADERS)
 def test_angle_rotates_the_highlight(backend: str) -> None:
     images = {a: shade(_brushed(a), backend=backend).astype(int) for a in ("0", "45", "135")}
-    # the default light's half vector points along 45 degrees: a stretch along it widens the
-    # highlight seen head-on (brighter), one across it narrows it (darker)
-    assert images["45"].sum() > images["0"].sum() > images["135"].sum()
-    axial = shade(_brushed("225"), backend=backend).astype(int)
-    assert np.abs(axial - images["45"]).max() <= 1
+    # the default light's half vector points along 45 degrees: brushing across it (135)
+    # stretches the highlight along it, as real grooves do, widening the highlight seen head-on
+    # (brighter); brushing along it (45) stretches it across, narrowing it (darker)
+    assert images["135"].sum() > images["0"].sum() > images["45"].sum()
+    axial = shade(_brushed("315"), backend=backend).astype(int)
+    assert np.abs(axial - images["135"]).max() <= 1
     # without anisotropy the angle changes nothing, byte for byte
     plain = BRUSHED.replace(".anisotropy(0.9)", ".anisotropy(0)")
     maps0 = matloom.evaluate(plain.replace("ANGLE", "0"), 24, 24)
@@ -135,5 +137,5 @@ def test_sweep_preview_follows_the_angle() -> None:
         exact = matloom.preview(text, 32).astype(np.int16)
         diff = np.abs(originals[angle] - exact)
         assert diff.max() <= 1 and np.count_nonzero(diff) <= diff.size // 100, angle
-    assert originals["45"].sum() > originals["0"].sum()
+    assert originals["45"].sum() < originals["0"].sum()  # brushing along the half vector
     assert not math.isclose(originals["X() * 360 - 30"].sum(), originals["0"].sum())

@@ -1,6 +1,7 @@
 """Chat-model backends: the :class:`ChatModel` protocol, the provider registry and adapters."""
 
 from matloom.author.llm.base import (
+    BadReplyError,
     ChatMessage,
     ChatModel,
     ChatReply,
@@ -8,12 +9,14 @@ from matloom.author.llm.base import (
     ModelError,
     ModelTimeoutError,
     ModelUnavailableError,
+    complete_within,
     get_model,
     provider_names,
     register_provider,
 )
 
 __all__ = [
+    "BadReplyError",
     "ChatMessage",
     "ChatModel",
     "ChatReply",
@@ -21,6 +24,7 @@ __all__ = [
     "ModelError",
     "ModelTimeoutError",
     "ModelUnavailableError",
+    "complete_within",
     "get_model",
     "provider_names",
     "register_provider",

@@ -2,11 +2,14 @@
 
 A backend is anything with ``model_id``, ``accepts_images`` and ``complete(messages)``. The
 built-in OpenAI-compatible adapter is itself just one registered provider (as in simonw/llm);
-tests register a scripted model through the same :func:`register_provider`.
+tests register a scripted model through the same :func:`register_provider`. A backend whose
+``complete`` also takes a ``max_reply_chars`` keyword is told the reply-size cap, so it can stop
+reading a reply that is over it (:func:`complete_within`).
 """
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol, runtime_checkable
@@ -59,10 +62,21 @@ class ChatReply:
     attempts: int = 1
     finish_reason: str | None = None
     usage: dict[str, int] = field(default_factory=dict)
+    #: Set when reading stopped after this many bytes because the reply was longer than
+    #: ``max_reply_chars`` allows: ``text`` is then only the start of the reply.
+    cut_at_bytes: int | None = None
 
 
 class ModelError(RuntimeError):
     """A chat call failed for good (after retries); the message is meant for the user."""
+
+
+class BadReplyError(ModelError):
+    """The server answered, but with no usable reply (malformed, or empty), after retries.
+
+    A bad answer like any other: the stages record it and ask again, it never ends a run on its
+    own (the critic's answer then counts as unusable, the generator's attempt as ``bad_reply``).
+    """
 
 
 class ModelUnavailableError(ModelError):
@@ -86,6 +100,16 @@ class ChatModel(Protocol):
     def complete(self, messages: Sequence[ChatMessage]) -> ChatReply:
         """Answer the conversation; raise :class:`ModelError` on a permanent failure."""
         ...
+
+
+def complete_within(
+    model: ChatModel, messages: Sequence[ChatMessage], max_reply_chars: int
+) -> ChatReply:
+    """``model.complete(messages)``, passing the reply-size cap to backends that take it (a
+    backend written before the cap existed is called as before)."""
+    if "max_reply_chars" in inspect.signature(model.complete).parameters:
+        return model.complete(messages, max_reply_chars=max_reply_chars)  # type: ignore[call-arg]
+    return model.complete(messages)
 
 
 ProviderFactory = Callable[[ModelSettings], ChatModel]

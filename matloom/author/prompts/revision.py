@@ -29,10 +29,12 @@ def missing_program_message() -> str:
     return f"I could not find a program in your reply. {ANSWER_FORMAT}"
 
 
-def reply_too_large_message(length: int, limit: int) -> str:
-    """Repair turn when the reply was over the reply-size cap (only its start is shown)."""
+def reply_too_large_message(length: int | None, limit: int) -> str:
+    """Repair turn when the reply was over the reply-size cap (only its start is shown);
+    ``length`` is None when reading stopped before the reply's end."""
+    size = f"{length:,} characters long, " if length is not None else ""
     return (
-        f"Your reply was {length:,} characters long, over the limit of {limit:,}; only its start "
+        f"Your reply was {size}over the limit of {limit:,} characters; only its start "
         f"is shown above and it was not read. Keep it shorter. {ANSWER_FORMAT}"
     )
 

@@ -6,7 +6,9 @@ images), the statistics, the source. With ``critic_history`` it also sees the pr
 render(s) and score and says whether this round is better. Its answer is parsed tolerantly
 (:mod:`~matloom.author.stages.critique_parse`); a failure is retried with a follow-up message up
 to ``retries`` times, so a bad critic answer ends as a failed critique in the record, never as
-a failed run.
+a failed run. A call that got no usable reply at all (:class:`BadReplyError`: a malformed or
+empty body after the backend's own retries) is such a bad answer too: recorded as an empty
+reply with its reason, and asked again.
 """
 
 from __future__ import annotations
@@ -16,7 +18,14 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
-from matloom.author.llm.base import ChatMessage, ChatModel, ImageInput
+from matloom.author.llm.base import (
+    BadReplyError,
+    ChatMessage,
+    ChatModel,
+    ChatReply,
+    ImageInput,
+    complete_within,
+)
 from matloom.author.prompts.critic import (
     PreviousView,
     critic_retry_message,
@@ -24,7 +33,7 @@ from matloom.author.prompts.critic import (
     critic_user_message,
 )
 from matloom.author.records import CritiqueRecord, EditRecord, HistoryRecord, MessageRecord
-from matloom.author.replies import clip_reply, oversize_error
+from matloom.author.replies import clip_reply, refusal, shown_reply
 from matloom.author.stages.critique_parse import (
     Critique,
     CritiqueParseError,
@@ -56,11 +65,12 @@ class PreviousRound:
     images: tuple[ImageInput, ...] = ()
 
 
-def _read_answer(text: str, max_reply_chars: int) -> Critique:
+def _read_answer(reply: ChatReply, max_reply_chars: int) -> Critique:
     """The critique in one answer; an answer over the size cap is refused unread."""
-    if len(text) > max_reply_chars:
-        raise CritiqueParseError(oversize_error(len(text), max_reply_chars))
-    return parse_critique(text)
+    refused = refusal(reply, max_reply_chars)
+    if refused is not None:
+        raise CritiqueParseError(refused)
+    return parse_critique(reply.text)
 
 
 def critique_program(
@@ -109,10 +119,15 @@ def critique_program(
     replies: list[str] = []
     error = "no answer"
     for _ in range(retries + 1):
-        reply = model.complete(messages)
-        replies.append(clip_reply(reply.text, max_reply_chars))
         try:
-            critique = _read_answer(reply.text, max_reply_chars)
+            reply = complete_within(model, messages, max_reply_chars)
+        except BadReplyError as err:  # nothing to quote back: ask the same again
+            replies.append("")
+            error = str(err)
+            continue
+        replies.append(shown_reply(reply, max_reply_chars))
+        try:
+            critique = _read_answer(reply, max_reply_chars)
         except CritiqueParseError as err:
             error = str(err)
             messages = [

@@ -11,7 +11,9 @@ left unseeded are recorded for the revision turn to tell it. The conversation in
 only grows when a program is accepted, so a resumed run restarts an interrupted turn from a
 clean state. A reply over the reply-size cap (:mod:`matloom.author.replies`) is not parsed: the
 attempt is recorded as ``too_large`` with the reply clipped, and the model is asked again like
-after any bad reply.
+after any bad reply. A call that got no usable reply at all (:class:`BadReplyError`: malformed or
+empty, after the backend's own retries) is recorded as ``bad_reply`` and the same request sent
+again, counted against the same attempts.
 """
 
 from __future__ import annotations
@@ -23,7 +25,14 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
-from matloom.author.llm.base import ChatMessage, ChatModel, ImageInput
+from matloom.author.llm.base import (
+    BadReplyError,
+    ChatMessage,
+    ChatModel,
+    ChatReply,
+    ImageInput,
+    complete_within,
+)
 from matloom.author.prompts.revision import (
     diagnostics_message,
     missing_program_message,
@@ -36,7 +45,7 @@ from matloom.author.records import (
     RecordStore,
     TurnRecord,
 )
-from matloom.author.replies import clip_reply, oversize_error
+from matloom.author.replies import refusal, shown_reply
 from matloom.lang import ast as A
 from matloom.lang.api import analyse
 from matloom.lang.extract import extract_program
@@ -122,7 +131,7 @@ def _check(program_text: str) -> tuple[str | None, list[dict[str, object]], str 
 class _Outcome:
     """What one reply of a turn came to."""
 
-    outcome: Literal["accepted", "no_program", "parse_error", "too_large"]
+    outcome: Literal["accepted", "no_program", "parse_error", "too_large", "bad_reply"]
     canonical: str | None = None
     preamble: str = ""
     errors: list[dict[str, object]] = field(default_factory=list)
@@ -132,15 +141,15 @@ class _Outcome:
     source: str = ""
 
 
-def _read_reply(text: str, max_reply_chars: int) -> _Outcome:
+def _read_reply(reply: ChatReply, max_reply_chars: int) -> _Outcome:
     """Extract and check the program of one reply (refused unread when over the cap)."""
-    if len(text) > max_reply_chars:
+    refused = refusal(reply, max_reply_chars)
+    if refused is not None:
+        length = None if reply.cut_at_bytes is not None else len(reply.text)
         return _Outcome(
-            "too_large",
-            repair=reply_too_large_message(len(text), max_reply_chars),
-            error=oversize_error(len(text), max_reply_chars),
+            "too_large", repair=reply_too_large_message(length, max_reply_chars), error=refused
         )
-    program_text, preamble = extract_answer(text)
+    program_text, preamble = extract_answer(reply.text)
     if program_text is None:
         return _Outcome("no_program", preamble=preamble, repair=missing_program_message())
     canonical, errors, repair = _check(program_text)
@@ -176,9 +185,14 @@ def run_turn(
         if notify:
             notify(f"{kind} P{index}, attempt {attempt}")
         t0 = time.perf_counter()
-        reply = model.complete(working)
-        read = _read_reply(reply.text, max_reply_chars)
-        shown = clip_reply(reply.text, max_reply_chars)
+        try:
+            reply = complete_within(model, working, max_reply_chars)
+        except BadReplyError as err:  # nothing to show or answer: ask the same again
+            turn.attempts.append(_bad_attempt(attempt, str(err), t0, model.model_id))
+            store.save()
+            continue
+        read = _read_reply(reply, max_reply_chars)
+        shown = shown_reply(reply, max_reply_chars)
         turn.attempts.append(
             AttemptRecord(
                 attempt=attempt,
@@ -202,6 +216,17 @@ def run_turn(
     record.durations.generation.append(turn.seconds)
     store.save()
     raise NoParseableProgramError(turn.error)
+
+
+def _bad_attempt(attempt: int, error: str, t0: float, model: str) -> AttemptRecord:
+    return AttemptRecord(
+        attempt=attempt,
+        reply="",
+        outcome="bad_reply",
+        error=error,
+        seconds=time.perf_counter() - t0,
+        model=model,
+    )
 
 
 def _accept(

@@ -19,8 +19,12 @@ the IEEE result (NaN, +-inf). The special rules are:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
+
+from matloom.engine.kernels import portable_math
+from matloom.engine.kernels.portable_constants import NAN
 
 ArrayLike = np.ndarray | float
 
@@ -43,34 +47,46 @@ def safe_div(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     return np.where(b == 0, np.zeros((), dtype=quotient.dtype), quotient)
 
 
+def _portable(ufunc: np.ufunc, fn: Callable[..., np.ndarray], *operands: ArrayLike) -> np.ndarray:
+    """``fn`` (a :mod:`.portable_math` function) in float64, returned in the dtype ``ufunc``
+    would return for these operands (float32 stays float32), so that the result is the same
+    on every CPU (numpy's own ``ufunc`` picks SIMD code by CPU, whose last bit differs)."""
+    arrays = [np.asarray(a) for a in operands]
+    dtype = ufunc(*(np.empty(0, dtype=a.dtype) for a in arrays)).dtype
+    if dtype.kind != "f":  # integer powers: exact in numpy already
+        with _quiet():
+            return ufunc(*arrays)  # type: ignore[no-any-return]
+    out = portable_math.blockwise(fn, *arrays).astype(dtype, copy=False)
+    return out[()] if out.ndim == 0 else out  # a scalar for 0-d operands, as a ufunc
+
+
 def log(v: ArrayLike, base: float = math.e) -> np.ndarray:
     """Logarithm with the reference's base dispatch (log10, log2, ln, else ln(v)/ln(base)).
 
     ln(base) is a Python float, so a float32 ``v`` stays float32 for unusual bases.
     """
-    v = np.asarray(v)
     base = float(base)
+    if base == 10.0:
+        return _portable(np.log10, portable_math.log10, v)
+    if base == 2.0:
+        return _portable(np.log2, portable_math.log2, v)
+    ln = _portable(np.log, portable_math.log, v)
+    if base == math.e:
+        return ln
     with _quiet():
-        if base == 10.0:
-            return np.log10(v)
-        if base == 2.0:
-            return np.log2(v)
-        if base == math.e:
-            return np.log(v)
-        return np.log(v) / _ln_scalar(base)
+        return ln / _ln_scalar(base)  # type: ignore[no-any-return]
 
 
 def _ln_scalar(base: float) -> float:
     """Natural log of a scalar base as numpy defines it: -inf for 0, NaN below 0."""
     if base > 0:
-        return math.log(base)
+        return portable_math.log_scalar(base)
     return -math.inf if base == 0 else math.nan
 
 
 def pow_(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     """``a ** b`` (NaN for a negative base with a non-integer exponent, inf for 0 ** -n)."""
-    with _quiet():
-        return np.power(np.asarray(a), np.asarray(b))
+    return _portable(np.power, portable_math.pow_, a, b)
 
 
 def sqrt(v: ArrayLike) -> np.ndarray:
@@ -124,14 +140,12 @@ def ceil(v: ArrayLike) -> np.ndarray:
 
 def sin(v: ArrayLike) -> np.ndarray:
     """Sine of radians (inf gives NaN quietly)."""
-    with _quiet():
-        return np.sin(np.asarray(v))
+    return _portable(np.sin, portable_math.sin, v)
 
 
 def cos(v: ArrayLike) -> np.ndarray:
     """Cosine of radians (inf gives NaN quietly)."""
-    with _quiet():
-        return np.cos(np.asarray(v))
+    return _portable(np.cos, portable_math.cos, v)
 
 
 # ------------------------------------------------------------------ language-2 functions
@@ -143,10 +157,10 @@ def cos(v: ArrayLike) -> np.ndarray:
 
 #: Fract's largest value: the largest float64 below 1 (x - floor(x) rounds to 1 for tiny x < 0).
 FRACT_MAX = 1.0 - 2.0**-53
-#: The NaN these functions return for a NaN operand (Atan2) or a missing cell (Hash): the CPU's
-#: default NaN, the one 0/0 and inf - inf give (sign bit set), so that every NaN the engine makes
-#: is the same and an operation on two of them gives the same bits whatever their order.
-NAN = float(np.array(0xFFF8000000000000, dtype=np.uint64).view(np.float64)[()])
+#: The NaN these functions return for a NaN operand (Atan2) or a missing cell (Hash) is
+#: :data:`~matloom.engine.kernels.portable_constants.NAN`: the CPU's default NaN, the one 0/0 and
+#: inf - inf give (sign bit set), so that every NaN the engine makes is the same and an operation
+#: on two of them gives the same bits whatever their order.
 
 #: Exp: above EXP_OVERFLOW the result is inf, below EXP_UNDERFLOW it is 0.
 EXP_OVERFLOW = 7.09782712893383973096e02

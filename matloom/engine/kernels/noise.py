@@ -34,7 +34,7 @@ from matloom.engine.kernels.opensimplex import (
     scale_grid,
     worley_codes,
 )
-from matloom.engine.kernels.periodic import simplex_tiling, snap_frequency
+from matloom.engine.kernels.periodic import simplex_tiling, simplex_wraps, snap_frequency, wraps
 
 __all__ = [
     "FbmPlan",
@@ -133,11 +133,12 @@ def plan_fbm(
     period: tuple[float, float] | None = None,
 ) -> FbmPlan:
     """The :class:`FbmPlan` of an fBm on the broadcast of x and y; with ``period`` (Px, Py)
-    the fBm repeats with those periods (:mod:`matloom.engine.kernels.periodic`)."""
+    the fBm repeats with those periods (:mod:`matloom.engine.kernels.periodic`), unless an
+    octave has too many cells per period to wrap (the checker's W009): then it is unwrapped."""
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     amps = np.array(sched.amps, dtype=np.float64)
     lay = coord_layout(x, y)
-    if period is not None:
+    if period is not None and simplex_wraps(sched.freqs_x, sched.freqs_y, period):
         maps, lattices = simplex_tiling(sched.freqs_x, sched.freqs_y, period)
         plan = FbmPlan(sched, bool(to_01), lay, amps)
         plan.tile_maps, plan.tile_lattices = maps, lattices
@@ -344,13 +345,14 @@ def plan_worley(
 ) -> WorleyPlan:
     """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y; with ``period``
     (Px, Py) the frequencies are snapped to whole numbers of cells per period and the cells
-    wrap (:mod:`matloom.engine.kernels.periodic`)."""
+    wrap (:mod:`matloom.engine.kernels.periodic`), unless a period holds too many cells to
+    wrap (the checker's W009): then the cells are not wrapped."""
     metric, combo, norm = worley_codes(distance, combination)
     if output not in WORLEY_OUTPUTS:
         raise ValueError(f"unknown Worley output {output!r}; expected {list(WORLEY_OUTPUTS)}")
     lay = coord_layout(x, y)
     wrap = None
-    if period is not None:
+    if period is not None and wraps(freq_x * period[0]) and wraps(freq_y * period[1]):
         freq_x, nx = snap_frequency(freq_x, float(period[0]))
         freq_y, ny = snap_frequency(freq_y, float(period[1]))
         wrap = (nx, ny)

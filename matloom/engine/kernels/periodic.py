@@ -30,7 +30,29 @@ import numpy as np
 
 from matloom.engine.kernels.opensimplex import SQUISH_CONSTANT2, STRETCH_CONSTANT2
 
-__all__ = ["simplex_octave", "simplex_tiling", "cell_counts", "snap_frequency", "image_shifts"]
+__all__ = [
+    "MAX_PERIOD_CELLS",
+    "cell_counts",
+    "image_shifts",
+    "simplex_octave",
+    "simplex_tiling",
+    "simplex_wraps",
+    "snap_frequency",
+    "wraps",
+]
+
+#: Most cells per period that a tileable lattice wraps (noise, Tile, Bricks' cell values). The
+#: wrapped cell indices then stay exact in int64 and float64, and so do fBm's sublattice keys
+#: (below the square of it, far under 2**51). A lattice with more cells per period (or a count
+#: that overflows) is evaluated unwrapped, and the checker warns (W009): so many cells per
+#: View are finer than any texel grid, so nothing a seam could show is lost.
+MAX_PERIOD_CELLS = 2**24
+
+
+def wraps(cells: float) -> bool:
+    """Whether a lattice with ``cells`` cells per period can be wrapped: a finite count of at
+    most :data:`MAX_PERIOD_CELLS` (either sign)."""
+    return math.isfinite(cells) and abs(cells) <= MAX_PERIOD_CELLS
 
 
 def _stretch(v: tuple[float, float]) -> tuple[float, float]:
@@ -102,13 +124,27 @@ def simplex_octave(
     return m, (float(p), float(q), float(r), 1.0 / p, 1.0 / r)
 
 
+def simplex_wraps(
+    freqs_x: tuple[float, ...], freqs_y: tuple[float, ...], period: tuple[float, float]
+) -> bool:
+    """Whether every octave of an fBm (frequencies ``freqs_x``, ``freqs_y``) has a wrappable
+    number of cells per period (:func:`wraps`), so :func:`simplex_tiling` can tile it."""
+    px, py = (float(v) for v in period)
+    if not (px > 0 and py > 0 and math.isfinite(px) and math.isfinite(py)):
+        return False
+    return all(wraps(fx * px) and wraps(fy * py) for fx, fy in zip(freqs_x, freqs_y, strict=True))
+
+
 def simplex_tiling(
     freqs_x: tuple[float, ...], freqs_y: tuple[float, ...], period: tuple[float, float]
 ) -> tuple[np.ndarray, np.ndarray]:
     """Per-octave (O, 4) coordinate maps and (O, 5) sublattices (:func:`simplex_octave`)."""
+    if not simplex_wraps(freqs_x, freqs_y, period):
+        raise ValueError(
+            f"tileable periods must be finite and > 0, with at most {MAX_PERIOD_CELLS} cells "
+            f"per period in every octave, got {period!r}"
+        )
     px, py = (float(v) for v in period)
-    if not (px > 0 and py > 0 and math.isfinite(px) and math.isfinite(py)):
-        raise ValueError(f"tileable periods must be finite and > 0, got {period!r}")
     rows = [simplex_octave(px, py, fx, fy) for fx, fy in zip(freqs_x, freqs_y, strict=True)]
     maps = np.array([m for m, _ in rows], dtype=np.float64)
     lattices = np.array([lat for _, lat in rows], dtype=np.float64)
@@ -116,7 +152,8 @@ def simplex_tiling(
 
 
 def cell_counts(freq_x: float, freq_y: float, period: tuple[float, float]) -> tuple[int, int]:
-    """Whole numbers of unit cells (>= 1) nearest to each period at the given frequencies."""
+    """Whole numbers of unit cells (>= 1) nearest to each period at the given frequencies
+    (1 for a count that is not finite)."""
     return _count(freq_x * period[0]), _count(freq_y * period[1])
 
 
@@ -151,12 +188,17 @@ def course_wrap(
     """(cells along, courses, cells the course shift adds over the courses) of a running-bond
     grid (Bricks, Tile) whose cells of ``size_along`` x ``size_across``, shifted by ``shift``
     cells per course, repeat with the periods; None when they do not."""
-    along = whole(period_along / size_along)
-    across = whole(period_across / size_across)
-    if not along or not across:
+    along = whole(_quotient(period_along, size_along))
+    across = whole(_quotient(period_across, size_across))
+    if not along or not across or not (wraps(along) and wraps(across)):
         return None
     k = whole(shift * across)
-    return None if k is None else (along, across, k)
+    return None if k is None or not wraps(k) else (along, across, k)
+
+
+def _quotient(a: float, b: float) -> float:
+    """a / b, inf when b is 0 (a zero size has no whole number of cells per period)."""
+    return a / b if b else math.inf
 
 
 #: Most images of one shape evaluated per sample grid (a shape so many Views wide that more
@@ -173,7 +215,8 @@ def image_shifts(
     is exactly 0 outside it) that reach samples in ``extent`` (x0, y0, x1, y1): a tileable
     shape is the maximum of its coverage at ``(x - i Px, y - j Py)`` over them (each other
     image is exactly 0 there). None when there would be more than :data:`MAX_IMAGES` (a shape
-    many Views wide) or the numbers are not finite; the identity shift is always included."""
+    many Views wide) or the numbers (or the image counts) are not finite; the identity shift is
+    always included."""
     px, py = period
     bx0, by0, bx1, by1 = box
     ex0, ey0, ex1, ey1 = extent
@@ -181,8 +224,11 @@ def image_shifts(
     if not all(math.isfinite(v) for v in values) or px <= 0 or py <= 0:
         return None
     # an image i reaches the samples when [bx0 + i px, bx1 + i px] meets [ex0, ex1]
-    i0, i1 = math.floor((ex0 - bx1) / px), math.ceil((ex1 - bx0) / px)
-    j0, j1 = math.floor((ey0 - by1) / py), math.ceil((ey1 - by0) / py)
+    reach = ((ex0 - bx1) / px, (ex1 - bx0) / px, (ey0 - by1) / py, (ey1 - by0) / py)
+    if not all(math.isfinite(v) for v in reach):  # a shape (or gap) past the float range
+        return None
+    i0, i1 = math.floor(reach[0]), math.ceil(reach[1])
+    j0, j1 = math.floor(reach[2]), math.ceil(reach[3])
     if (i1 - i0 + 1) * (j1 - j0 + 1) > MAX_IMAGES:
         return None
     shifts = [(0.0, 0.0)]

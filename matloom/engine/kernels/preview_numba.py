@@ -165,8 +165,8 @@ def _rotate_stretch(shininess, anisotropy, angle, half):  # type: ignore[no-unty
             quadrupled = 4.0 * np.float64(_clip01(anisotropy[j]))
             stretch = quadrupled / (1.0 + quadrupled)
             theta = degrees * (math.pi / 180.0)
-            along = hx * math.cos(theta) + hy * math.sin(theta)
-            at_zero = in_plane - stretch * (hx * hx)
+            along = hy * math.cos(theta) - hx * math.sin(theta)  # across the brushing
+            at_zero = in_plane - stretch * (hy * hy)
             if at_zero != 0.0:
                 factor = (in_plane - stretch * (along * along)) / at_zero
                 shininess[j] = np.float32(np.float64(shininess[j]) * factor)

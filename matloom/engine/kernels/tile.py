@@ -23,6 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from matloom.engine.kernels.periodic import wraps
+
 #: The 9 (row, column) offsets of a sample's own cell and its neighbours.
 NEIGHBOURS: tuple[tuple[int, int], ...] = tuple((dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1))
 #: Cell indices beyond this magnitude are not hashed (the instance is dropped).
@@ -59,12 +61,19 @@ class TileParams:
     def tiled(self, period: tuple[float, float]) -> TileParams:
         """These parameters made periodic with ``period`` (Px, Py): the cell size snapped to a
         whole number of cells per period, the row offset to a whole number of cells per
-        period of rows, and the cells' random numbers taken from the wrapped cell."""
+        period of rows, and the cells' random numbers taken from the wrapped cell. Unchanged
+        (unwrapped, the checker's W009) when a period holds too many cells or rows to wrap or
+        the row offset adds up to too many cells over them
+        (:func:`~matloom.engine.kernels.periodic.wraps`)."""
         from dataclasses import replace
 
         px, py = (float(v) for v in period)
-        cols = max(1, round(px / float(self.width)))
-        rows = max(1, round(py / float(self.height)))
+        across, up = px / float(self.width), py / float(self.height)
+        if not (wraps(across) and wraps(up)):
+            return self
+        cols, rows = max(1, round(across)), max(1, round(up))
+        if not wraps(float(self.offset) * rows):
+            return self
         shift = round(float(self.offset) * rows)
         return replace(
             self,

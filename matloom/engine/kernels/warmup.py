@@ -222,6 +222,40 @@ def _spawn(directory: Path) -> subprocess.Popen[bytes]:
     )
 
 
+def reap(timeout: float = 30.0) -> None:
+    """Wait until the background compilers this process started have exited (they release
+    the lock just before they exit), so that none outlives a command that waited for them."""
+    deadline = time.monotonic() + timeout
+    for child in _children:
+        try:
+            child.wait(timeout=max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            pass
+
+
+def stop_background(directory: Path | None = None) -> None:
+    """Stop the background compilers this process started that still run, with their helper
+    (each leads its own process group), and release their lock; the next command that needs
+    the kernels starts one again. A compiler another command started is left alone."""
+    import signal
+
+    directory = directory or cache_dir()
+    for child in _children:
+        if child.poll() is not None:
+            continue
+        try:
+            os.killpg(child.pid, signal.SIGTERM)
+            child.wait(timeout=10.0)
+        except subprocess.TimeoutExpired:
+            os.killpg(child.pid, signal.SIGKILL)
+            child.wait()
+        except OSError:
+            continue
+        if directory is not None and _lock_pid(directory) == child.pid:
+            (directory / LOCK_NAME).unlink(missing_ok=True)
+            (directory / STATUS_NAME).unlink(missing_ok=True)
+
+
 def wait(
     directory: Path | None = None,
     timeout: float = 600.0,

@@ -93,6 +93,10 @@ class Op:
     #: Where the field can be non-zero: ``support(context, node, operands)`` -> a box or None
     #: (see :mod:`matloom.engine.ops.support`); None: anywhere (no rule).
     support: Callable[..., Any] | None = None
+    #: Work of one evaluation in node evaluations (the cost model's unit, see
+    #: :mod:`matloom.engine.ops.work`): a number, or a rule ``work(param)`` over the call's
+    #: static parameters that bounds every loop the op's kernels run.
+    work: float | Callable[[Callable[[str], Any]], float] = 1
 
     @property
     def materialised(self) -> bool:

@@ -11,6 +11,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+import matloom.engine.ops.work as W
 from matloom.engine.ops.op import (
     NUMPY,
     Bounds,
@@ -54,12 +55,40 @@ def _constant(values: list[Any], strict: bool) -> Any:
     return values[0] if values else 0.0
 
 
+def _portable(name: str, *values: float) -> float:
+    """A function of :mod:`~matloom.engine.kernels.portable_math` on Python numbers: constant
+    folding must give the bits the arrays get, on every CPU (``math.sin`` and ``**`` call the
+    C library, which picks its code by CPU)."""
+    from matloom.engine.kernels import portable_math
+
+    return portable_math.scalar(getattr(portable_math, name), *values)
+
+
+def _trig(name: str) -> Callable[[Any], float]:
+    def rule(v: Any) -> float:
+        if math.isinf(v):
+            raise ValueError("math domain error")  # as math.sin: the static value is NaN
+        return _portable(name, v)
+
+    return rule
+
+
 def _pow(a: float | int, b: float | int) -> float:
     if a < 0 and not float(b).is_integer():
         return math.nan
     if a == 0 and b < 0:
         return math.inf
-    return float(a) ** float(b)
+    result = _portable("pow_", a, b)
+    if math.isinf(result) and math.isfinite(a) and math.isfinite(b):
+        raise OverflowError("pow overflows")  # as float ** float
+    return result
+
+
+def _ln(x: float) -> float:
+    """Natural log of x > 0 (ValueError below, as ``math.log``)."""
+    if not x > 0:
+        raise ValueError("math domain error")
+    return _portable("log", x)
 
 
 def _log(values: list[Any], strict: bool) -> float:
@@ -70,10 +99,10 @@ def _log(values: list[Any], strict: bool) -> float:
     if x < 0:
         return math.nan
     if base == 10:
-        return math.log10(x)
+        return _portable("log10", x)
     if base == 2:
-        return math.log2(x)
-    return math.log(x) if base == math.e else math.log(x) / math.log(base)
+        return _portable("log2", x)
+    return _ln(x) if base == math.e else _ln(x) / _ln(base)
 
 
 # ------------------------------------------------------------------ bounds (interval) rules
@@ -164,6 +193,7 @@ def _field(
     coords: Callable[..., Any] | None = None,
     support: Callable[..., Any] | None = None,
     arrays: int = 1,
+    work: float | Callable[..., float] = 1,
 ) -> Op:
     return Op(
         name,
@@ -175,6 +205,7 @@ def _field(
         coords=coords,
         support=support,
         arrays=arrays,
+        work=work,
     )
 
 
@@ -182,8 +213,9 @@ def _coordinate_field(name: str, rule: str) -> Op:
     return Op(name, Kind.FIELD, Ref(_FIELDS + rule), _coordinate, unbounded, NUMPY)
 
 
-def _geometry(name: str, rule: str) -> Op:
-    return Op(name, Kind.GEOMETRY, Ref(_FIELDS + rule), not_constant, unbounded, NUMPY)
+def _geometry(name: str, rule: str, work: float = 1) -> Op:
+    """A shape or path segment; its ``work`` is added to the Fill/Stroke that draws it."""
+    return Op(name, Kind.GEOMETRY, Ref(_FIELDS + rule), not_constant, unbounded, NUMPY, work=work)
 
 
 _ENTRIES: tuple[Op, ...] = (
@@ -211,7 +243,7 @@ _ENTRIES: tuple[Op, ...] = (
         divisor=1,
         support=Ref(_SUPPORT + "quotient"),
     ),
-    _math("Pow", _MATHOPS + "pow_", _binary(_pow), unbounded, NUMPY),
+    _math("Pow", _MATHOPS + "pow_", _binary(_pow), unbounded, NUMPY, work=W.TRANSCENDENTAL),
     _math(
         "Min",
         _MATHOPS + "minimum",
@@ -238,9 +270,23 @@ _ENTRIES: tuple[Op, ...] = (
     ),
     _math("Floor", _MATHOPS + "floor", _unary(math.floor), _monotone(math.floor), "floor"),
     _math("Ceil", _MATHOPS + "ceil", _unary(math.ceil), _monotone(math.ceil), "ceil"),
-    _math("Sin", _MATHOPS + "sin", _unary(math.sin), _periodic_bounds, NUMPY),
-    _math("Cos", _MATHOPS + "cos", _unary(math.cos), _periodic_bounds, NUMPY),
-    _math("Log", _MATHOPS + "log", _log, unbounded, NUMPY),
+    _math(
+        "Sin",
+        _MATHOPS + "sin",
+        _unary(_trig("sin")),
+        _periodic_bounds,
+        NUMPY,
+        work=W.TRANSCENDENTAL,
+    ),
+    _math(
+        "Cos",
+        _MATHOPS + "cos",
+        _unary(_trig("cos")),
+        _periodic_bounds,
+        NUMPY,
+        work=W.TRANSCENDENTAL,
+    ),
+    _math("Log", _MATHOPS + "log", _log, unbounded, NUMPY, work=W.TRANSCENDENTAL),
     _math(
         "Threshold",
         _FIELDS + "threshold",
@@ -250,14 +296,15 @@ _ENTRIES: tuple[Op, ...] = (
         dtype="float64",
         block=_threshold_block,
         check=Ref(_FIELDS + "check_threshold"),
+        work=W.THRESHOLD,
     ),
     # primitive fields (backend kernels)
-    _field("fBm", "fbm"),
-    _field("Worley", "worley", arrays=3),
-    _field("Bricks", "bricks", arrays=2),
-    _field("Weave", "weave", arrays=5),
-    _field("Fill", "fill", support=Ref(_SUPPORT + "fill")),
-    _field("Stroke", "stroke", support=Ref(_SUPPORT + "stroke")),
+    _field("fBm", "fbm", work=W.fbm),
+    _field("Worley", "worley", arrays=3, work=W.worley),
+    _field("Bricks", "bricks", arrays=2, work=W.BRICKS),
+    _field("Weave", "weave", arrays=5, work=W.weave),
+    _field("Fill", "fill", support=Ref(_SUPPORT + "fill"), work=W.SHAPE),
+    _field("Stroke", "stroke", support=Ref(_SUPPORT + "stroke"), work=W.SHAPE),
     # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
     _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b), support=_MOVED),
     _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b), support=_MOVED),
@@ -267,14 +314,14 @@ _ENTRIES: tuple[Op, ...] = (
         coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y),
         support=_MOVED,
     ),
-    # instancing: the operand in 9 neighbouring instance frames
-    _field("Tile", "tile", arrays=6),
+    # instancing: the operand in 9 neighbouring instance frames (the registry's instances)
+    _field("Tile", "tile", arrays=6, work=W.tile_work(9)),
     # geometry (arguments of Fill/Stroke; not fields)
     _geometry("Rect", "rect"),
     _geometry("Ellipse", "ellipse"),
     _geometry("Path", "path"),
-    _geometry("LineTo", "line_to"),
-    _geometry("CubicTo", "cubic_to"),
+    _geometry("LineTo", "line_to", work=W.PATH_EDGE),
+    _geometry("CubicTo", "cubic_to", work=W.PATH_EDGE * W.CUBIC_EDGES),
 )
 
 #: Every registry function's :class:`Op`, by function name.

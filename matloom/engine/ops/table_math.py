@@ -28,6 +28,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+import matloom.engine.ops.work as W
 from matloom.engine.ops.op import NUMPY, Bounds, Interval, Kind, Op, Ref
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
@@ -118,7 +119,9 @@ def _hash_bounds(x: Interval, y: Interval = (0.0, 0.0), **params: Any) -> Bounds
 
 
 # ------------------------------------------------------------------ the entries
-def _elementwise(name: str, function: str, arity: int, bounds: Callable[..., Bounds]) -> Op:
+def _elementwise(
+    name: str, function: str, arity: int, bounds: Callable[..., Bounds], work: float = 1
+) -> Op:
     static = _folded(_MATHOPS + function, arity)
     fast = name.lower()  # the opcode (kernels.register_ops)
     divisor = 1 if name == "Mod" else None
@@ -131,6 +134,7 @@ def _elementwise(name: str, function: str, arity: int, bounds: Callable[..., Bou
         fast,
         divisor=divisor,
         dtype="float64",
+        work=work,
     )
 
 
@@ -140,19 +144,25 @@ def _composed(
     static: Callable[..., Any],
     bounds: Callable[..., Bounds],
     arrays: int,
+    work: float = 1,
 ) -> Op:
-    return Op(name, Kind.FIELD, Ref(_RULES + rule), static, bounds, NUMPY, arrays=arrays)
+    return Op(name, Kind.FIELD, Ref(_RULES + rule), static, bounds, NUMPY, arrays=arrays, work=work)
 
 
 MATH_V2_ENTRIES: tuple[Op, ...] = (
-    _elementwise("Atan2", "atan2", 2, _atan2_bounds),
+    _elementwise("Atan2", "atan2", 2, _atan2_bounds, W.TRANSCENDENTAL),
     _elementwise("Fract", "fract", 1, _fract_bounds),
     _elementwise("Mod", "mod", 2, _mod_bounds),
-    _elementwise("Exp", "exp_", 1, _exp_bounds),
+    _elementwise("Exp", "exp_", 1, _exp_bounds, W.TRANSCENDENTAL),
     _composed("Clamp", "clamp", _folded(_MATHOPS + "clamp", 3, (0.0, 1.0)), _clamp_bounds, 3),
     _composed("Mix", "mix", _folded(_MATHOPS + "mix", 3), _mix_bounds, 4),
     _composed(
-        "Smoothstep", "smoothstep", _folded(_MATHOPS + "smoothstep", 3), _smoothstep_bounds, 9
+        "Smoothstep",
+        "smoothstep",
+        _folded(_MATHOPS + "smoothstep", 3),
+        _smoothstep_bounds,
+        9,
+        W.SMOOTHSTEP,
     ),
-    _composed("Hash", "hash_cells", _hash_static, _hash_bounds, 3),
+    _composed("Hash", "hash_cells", _hash_static, _hash_bounds, 3, W.HASH),
 )

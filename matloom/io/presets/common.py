@@ -9,6 +9,7 @@ into the material file as a factor, where the target has one).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -23,13 +24,71 @@ from matloom.io.atomic import atomic_write_bytes
 from matloom.vocab.layout import LAYOUT
 
 
+def identifier(name: str) -> str:
+    """``name`` as an identifier valid in USD (prim names) and MaterialX (element names):
+    ``[A-Za-z_][A-Za-z0-9_]*``. Other characters become ``_`` and a leading digit gets an
+    ``m`` before it, so ``01_bricks`` -> ``m01_bricks`` and ``-lead`` -> ``_lead`` (file names
+    keep the name as given)."""
+    text = re.sub(r"[^A-Za-z0-9_]", "_", name)
+    return "m" + text if not text or text[0].isdigit() else text
+
+
+#: float32 rounding steps (of the value's magnitude) a map may spread over and still count as
+#: one value: compositing layers that all write ior 1.5 leaves 1.4999999 .. 1.5000001, which
+#: a texture would store as one grey level.
+_ROUNDING_ULPS = 8
+
+
 def _constant(array: np.ndarray) -> float | list[float] | None:
-    """The value of an array whose texels all hold one finite value (a list for colours)."""
-    flat = array.reshape(array.shape[0] * array.shape[1], -1)
+    """The value of an array whose texels all hold one finite value, up to float32 rounding
+    (:data:`_ROUNDING_ULPS`); a list for colours. Presets write such a map as a value."""
+    flat = np.asarray(array).reshape(array.shape[0] * array.shape[1], -1)
     first = flat[0]
-    if not np.all(np.isfinite(first)) or not np.all(flat == first):
+    if not np.all(np.isfinite(first)):
         return None
-    return float(first[0]) if flat.shape[1] == 1 else [float(v) for v in first]
+    if np.all(flat == first):
+        return float(first[0]) if flat.shape[1] == 1 else [float(v) for v in first]
+    with np.errstate(invalid="ignore"):
+        low, high = flat.min(axis=0), flat.max(axis=0)
+    if not (np.all(np.isfinite(low)) and np.all(np.isfinite(high))):
+        return None
+    tolerance = _ROUNDING_ULPS * np.finfo(np.float32).eps * np.maximum(np.abs(low), np.abs(high))
+    if np.any(high - low > tolerance):
+        return None
+    value = flat.astype(np.float64).mean(axis=0).astype(np.float32)
+    return float(value[0]) if flat.shape[1] == 1 else [float(v) for v in value]
+
+
+#: The physical side lengths (metres) a render may declare: the presets store the swatch's size
+#: as float32 (glTF positions, MaterialX and USD inputs), and a size beyond these bounds is a
+#: typo (``--unit-m 1e308``), not a material.
+PHYSICAL_SIDE_M: tuple[float, float] = (1e-9, 1e9)
+#: The largest magnitude a float32 input of a document is given (just under float32's maximum).
+FLOAT32_LIMIT = 3.4e38
+
+
+def physical_size_problem(unit_m: float, view_size: tuple[float, float]) -> str | None:
+    """Why ``unit_m`` metres per unit cannot describe a View of ``view_size`` units (None: it
+    can): each side in metres must lie within :data:`PHYSICAL_SIDE_M`."""
+    low, high = PHYSICAL_SIDE_M
+    for side in view_size:
+        metres = side * unit_m
+        if not low <= metres <= high:
+            return (
+                f"unit_m {unit_m:g} makes the swatch {metres:g} m wide ({side:g} units); "
+                f"a physical size must be {low:g} to {high:g} m"
+            )
+    return None
+
+
+def float32_input(value: float, what: str, notes: list[str]) -> float:
+    """``value`` for a float32 input of a document (MaterialX, USD): beyond float32 it is
+    clamped to +-:data:`FLOAT32_LIMIT` (NaN to 0) and ``notes`` says so."""
+    if -FLOAT32_LIMIT <= value <= FLOAT32_LIMIT:
+        return value
+    clamped = 0.0 if value != value else float(np.copysign(FLOAT32_LIMIT, value))
+    notes.append(f"{what} {value:.6g} is beyond float32: written as {clamped:.6g}")
+    return clamped
 
 
 def _finite(values: np.ndarray, fill: float = 0.0) -> np.ndarray:
@@ -41,13 +100,20 @@ class PresetInput:
     """The maps of one render as presets see them (see the module docstring).
 
     ``name`` prefixes the file names; ``unit_m`` is metres per coordinate unit (None: unknown);
-    ``bits`` is the PNG depth for maps a target accepts at 16 bits (base colour, ORM, normals).
+    ``bits`` is the PNG depth of the colour and data maps (base colour, ORM or mask, normals,
+    emissive, single channels) of every preset but glTF, whose viewers read 8-bit textures;
+    the height, ior and angle textures are 16-bit whatever it says.
     """
 
     maps: MaterialMaps
     name: str = "material"
     unit_m: float | None = None
     bits: int = 8
+
+    @property
+    def identifier(self) -> str:
+        """The name as an identifier for names inside documents (:func:`identifier`)."""
+        return identifier(self.name)
 
     # ---------------------------------------------------------------- channel use
 

@@ -6,7 +6,8 @@ Mapping: ``baseColorTexture`` (sRGB, alpha = coverage when not opaque) ; ``metal
 and ``occlusion`` read one ORM texture (R AO, G roughness, B metallic, linear); ``normalTexture``
 (+Y, OpenGL); emissive as an sRGB texture times ``emissiveFactor`` with
 ``KHR_materials_emissive_strength`` above 1; ``KHR_materials_clearcoat``, ``_sheen``,
-``_transmission``, ``_ior`` and ``_anisotropy`` only where the program uses the channel. Constant
+``_transmission``, ``_ior`` and ``_anisotropy`` only where the program uses the channel (its
+direction is the highlight's stretch: ``anisotropy_angle``, the brushing, + 90 degrees). Constant
 maps become factors. The physical size is in the material's and the asset's ``extras``. The
 quad lies in the XY plane facing +Z, sized in metres (1 m wide when the size is unknown).
 """
@@ -30,6 +31,7 @@ from matloom.io.presets.common import (
     write_normal,
     write_orm,
 )
+from matloom.vocab.channels import ANISOTROPY_STRETCH_OFFSET_DEG
 
 _ARRAY_BUFFER, _ELEMENT_ARRAY_BUFFER = 34962, 34963
 _FLOAT, _UNSIGNED_SHORT = 5126, 5123
@@ -158,16 +160,22 @@ def _extensions(src: PresetInput, out: PresetFiles, ext: dict[str, Any], texture
         aniso: dict[str, Any] = {}
         if strength is not None and angle is not None:
             aniso["anisotropyStrength"] = float(strength)  # type: ignore[arg-type]
-            aniso["anisotropyRotation"] = math.radians(float(angle))  # type: ignore[arg-type]
+            # glTF's anisotropy direction is the stretch; ours is the brushing, 90 degrees off
+            stretch = float(angle) + ANISOTROPY_STRETCH_OFFSET_DEG  # type: ignore[arg-type]
+            stretch = stretch % 180.0 if math.isfinite(stretch) else 90.0  # as the previews
+            aniso["anisotropyRotation"] = math.radians(stretch)
         else:
-            theta = np.radians(np.asarray(src.maps.anisotropy_angle, dtype=np.float64))
+            brushing = np.asarray(src.maps.anisotropy_angle, dtype=np.float64)
+            theta = np.radians(brushing + ANISOTROPY_STRETCH_OFFSET_DEG)
             rgb = np.stack(
                 [np.cos(theta) * 0.5 + 0.5, np.sin(theta) * 0.5 + 0.5, src.maps.anisotropy],
                 axis=2,
             )
             file = out.png("anisotropy", f"{src.name}_anisotropy.png", rgb, 8)
             out.files["anisotropy"].update(
-                colour_space=LINEAR, channels="RG direction (tangent space), B strength"
+                colour_space=LINEAR,
+                channels="RG stretch direction (tangent space: the brushing + 90 degrees), "
+                "B strength",
             )
             aniso["anisotropyStrength"] = 1.0
             aniso["anisotropyTexture"] = texture(file)

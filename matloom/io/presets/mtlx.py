@@ -12,15 +12,19 @@ string; the displacement node's ``scale`` is in metres when ``unit_m`` is known.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 from xml.etree import ElementTree as ET
+
+import numpy as np
 
 from matloom.io.presets.common import (
     IOR_SPAN,
     LINEAR,
     PresetFiles,
     PresetInput,
+    float32_input,
     write_basecolor,
     write_emissive,
     write_height,
@@ -28,8 +32,11 @@ from matloom.io.presets.common import (
     write_normal,
     write_orm,
 )
+from matloom.vocab.channels import ANISOTROPY_STRETCH_OFFSET_DEG
 
 MTLX_VERSION = "1.39"
+#: What a clamped displacement scale is called in the preset's notes.
+_SCALE = "the displacement scale (height range x unit_m)"
 
 
 def _fmt(value: float) -> str:
@@ -76,18 +83,73 @@ def _scalar(doc: _Doc, src: PresetInput, out: PresetFiles, channel: str, target:
         doc.set(target, "float", _fmt(value))  # type: ignore[arg-type]
         out.values[channel] = value
         return
-    file = out.png(channel, f"{src.name}_{channel}.png", getattr(src.maps, channel), 8)
+    file = out.png(channel, f"{src.name}_{channel}.png", getattr(src.maps, channel), src.bits)
     out.files[channel]["colour_space"] = LINEAR
     doc.connect(target, "float", doc.image(f"{channel}_image", "float", file))
+
+
+def _stretch_tangent(doc: _Doc, src: PresetInput, out: PresetFiles) -> None:
+    """``geometry_tangent`` turned to the highlight's stretch: open_pbr_surface stretches the
+    anisotropic highlight along its tangent, ``anisotropy_angle`` is the brushing direction, so
+    the tangent is T cos(a + 90) + B sin(a + 90) (T, B: the UV tangent and bitangent)."""
+    world = {"space": ("string", "world", {})}
+    tangent = doc.node("tangent", "uv_tangent", "vector3", **world)
+    bitangent = doc.node("bitangent", "uv_bitangent", "vector3", **world)
+    offset = math.radians(ANISOTROPY_STRETCH_OFFSET_DEG)
+    brushing = src.constant("anisotropy_angle")
+    if isinstance(brushing, float):
+        stretch = math.radians(brushing) + offset if math.isfinite(brushing) else offset
+        cos_in = ("float", _fmt(math.cos(stretch)), {})
+        sin_in = ("float", _fmt(math.sin(stretch)), {})
+    else:
+        degrees = np.asarray(src.maps.anisotropy_angle, dtype=np.float64)
+        unit = np.where(np.isfinite(degrees), np.mod(degrees, 180.0) / 180.0, 0.0)
+        file = out.png("anisotropy_angle", f"{src.name}_anisotropy_angle.png", unit, 16)
+        out.files["anisotropy_angle"].update(
+            colour_space=LINEAR, decode="brushing angle_degrees = value / 65535 * 180 (axial)"
+        )
+        image = doc.image("anisotropy_angle_image", "float", file)
+        radians = doc.node(
+            "multiply", "brushing_radians", "float", in1=("float", "@" + image, {}),
+            in2=("float", _fmt(math.pi), {}),
+        )  # fmt: skip
+        turned = doc.node(
+            "add", "stretch_radians", "float", in1=("float", "@" + radians, {}),
+            in2=("float", _fmt(offset), {}),
+        )  # fmt: skip
+        cos_in = (
+            "float",
+            "@" + doc.node("cos", "stretch_cos", "float", **{"in": ("float", "@" + turned, {})}),
+            {},
+        )
+        sin_in = (
+            "float",
+            "@" + doc.node("sin", "stretch_sin", "float", **{"in": ("float", "@" + turned, {})}),
+            {},
+        )
+    along = doc.node(
+        "multiply", "stretch_along_t", "vector3", in1=("vector3", "@" + tangent, {}), in2=cos_in
+    )
+    across = doc.node(
+        "multiply", "stretch_along_b", "vector3", in1=("vector3", "@" + bitangent, {}), in2=sin_in
+    )
+    total = doc.node(
+        "add", "stretch_sum", "vector3", in1=("vector3", "@" + along, {}),
+        in2=("vector3", "@" + across, {}),
+    )  # fmt: skip
+    direction = doc.node(
+        "normalize", "stretch_tangent", "vector3", **{"in": ("vector3", "@" + total, {})}
+    )
+    doc.connect("geometry_tangent", "vector3", direction)
 
 
 def write(src: PresetInput, folder: Path) -> dict[str, Any]:
     """Write the MaterialX preset into ``folder``; returns its manifest entry."""
     out = PresetFiles(folder)
-    name = src.name
-    doc = _Doc(name)
+    name = src.name  # file names keep the name; elements take it as an identifier
+    doc = _Doc(src.identifier)
     doc.set("base_weight", "float", "1")
-    base = write_basecolor(src, out, f"{name}_basecolor.png")
+    base = write_basecolor(src, out, f"{name}_basecolor.png", src.bits)
     if base is None:
         doc.set("base_color", "color3", ", ".join(_fmt(v) for v in out.values["basecolor_linear"]))
     else:
@@ -102,7 +164,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
                 doc.node("extract", "opacity", "float", **{"in": ("vector4", "@" + rgba, {})},
                          index=("integer", "3", {})),
             )  # fmt: skip
-    orm = write_orm(src, out, f"{name}_orm.png")
+    orm = write_orm(src, out, f"{name}_orm.png", src.bits)
     if orm is None:
         doc.set("base_metalness", "float", _fmt(out.values["metallic"]))
         doc.set("specular_roughness", "float", _fmt(out.values["roughness"]))
@@ -114,7 +176,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
         out.notes.append(
             "AO (ORM red) has no open_pbr_surface input: the node 'occlusion' reads it"
         )
-    normal = write_normal(src, out, f"{name}_normal_gl.png", "gl")
+    normal = write_normal(src, out, f"{name}_normal_gl.png", "gl", src.bits)
     if normal is not None:
         image = doc.image("normal_image", "vector3", normal)
         doc.connect(
@@ -131,6 +193,8 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
     ):
         if src.used(channel):
             _scalar(doc, src, out, channel, target)
+    if src.used("anisotropy"):
+        _stretch_tangent(doc, src, out)
     if src.used("ior"):
         ior = src.constant("ior")
         if ior is not None:
@@ -142,7 +206,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
                 outlow=("float", "1", {}), outhigh=("float", _fmt(1 + IOR_SPAN), {}),
             )  # fmt: skip
             doc.connect("specular_ior", "float", remap)
-    emissive = write_emissive(src, out, f"{name}_emissive.png")
+    emissive = write_emissive(src, out, f"{name}_emissive.png", src.bits)
     if src.emissive is not None:
         scale = src.emissive[1]
         colour = src.constant("emissive_linear")
@@ -156,7 +220,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
     for key, (itype, value) in doc.inputs.items():
         ET.SubElement(shader, "input", name=key, type=itype, **value_attr(value))
     doc.root.append(shader)
-    material = ET.SubElement(doc.root, "surfacematerial", name=name, type="material")
+    material = ET.SubElement(doc.root, "surfacematerial", name=doc.name, type="material")
     ET.SubElement(
         material, "input", name="surfaceshader", type="surfaceshader", nodename=shader.get("name")
     )
@@ -168,10 +232,10 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
         image = doc.image("height_image", "float", height)
         disp = doc.node(
             "displacement",
-            f"{name}_displacement",
+            f"{doc.name}_displacement",
             "displacementshader",
             displacement=("float", "@" + image, {}),
-            scale=("float", _fmt((high - low) * unit), {}),
+            scale=("float", _fmt(float32_input((high - low) * unit, _SCALE, out.notes)), {}),
         )
         ET.SubElement(
             material, "input", name="displacementshader", type="displacementshader", nodename=disp

@@ -16,6 +16,7 @@ from matloom.io.presets.common import (
     IOR_SPAN,
     PresetFiles,
     PresetInput,
+    float32_input,
     write_basecolor,
     write_emissive,
     write_height,
@@ -80,16 +81,16 @@ class _Material:
 def write(src: PresetInput, folder: Path) -> dict[str, Any]:
     """Write the USD preset into ``folder``; returns its manifest entry."""
     out = PresetFiles(folder)
-    name = src.name
-    mat = _Material(name)
-    base = write_basecolor(src, out, f"{name}_basecolor.png")
+    name = src.name  # file names keep the name; prims take it as a USD identifier
+    mat = _Material(src.identifier)
+    base = write_basecolor(src, out, f"{name}_basecolor.png", src.bits)
     if base is None:
         mat.set("diffuseColor", "color3f", _tuple(out.values["basecolor_linear"]))
     else:
         mat.connect("diffuseColor", "color3f", mat.texture("basecolor", base, "sRGB", "rgb"))
         if not src.opaque:
             mat.connect("opacity", "float", f"float|{mat.path}/basecolor.outputs:a")
-    orm = write_orm(src, out, f"{name}_orm.png")
+    orm = write_orm(src, out, f"{name}_orm.png", src.bits)
     if orm is None:
         mat.set("occlusion", "float", _f(out.values["ao"]))
         mat.set("roughness", "float", _f(out.values["roughness"]))
@@ -98,7 +99,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
         mat.connect("occlusion", "float", mat.texture("orm", orm, "raw", "r"))
         mat.connect("roughness", "float", f"float|{mat.path}/orm.outputs:g")
         mat.connect("metallic", "float", f"float|{mat.path}/orm.outputs:b")
-    normal = write_normal(src, out, f"{name}_normal_gl.png", "gl")
+    normal = write_normal(src, out, f"{name}_normal_gl.png", "gl", src.bits)
     if normal is not None:
         reader = mat.texture("normal", normal, "raw", "rgb", (2, 2, 2, 1), (-1, -1, -1, 0))
         mat.connect("normal", "normal3f", reader)
@@ -117,7 +118,7 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
             mat.connect("ior", "float", reader)
         else:
             mat.set("ior", "float", _f(ior))  # type: ignore[arg-type]
-    emissive = write_emissive(src, out, f"{name}_emissive.png")
+    emissive = write_emissive(src, out, f"{name}_emissive.png", src.bits)
     if src.emissive is not None:
         scale = src.emissive[1]
         colour = src.constant("emissive_linear")
@@ -130,8 +131,9 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
     if height is not None:
         low, high = src.height_range
         unit = src.unit_m if src.unit_m is not None else 1.0
-        span = (high - low) * unit
-        reader = mat.texture("height", height, "raw", "r", (span,) * 4, (low * unit,) * 4)
+        span = float32_input((high - low) * unit, "the displacement scale", out.notes)
+        bias = float32_input(low * unit, "the displacement bias", out.notes)
+        reader = mat.texture("height", height, "raw", "r", (span,) * 4, (bias,) * 4)
         mat.connect("displacement", "float", reader)
     for channel in ("sheen", "transmission", "subsurface", "anisotropy"):
         if src.used(channel):
@@ -141,11 +143,11 @@ def write(src: PresetInput, folder: Path) -> dict[str, Any]:
 
 
 def _grey(src: PresetInput, out: PresetFiles, channel: str) -> str:
-    return out.png(channel, f"{src.name}_{channel}.png", getattr(src.maps, channel), 8)
+    return out.png(channel, f"{src.name}_{channel}.png", getattr(src.maps, channel), src.bits)
 
 
 def _layer(src: PresetInput, mat: _Material) -> str:
-    name = src.name
+    name = src.identifier  # prim names must be identifiers ("01_bricks" is not)
     width, height = src.quad_size
     w, h = width / 2, height / 2
     physical = src.physical()
