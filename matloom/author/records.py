@@ -10,7 +10,6 @@ a crash or a kill keeps every finished step and ``--resume`` continues from ther
 
 from __future__ import annotations
 
-import json
 import os
 from datetime import UTC, datetime
 from pathlib import Path
@@ -24,6 +23,8 @@ from matloom.io.atomic import atomic_write_bytes
 from matloom.io.outdir import OutputFolder
 
 RECORD_NAME = "record.json"
+#: The most bytes of ``record.json`` read on resume (every round's programs and capped replies).
+RECORD_MAX_BYTES = 512 * 1024 * 1024
 RECORD_FORMAT = "matloom-run"
 RECORD_VERSION = 1
 #: Artefacts written as text, so :meth:`RecordStore.write_file` can redact them.
@@ -312,8 +313,10 @@ class RecordStore:
     @classmethod
     def load(cls, folder: str | os.PathLike[str]) -> RecordStore:
         """Read and validate the record of an existing run folder."""
-        path = Path(folder) / RECORD_NAME
-        data = json.loads(path.read_text(encoding="utf-8"))
+        from matloom.io.reading import read_json_file
+
+        # A run folder may come from elsewhere: its record is never read through a symlink.
+        data = read_json_file(Path(folder) / RECORD_NAME, RECORD_MAX_BYTES)
         return cls(folder, RunRecord.model_validate(data))
 
 

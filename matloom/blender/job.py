@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -207,6 +208,7 @@ def _render_program(
         raise ProgramSourceError(format_diagnostics(errors, str(path)))
     if has_seedless_noise(program):
         program = canonicalize_seeds(program, program_seed)
+    _check_unit_m(unit_m, program)
     try:
         maps = evaluate(program, size, size)
     except LimitError as err:
@@ -219,6 +221,22 @@ def _render_program(
         unit_m=unit_m,
         name=name,
     )
+
+
+def _check_unit_m(unit_m: float | None, program: Any) -> None:
+    """As ``render``: a physical size presets can store, and a note when ``--unit-m`` replaces
+    the program's own ``unit_m``."""
+    from matloom.io.presets.common import physical_size_problem, unit_m_override_note
+
+    x1, y1, x2, y2 = program.view_tuple
+    effective = unit_m if unit_m is not None else program.unit_m
+    if effective is not None:
+        problem = physical_size_problem(effective, (abs(x2 - x1), abs(y2 - y1)))
+        if problem is not None:
+            raise BlenderJobError(problem)
+    note = unit_m_override_note(unit_m, program.unit_m, abs(x2 - x1))
+    if note is not None:
+        print(note, file=sys.stderr)
 
 
 # ------------------------------------------------------------------------ maps

@@ -10,6 +10,7 @@ import click
 
 from matloom.cli import params
 from matloom.cli.lang_cmds import _read
+from matloom.cli.naming import default_material_name
 from matloom.cli.tileable import apply_tileable, tileable_option
 from matloom.vocab.spec import LANGUAGE_VERSION
 
@@ -74,9 +75,7 @@ def check_unit_m(
     """Before any work: the physical size (``--unit-m``, else the program's ``unit_m``) must be
     one the presets can store; a ``--unit-m`` that replaces a different program ``unit_m`` is
     said on stderr (one line naming both)."""
-    import math
-
-    from matloom.io.presets.common import physical_size_problem
+    from matloom.io.presets.common import physical_size_problem, unit_m_override_note
 
     effective = unit_m if unit_m is not None else program_unit_m
     if effective is None:
@@ -86,15 +85,9 @@ def check_unit_m(
     if problem is not None:
         hint = "'--unit-m'" if unit_m is not None else "the program's View(..., unit_m=...)"
         raise click.BadParameter(problem, param_hint=hint)
-    if unit_m is not None and program_unit_m is not None:
-        # the library's entries round their unit_m to 6 digits: that is the same size
-        if not math.isclose(unit_m, program_unit_m, rel_tol=1e-4, abs_tol=1e-6):
-            click.echo(
-                f"note: --unit-m {unit_m:g} replaces the program's View unit_m={program_unit_m:g}"
-                f" (the swatch is {abs(x2 - x1) * unit_m:g} m wide instead of "
-                f"{abs(x2 - x1) * program_unit_m:g} m)",
-                err=True,
-            )
+    note = unit_m_override_note(unit_m, program_unit_m, abs(x2 - x1))
+    if note is not None:
+        click.echo(note, err=True)
 
 
 #: ``--preset`` choices (the registry is imported lazily; this list is checked by a test).
@@ -192,7 +185,8 @@ def square_texel_view(
     "material_name",
     type=params.NAME,
     default=None,
-    help="Material name for preset files (default: FILE's stem).",
+    help="Material name for preset files (default: the name in the material.json beside "
+    "FILE when FILE is a run folder's material.mat, else FILE's stem).",
 )
 @click.option(
     "--stretch",
@@ -286,7 +280,7 @@ def render_cmd(
         check_ao_radius(ao_radius, view, w, h)
     check_unit_m(unit_m, program.unit_m, view)
     canonical = format_program(program)
-    name = material_name or params.NAME.convert(Path(file).stem, None, None)
+    name = material_name or default_material_name(Path(file))
     with OutputFolder(out_dir) as out:  # locked before the work starts: a second writer fails
         out.check_writable(planned_files(subset, float_format, preview, encoding))
         t0 = time.perf_counter()

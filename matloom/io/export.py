@@ -355,6 +355,7 @@ def write_maps(
             (folder / preset).mkdir(exist_ok=True)
             manifest["presets"][preset] = writer(source, folder / preset)
             files[f"preset:{preset}"] = final / preset
+    manifest["name"] = name  # the prefix of engine export files; `render` reuses it
     if extra_meta:
         manifest["extra"] = dict(extra_meta)
     manifest = _json_safe(manifest)

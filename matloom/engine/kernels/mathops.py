@@ -56,7 +56,7 @@ def _portable(ufunc: np.ufunc, fn: Callable[..., np.ndarray], *operands: ArrayLi
     if dtype.kind != "f":  # integer powers: exact in numpy already
         with _quiet():
             return ufunc(*arrays)  # type: ignore[no-any-return]
-    out = portable_math.blockwise(fn, *arrays).astype(dtype, copy=False)
+    out = portable_math.blockwise(fn, *arrays, dtype=dtype)
     return out[()] if out.ndim == 0 else out  # a scalar for 0-d operands, as a ufunc
 
 

@@ -9,6 +9,7 @@ into the material file as a factor, where the target has one).
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -79,6 +80,23 @@ def physical_size_problem(unit_m: float, view_size: tuple[float, float]) -> str 
                 f"a physical size must be {low:g} to {high:g} m"
             )
     return None
+
+
+def unit_m_override_note(
+    unit_m: float | None, program_unit_m: float | None, view_width: float
+) -> str | None:
+    """The note said when ``unit_m`` (a flag) replaces a different ``unit_m`` of the program's
+    View (None when nothing is replaced). The library's entries round their unit_m to 6 digits:
+    within that, it is the same size."""
+    if unit_m is None or program_unit_m is None:
+        return None
+    if math.isclose(unit_m, program_unit_m, rel_tol=1e-4, abs_tol=1e-6):
+        return None
+    return (
+        f"note: --unit-m {unit_m:g} replaces the program's View unit_m={program_unit_m:g}"
+        f" (the swatch is {view_width * unit_m:g} m wide instead of "
+        f"{view_width * program_unit_m:g} m)"
+    )
 
 
 def float32_input(value: float, what: str, notes: list[str]) -> float:
