@@ -11,6 +11,8 @@ callers pass arrays of those dtypes. NaN passes through both functions unchanged
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -47,6 +49,35 @@ def srgb_to_linear(values: ArrayLike) -> np.ndarray:
         linear = np.asarray(_power((encoded + 0.055) / 1.055, 2.4))
     np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
     return linear
+
+
+#: Relative margin of the certainty test of :func:`float32_of` (as the numba compositor's
+#: ``DECODE_MARGIN``): far above the error of any libm or SIMD ``power`` (a few 2**-53).
+CERTAINTY_MARGIN = 2.0**-44
+
+
+def fast_srgb_to_linear(encoded: np.ndarray) -> np.ndarray:
+    """:func:`srgb_to_linear` of a float64 array with numpy's own ``power``: fast, but its last
+    bit depends on the CPU. Only for :func:`float32_of`, which hides that bit."""
+    with np.errstate(invalid="ignore"):
+        linear = np.power((encoded + 0.055) / 1.055, 2.4)
+    np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
+    return linear
+
+
+def float32_of(fast: np.ndarray, exact: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """``fast`` (float64, within a few ulp of the exact values) rounded to float32, the same
+    on every CPU: where every value within :data:`CERTAINTY_MARGIN` of ``fast`` rounds to one
+    float32, that is the float32 of the exact value too; the other texels (about 1 in 10**6)
+    take ``exact(mask)`` (the portable computation of the values at ``mask``)."""
+    out = fast.astype(np.float32)
+    with np.errstate(over="ignore", invalid="ignore"):
+        unsure = (fast * (1.0 - CERTAINTY_MARGIN)).astype(np.float32) != (
+            fast * (1.0 + CERTAINTY_MARGIN)
+        ).astype(np.float32)
+    if unsure.any():
+        out[unsure] = exact(unsure).astype(np.float32)
+    return out
 
 
 def linear_to_srgb(values: ArrayLike) -> np.ndarray:

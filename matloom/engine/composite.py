@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from matloom.engine import relief
-from matloom.engine.colour import srgb_to_linear
+from matloom.engine.colour import fast_srgb_to_linear, float32_of, srgb_to_linear
 from matloom.engine.maps import MaterialMaps, View
 from matloom.vocab.layout import LAYOUT, Group
 
@@ -142,14 +142,24 @@ def convert_scalar(value: np.ndarray, clamp: tuple[float | None, float | None]) 
 
 
 def _colour_to_linear64(value: np.ndarray) -> np.ndarray:
-    """Authored 0..255 sRGB component -> linear float64: clamp(v/255, 0, 1), decoded."""
-    scaled = np.asarray(value, dtype=np.float64) / 255.0
-    return srgb_to_linear(np.clip(scaled, 0.0, 1.0))
+    """Authored 0..255 sRGB component -> linear float64: clamp(v/255, 0, 1), decoded (with the
+    portable power: the same bits on every CPU)."""
+    return srgb_to_linear(_scaled_colour(value))
+
+
+def _scaled_colour(value: np.ndarray) -> np.ndarray:
+    return np.clip(np.asarray(value, dtype=np.float64) / 255.0, 0.0, 1.0)
 
 
 def colour_to_linear(value: np.ndarray) -> np.ndarray:
-    """Authored 0..255 sRGB component -> linear float32 (converted in float64, then cast)."""
-    return _colour_to_linear64(value).astype(np.float32)
+    """Authored 0..255 sRGB component -> linear float32 (converted in float64, then cast).
+
+    Arrays decode with numpy's fast ``power`` and :func:`float32_of` makes the float32 the same
+    on every CPU (the rare texels near a float32 rounding boundary decode portably)."""
+    scaled = _scaled_colour(value)
+    if scaled.ndim == 0:
+        return srgb_to_linear(scaled).astype(np.float32)
+    return float32_of(fast_srgb_to_linear(scaled), lambda at: srgb_to_linear(scaled[at]))
 
 
 def emitted_radiance(colour: np.ndarray, strength: np.ndarray) -> np.ndarray:
@@ -158,8 +168,14 @@ def emitted_radiance(colour: np.ndarray, strength: np.ndarray) -> np.ndarray:
     The reference multiplies before casting (its emissive product is a float64 grid), which
     changes the last bit compared to multiplying two float32 values.
     """
-    product = _colour_to_linear64(colour) * np.maximum(np.asarray(strength, np.float64), 0.0)
-    return product.astype(np.float32)
+    scaled = _scaled_colour(colour)
+    gain = np.maximum(np.asarray(strength, np.float64), 0.0)
+    if scaled.ndim == 0 and np.ndim(gain) == 0:
+        return (srgb_to_linear(scaled) * gain).astype(np.float32)
+    scaled, gain = np.broadcast_arrays(scaled, gain)
+    return float32_of(
+        fast_srgb_to_linear(scaled) * gain, lambda at: srgb_to_linear(scaled[at]) * gain[at]
+    )
 
 
 # --------------------------------------------------------------------------------------------

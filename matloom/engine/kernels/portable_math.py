@@ -226,7 +226,9 @@ def _log2_parts(ax: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(t1, t2): log2(ax) = t1 + t2 to about 2**-64 relative, t1 with 21 significant bits, for
     finite ax > 0 (fdlibm e_pow.c, the |y| <= 2**31 branch)."""
     subnormal = ax < 2.0**-1022
-    ax = _select(subnormal, ax * _TWO53, ax)
+    if subnormal.any():
+        with np.errstate(over="ignore"):
+            ax = np.where(subnormal, ax * _TWO53, ax)
     high = _high(ax)
     n = (high >> 20) - 0x3FF - 53 * subnormal
     j = high & 0x000FFFFF

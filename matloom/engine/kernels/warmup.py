@@ -251,6 +251,10 @@ def stop_background(directory: Path | None = None) -> None:
             child.wait()
         except OSError:
             continue
+        try:  # a helper of the group that outlived SIGTERM goes too
+            os.killpg(child.pid, signal.SIGKILL)
+        except OSError:  # the group is already empty
+            pass
         if directory is not None and _lock_pid(directory) == child.pid:
             (directory / LOCK_NAME).unlink(missing_ok=True)
             (directory / STATUS_NAME).unlink(missing_ok=True)

@@ -49,8 +49,8 @@ def _constant(array: np.ndarray) -> float | list[float] | None:
         return None
     if np.all(flat == first):
         return float(first[0]) if flat.shape[1] == 1 else [float(v) for v in first]
-    with np.errstate(invalid="ignore"):
-        low, high = flat.min(axis=0), flat.max(axis=0)
+    with np.errstate(invalid="ignore"):  # float64: the spread of huge float32 values is finite
+        low, high = flat.min(axis=0).astype(np.float64), flat.max(axis=0).astype(np.float64)
     if not (np.all(np.isfinite(low)) and np.all(np.isfinite(high))):
         return None
     tolerance = _ROUNDING_ULPS * np.finfo(np.float32).eps * np.maximum(np.abs(low), np.abs(high))
