@@ -46,8 +46,13 @@ def transform_values(call: A.Call) -> tuple[float, float]:
         return param_value(call, "dx"), param_value(call, "dy")
     if call.func == "Scale":
         return param_value(call, "sx"), param_value(call, "sy")
-    rad = math.radians(param_value(call, "degrees"))
-    return math.cos(rad), math.sin(rad)
+    # the portable cos and sin: the C library's pick their last bit by CPU (FMA or not)
+    import numpy as np
+
+    from matloom.engine.kernels.mathops import cos, sin
+
+    rad = np.float64(math.radians(param_value(call, "degrees")))
+    return float(cos(rad)), float(sin(rad))
 
 
 def field_params(call: A.Call) -> tuple[str, ...]:
