@@ -189,20 +189,20 @@ def test_maps_are_identical_on_every_cpu_dispatch():
         if setting:
             env["NPY_DISABLE_CPU_FEATURES"] = " ".join(disabled)
             env["NUMBA_CPU_NAME"] = "generic"
-        proc = subprocess.Popen(
+        # one after the other: the second generic-CPU run reuses the kernels the first cached
+        proc = subprocess.run(
             [sys.executable, "-c", _HASH_WORKER],
             env=env,
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
+            input=job,
+            capture_output=True,
             text=True,
+            timeout=600,
         )
         runs.append((setting, disabled, proc))
     results = []
     for setting, disabled, proc in runs:
-        out, err = proc.communicate(job, timeout=600)
-        assert proc.returncode == 0, f"{setting}: {err[-2000:]}"
-        result = json.loads(out)
+        assert proc.returncode == 0, f"{setting}: {proc.stderr[-2000:]}"
+        result = json.loads(proc.stdout)
         assert not set(disabled) & set(result["active"]), f"{setting} still dispatched"
         results.append((setting, result["hashes"]))
     reference = results[0][1]

@@ -90,7 +90,8 @@ EXPORT_ROWS = [
         "png8-grey",
         LINEAR,
         ("anisotropy",),
-        "anisotropy magnitude 0..1 (direction: tangent/X rotated by anisotropy_angle)",
+        "anisotropy magnitude 0..1 (brush lines along tangent/X rotated by anisotropy_angle; "
+        "the highlight stretches across them)",
     ),
     ("ior", "ior.exr", "exr-float32", LINEAR, ("ior",), "index of refraction"),
     (
@@ -99,8 +100,8 @@ EXPORT_ROWS = [
         "png8-grey",
         LINEAR,
         ("anisotropy_angle",),
-        "direction of the anisotropic stretch, degrees counter-clockwise from +x (tangent/X) "
-        "toward +y (up); axial, so angle and angle + 180 are the same; layers blend the angle "
+        "brushing direction (the brush lines run along it; the highlight stretches across it, "
+        "at angle + 90), degrees counter-clockwise from +x (tangent/X) toward +y (up); axial, so angle and angle + 180 are the same; layers blend the angle "
         "linearly (value_range: the blended degrees)",
     ),
     (
