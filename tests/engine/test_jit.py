@@ -19,7 +19,9 @@ _PROBE = (
 
 def _probe(**env: str) -> list[str]:
     clean = {
-        k: v for k, v in os.environ.items() if k not in ("OMP_WAIT_POLICY", "NUMBA_CPU_FEATURES")
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("OMP_WAIT_POLICY", "NUMBA_CPU_FEATURES", "NUMBA_CPU_NAME")
     }
     clean.update(env)
     out = subprocess.run(
@@ -33,8 +35,10 @@ def test_openmp_workers_sleep_by_default_but_a_user_setting_wins() -> None:
     assert _probe(OMP_WAIT_POLICY="ACTIVE")[0] == "ACTIVE"
 
 
-def test_wide_vectors_follow_the_cpu_and_can_be_switched_off() -> None:
+def test_wide_vectors_follow_the_cpu_and_can_be_switched_off(monkeypatch) -> None:
     from matloom.engine.kernels.jit import wide_vector_features
+
+    monkeypatch.delenv("NUMBA_CPU_NAME", raising=False)  # the default host set-up is tested
 
     policy, wide, configured = _probe()
     assert (wide == "True") == (configured == "True")
@@ -44,3 +48,5 @@ def test_wide_vectors_follow_the_cpu_and_can_be_switched_off() -> None:
     user = "+sse2"
     policy, wide, configured = _probe(NUMBA_CPU_FEATURES=user)
     assert wide == "False" and configured == "True"  # the user's features are kept
+    policy, wide, configured = _probe(NUMBA_CPU_NAME="generic")
+    assert wide == "False"  # a generic CPU stays generic: no host features added

@@ -57,8 +57,12 @@ WIDE_VECTORS_ENV = "MATLOOM_NUMBA_WIDE_VECTORS"
 
 def wide_vector_features() -> str | None:
     """The host feature string with "-prefer-256-bit" added, or None where it does not apply
-    (no AVX-512, switched off, the user's own NUMBA_CPU_FEATURES, or LLVM cannot tell)."""
-    if os.environ.get(WIDE_VECTORS_ENV, "1") == "0" or os.environ.get("NUMBA_CPU_FEATURES"):
+    (no AVX-512, switched off, the user's own NUMBA_CPU_FEATURES or NUMBA_CPU_NAME -- e.g.
+    ``generic`` for portable cached kernels, which host features would undo --, or LLVM cannot
+    tell)."""
+    if os.environ.get(WIDE_VECTORS_ENV, "1") == "0":
+        return None
+    if os.environ.get("NUMBA_CPU_FEATURES") or os.environ.get("NUMBA_CPU_NAME"):
         return None
     try:
         import llvmlite.binding as ll
