@@ -23,6 +23,7 @@ from matloom.blender.listed import UnlistedFileError, listed_file
 from matloom.blender.packed import PackedTextureError, packed_texture
 from matloom.blender.tempdirs import TempDir
 from matloom.io.atomic import atomic_write_bytes
+from matloom.io.reading import read_json_file
 
 JOB_FORMAT = "matloom-blender-job"
 JOB_VERSION = 1
@@ -137,10 +138,8 @@ def read_manifest(folder: Path) -> dict[str, Any]:
             f"{folder} has no {MANIFEST}: not a complete folder exported by `matloom render` "
             "(export one with `matloom render PROGRAM -o DIR`, or pass the program file)"
         )
-    try:
-        if manifest_path.stat().st_size > _MANIFEST_MAX_BYTES:
-            raise ValueError(f"larger than {_MANIFEST_MAX_BYTES // 1_000_000} MB")
-        data = json.loads(manifest_path.read_text(encoding="utf-8"))
+    try:  # no symlink followed even if one appears after the check above; size-capped
+        data = read_json_file(manifest_path, _MANIFEST_MAX_BYTES)
     except (OSError, ValueError) as err:
         raise BlenderJobError(f"cannot read {manifest_path}: {err}") from None
     if not isinstance(data, dict) or data.get("format") != "matloom-material":

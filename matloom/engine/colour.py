@@ -44,25 +44,26 @@ def srgb_to_linear(values: ArrayLike) -> np.ndarray:
     Computed element-wise in the input's float dtype (float64 for non-float input). NaN stays
     NaN (it takes the power branch). Returns a new array (0-d for a scalar input).
     """
-    encoded = _float_array(values)
+    return _decode(_float_array(values), _power)
+
+
+def _decode(encoded: np.ndarray, power: Callable[[np.ndarray, float], np.ndarray]) -> np.ndarray:
+    """The sRGB decode curve of ``encoded`` with the given ``power(base, exponent)``."""
     with np.errstate(invalid="ignore"):
-        linear = np.asarray(_power((encoded + 0.055) / 1.055, 2.4))
+        linear = np.asarray(power((encoded + 0.055) / 1.055, 2.4))
     np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
     return linear
 
 
-#: Relative margin of the certainty test of :func:`float32_of` (as the numba compositor's
-#: ``DECODE_MARGIN``): far above the error of any libm or SIMD ``power`` (a few 2**-53).
+#: Relative margin of the certainty test of :func:`float32_of` and of the numba compositor's
+#: sRGB table: far above the error of any libm or SIMD ``power`` (a few 2**-53).
 CERTAINTY_MARGIN = 2.0**-44
 
 
 def fast_srgb_to_linear(encoded: np.ndarray) -> np.ndarray:
     """:func:`srgb_to_linear` of a float64 array with numpy's own ``power``: fast, but its last
     bit depends on the CPU. Only for :func:`float32_of`, which hides that bit."""
-    with np.errstate(invalid="ignore"):
-        linear = np.power((encoded + 0.055) / 1.055, 2.4)
-    np.copyto(linear, encoded / 12.92, where=encoded <= SRGB_DECODE_THRESHOLD)
-    return linear
+    return _decode(encoded, np.power)
 
 
 def float32_of(fast: np.ndarray, exact: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:

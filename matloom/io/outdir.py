@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any
 
 from matloom.io.atomic import atomic_write_bytes
+from matloom.io.reading import read_json_file
 
 #: The ownership index (and install journal) kept in every output folder.
 INDEX_NAME = ".matloom-files.json"
@@ -468,10 +469,10 @@ def _require_safe(rel: str) -> None:
 
 
 def _read_json(path: Path) -> Any:
+    """``path`` parsed as JSON; None when absent, a symlink, not a regular file, over 50 MB
+    or not JSON."""
     try:
-        if path.is_symlink() or not path.is_file() or path.stat().st_size > 50_000_000:
-            return None
-        return json.loads(path.read_text(encoding="utf-8"))
+        return read_json_file(path, 50_000_000)
     except (OSError, ValueError):
         return None
 

@@ -20,6 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from matloom.engine.colour import CERTAINTY_MARGIN
 from matloom.engine.kernels.register_numba import _jit, load_leaves, run_code
 from matloom.vocab.layout import LAYOUT, Group
 
@@ -71,8 +72,9 @@ RAW, READY, DECODED, ZERO = 0, 1, 2, 3
 MAX_LEAVES64 = 16
 MAX_LEAVES32 = 8
 
-#: Relative margin of the certainty test of the sRGB table (see the module docstring).
-DECODE_MARGIN = 2.0**-44
+#: Relative margin of the certainty test of the sRGB table (see the module docstring): the one
+#: the numpy path's decode uses too.
+DECODE_MARGIN = CERTAINTY_MARGIN
 _LUT_X0 = 0.09
 _LUT_INTERVALS = 16384
 _LUT_INV_H = _LUT_INTERVALS / (1.0 - _LUT_X0)
