@@ -33,7 +33,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from matloom.cli.progress import COMPILING  # noqa: E402
-from matloom.engine.kernels import warmup  # noqa: E402
+from matloom.runtime import warmup  # noqa: E402
+from matloom.runtime.cold_start import BACKGROUND_ENV  # noqa: E402
 
 PROGRAM = ROOT / "matloom" / "examples" / "black_ceramic_tiles.mat"
 
@@ -60,7 +61,7 @@ def one_repetition(program: Path, size: int, mode: str) -> dict[str, float]:
         cache = Path(tmp) / "numba-cache"
         env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), "PYTHONPATH": str(ROOT)}
         if mode == "foreground":
-            env[warmup.BACKGROUND_ENV] = "0"
+            env[BACKGROUND_ENV] = "0"
         cold, err = render(program, size, Path(tmp) / "cold", env)
         said = COMPILING in err
         start = time.perf_counter()

@@ -24,7 +24,7 @@ import numpy as np
 from matloom.engine import relief
 from matloom.engine.composite import RawLayer, composite
 from matloom.engine.maps import MaterialMaps, View
-from matloom.io.export import export_maps
+from matloom.runtime.export import export_maps
 
 MIB = 1024 * 1024
 

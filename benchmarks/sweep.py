@@ -27,7 +27,8 @@ sys.path.insert(0, str(ROOT))
 
 import matloom.engine.backends as backends  # noqa: E402
 from matloom.engine.evaluate import prepare  # noqa: E402
-from matloom.render import sweep  # noqa: E402
+from matloom.engine.schedules import sweep  # noqa: E402
+from matloom.render.preview import ShadeParams  # noqa: E402
 
 PARITY = ROOT / "tests" / "data" / "parity"
 MIB = 1024 * 1024
@@ -66,6 +67,7 @@ def main() -> None:
     args = parser.parse_args()
     clock = [0.0]
     install_noise_clock(clock)
+    shading = ShadeParams.of()
     print(f"load average at start: {os.getloadavg()}")
     print(
         f"{'program':20} {'cands':>6} {'wall s':>7} {'cpu s':>7} {'cand/s':>7} "
@@ -73,18 +75,24 @@ def main() -> None:
     )
     for name in args.programs:
         text = (PARITY / f"{name}.mat").read_text()
-        sweep.run_sweep(text, variants=3, size=args.size, jobs=args.jobs)  # warm-up
+        # warm-up
+        sweep.run_sweep(text, variants=3, shading=shading, size=args.size, jobs=args.jobs)
         clock[0] = 0.0
         wall0, cpu0 = time.perf_counter(), time.process_time()
         result = sweep.run_sweep(
-            text, variants=args.variants, size=args.size, jobs=args.jobs, keep=1
+            text, variants=args.variants, shading=shading, size=args.size, jobs=args.jobs, keep=1
         )
         wall, cpu = time.perf_counter() - wall0, time.process_time() - cpu0
         noise = clock[0]
-        chunk = sweep._chunk_size(prepare(text), args.size)
+        chunk = sweep.chunk_size(prepare(text), args.size)
         tracemalloc.start()
         sweep.run_sweep(
-            text, variants=min(args.variants, 2 * chunk), size=args.size, jobs=args.jobs, keep=1
+            text,
+            variants=min(args.variants, 2 * chunk),
+            shading=shading,
+            size=args.size,
+            jobs=args.jobs,
+            keep=1,
         )
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()

@@ -13,10 +13,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from matloom._version import __version__
 from matloom.lang.api import analyse, check, format, parse
 from matloom.lang.diagnostics import Diagnostic, ProgramError, Severity
-
-__version__ = "0.1.0"
 
 if TYPE_CHECKING:
     from matloom.engine.maps import MaterialMaps

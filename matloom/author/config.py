@@ -318,25 +318,3 @@ def api_key_for(settings: ModelSettings) -> str | None:
     """The API key: the value of :func:`api_key_source` (see :func:`key_variables`)."""
     name = api_key_source(settings)
     return os.environ[name] if name else None
-
-
-def server_of(settings: ModelSettings) -> str:
-    """The server requests go to, as the ``openai`` client picks it, credentials redacted."""
-    from matloom.author.redact import redact_url
-
-    if settings.provider != "openai":
-        return f"the {settings.provider!r} provider (in-process)"
-    url = settings.base_url or os.environ.get("OPENAI_BASE_URL") or DEFAULT_BASE_URL
-    return redact_url(url)
-
-
-def describe_access(role: str, settings: ModelSettings) -> str:
-    """One line naming the model, the server and the key variable a role's requests use."""
-    source = api_key_source(settings)
-    if settings.provider != "openai":
-        key = "no API key"
-    elif source:
-        key = f"API key from ${source}"
-    else:
-        key = "no API key ($" + ", $".join(key_variables(settings)) + " unset)"
-    return f"{role} {settings.model} at {server_of(settings)}, {key}"

@@ -15,10 +15,10 @@ import unicodedata
 from typing import TYPE_CHECKING
 
 from matloom.author.records import RecordStore
-from matloom.author.views import RENDER_LOCK
 
 if TYPE_CHECKING:
     from matloom.engine.maps import MaterialMaps
+    from matloom.runtime.job import RenderJob
 
 #: The batch group of the final material (the group ``matloom render`` writes).
 EXPORT_GROUP = "render"
@@ -26,13 +26,26 @@ EXPORT_GROUP = "render"
 NAME_CHARS = 48
 
 
+def export_job(program: str, size: int, *, name: str = "material", prompt: str = "") -> RenderJob:
+    """The render job of a run's final material: ``program`` at ``size`` x ``size`` with its
+    preview, ``name`` in material.json, the prompt recorded as its source."""
+    from matloom.runtime.job import RenderJob
+
+    return RenderJob(
+        program,
+        size,
+        size,
+        name=name,
+        extra={"source": "matloom generate", "prompt": prompt},
+    )
+
+
 def evaluate_for_export(program: str, size: int) -> MaterialMaps:
     """``program``'s maps at ``size`` x ``size``, as the export evaluates them (the preview's
     shading counted in the memory budget)."""
-    from matloom.engine.evaluate import evaluate
-    from matloom.engine.limits import Usage
+    from matloom.runtime.run import evaluate_job
 
-    return evaluate(program, size, size, usage=Usage(preview_tile=1))
+    return evaluate_job(export_job(program, size))
 
 
 def material_name(text: str) -> str:
@@ -61,42 +74,25 @@ def export_final(
     """Install the final ``program`` (evaluated at ``size``, unless its ``maps`` at that size
     are given) into the run folder; return the written files by role, relative to the folder
     (``program``, ``preview``, ``manifest`` and one per map). ``name`` is the material's name
-    (``name`` in material.json, the prefix of engine export files)."""
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
-    from matloom.io.png import save_png
-    from matloom.render.preview import shade
+    (``name`` in material.json, the prefix of engine export files). ``material.mat`` is
+    written with the run's secrets redacted (material.json hashes the program itself)."""
+    from dataclasses import replace
+
+    from matloom.runtime.run import run_render
+    from matloom.runtime.sinks import FolderSink
 
     out = store.out
     if out is None:
         raise RuntimeError("the run folder is not open (RecordStore.attach)")
-    with RENDER_LOCK:
-        if maps is None:
-            maps = evaluate_for_export(program, size)
-        preview = shade(maps)
-    text = store.redactor().text(program + "\n")
-    with out.batch(EXPORT_GROUP, marker=MANIFEST_NAME) as staging:
-        result = write_maps(
-            maps,
-            staging,
-            final_dir=out.path,
-            program_text=program,
-            extra_meta={"source": "matloom generate", "prompt": store.record.prompt},
-            name=name,
-        )
-        result.manifest["name"] = name
-        atomic_write_bytes(staging / "material.mat", text.encode("utf-8"))
-        save_png(staging / "preview.png", preview)
-        write_manifest(result, staging)
-    files = {"program": "material.mat", "preview": "preview.png"}
-    for role, path in result.files.items():
-        files[role] = path.relative_to(out.path).as_posix()
-    return files
+    job = export_job(program, size, name=name, prompt=store.record.prompt)
+    job = replace(job, program_file_text=store.redactor().text(program + "\n"))
+    result = run_render(job, FolderSink(out, group=EXPORT_GROUP), maps=maps)
+    return result.files
 
 
 def tileable_text(program: str) -> str:
     """``program`` with ``View(..., tileable=True)`` (canonical text)."""
-    import matloom
+    from matloom.lang import api
     from matloom.lang.tileable import make_tileable
 
-    return matloom.format(make_tileable(matloom.parse(program)))
+    return api.format(make_tileable(api.parse(program)))

@@ -15,17 +15,17 @@ from pathlib import Path
 from typing import Any
 
 from matloom.author.config import AuthorConfig
-from matloom.author.llm.base import ChatModel, ModelError, get_model
+from matloom.author.llm.base import ChatModel, ModelError
+from matloom.author.llm.providers import get_model
 from matloom.author.prompts.system import system_prompt
 from matloom.author.records import RECORD_NAME, ModelIds, RecordStore, RunRecord
 from matloom.author.run import PickError, Progress, ProgressEvent, Run, append_library_program
-from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer, get_scorer
+from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer
+from matloom.author.scorers.lookup import get_scorer
 from matloom.author.stages.generate import NoParseableProgramError, discard_unfinished_turns
-from matloom.author.views import RENDER_LOCK
 from matloom.io.outdir import OutputError, OutputFolder
 
 __all__ = [
-    "RENDER_LOCK",
     "AuthoringError",
     "Progress",
     "ProgressEvent",
@@ -139,7 +139,7 @@ def _open_store(  # noqa: PLR0913 - author_material's arguments, passed through
 ) -> RecordStore:
     """The run's record: a new one, or (``resume``) the folder's, checked against the prompt
     and settings given, before anything is requested or written."""
-    import matloom
+    from matloom._version import __version__
 
     def refuse(message: str) -> RunRequestError:
         return RunRequestError(message, folder)
@@ -158,7 +158,7 @@ def _open_store(  # noqa: PLR0913 - author_material's arguments, passed through
         raise refuse(f"nothing to resume in {folder} (no {RECORD_NAME})")
     config = config or AuthorConfig()
     record = RunRecord(
-        matloom_version=matloom.__version__,
+        matloom_version=__version__,
         prompt=prompt,
         settings=config,
         author="llm" if config.generator is not None else "library",

@@ -38,7 +38,6 @@ from matloom.author.stages.generate import extract_answer, run_turn
 from matloom.author.stages.seedsearch import best_of_sweeps, candidate_indices, run_candidate_sweep
 from matloom.author.stages.select import select_program
 from matloom.author.views import (
-    RENDER_LOCK,
     Renderer,
     ViewUnavailableError,
     available_views,
@@ -327,7 +326,7 @@ class Run:
                     eta_s=eta,
                 )
 
-            with RENDER_LOCK:
+            with self.renderer.session.lock:
                 sweep = run_candidate_sweep(
                     index,
                     self.record.programs[index].text,
@@ -409,7 +408,7 @@ class Run:
         from matloom.author.finalize import evaluate_for_export
 
         self._evaluated.clear()
-        with RENDER_LOCK:
+        with self.renderer.session.lock:
             maps = evaluate_for_export(program, self.config.export_size)
         self._evaluated[program] = maps
         return nonfinite_texels(maps)
@@ -426,9 +425,9 @@ def append_library_program(run: Run) -> ProgramRecord:
 
     The library makes the program tileable wherever the entry allows it (``config.tileable``
     then forces it for the others, at export). The recorded ``authored`` text keeps the
-    library's header comments (entry, adaptations, overlays); ``text`` is the canonical form.
+    library's header comments (entry, adaptations, overlays); ``text`` is the canonical form
+    of the library's program (its AST: the library's text is not read back).
     """
-    from matloom.lang.api import parse
     from matloom.lang.printer import format_program
     from matloom.lang.seeds import canonicalize_seeds
     from matloom.library import author
@@ -441,7 +440,7 @@ def append_library_program(run: Run) -> ProgramRecord:
     except ValueError as err:  # only a pick past the candidates
         raise PickError(str(err)) from None
     # The library already pins every seed; this only guarantees the canonical form.
-    text = format_program(canonicalize_seeds(parse(result.program), run.config.seed))
+    text = format_program(canonicalize_seeds(result.ast, run.config.seed))
     program = ProgramRecord(
         index=0, text=text, authored=result.program, source="library", program_seed=run.config.seed
     )

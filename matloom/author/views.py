@@ -6,14 +6,14 @@ paper's head-on swatch (:func:`matloom.render.preview.shade`, byte-identical to
 The statistics come from the same evaluation when they are the ``visible`` ones (computed at
 the critique resolution), or from the paper's 28 statistics on their own grid.
 
-Engine work is serialised by :data:`RENDER_LOCK`: the numba kernels are ``parallel=True`` and
-numba's default threading layer is not thread-safe, so the runs of a threaded batch take turns.
+Engine work is serialised by the session's lock (``session.lock``, see
+:mod:`matloom.engine.session`): the numba kernels are ``parallel=True`` and numba's default
+threading layer is not thread-safe, so the runs of a threaded batch take turns.
 """
 
 from __future__ import annotations
 
 import io
-import threading
 from collections import OrderedDict
 from typing import TYPE_CHECKING
 
@@ -23,9 +23,8 @@ from matloom.author.llm.base import ImageInput
 
 if TYPE_CHECKING:
     from matloom.engine.maps import MaterialMaps
+    from matloom.engine.session import Session
 
-#: Serialises engine work between runs of a threaded batch.
-RENDER_LOCK = threading.RLock()
 #: Evaluated maps kept per renderer (a 512 x 512 evaluation is tens of MB).
 _MAPS_KEPT = 2
 
@@ -60,18 +59,21 @@ def image_input(image: np.ndarray, path: str | None) -> ImageInput:
     return ImageInput(data=jpeg_bytes(image), mime="image/jpeg", path=path)
 
 
-def shade_view(maps: MaterialMaps, view: str, *, backend: str = "auto") -> np.ndarray:
-    """uint8 RGB image of ``maps`` in preview layout ``view`` (``flat`` or ``lit``)."""
+def shade_view(
+    maps: MaterialMaps, view: str, *, backend: str = "auto", session: Session | None = None
+) -> np.ndarray:
+    """uint8 RGB image of ``maps`` in preview layout ``view`` (``flat`` or ``lit``); ``auto``
+    is ``session``'s choice of shader."""
     if view == "flat":
         from matloom.render.preview import shade
 
-        return shade(maps, backend=backend)
+        return shade(maps, backend=backend, session=session)
     if view == "lit":
         try:
             from matloom.render.lit import shade_lit
         except ImportError as err:
             raise ViewUnavailableError(f"the lit preview is unavailable ({err})") from None
-        return shade_lit(maps, backend=backend)
+        return shade_lit(maps, backend=backend, session=session)
     raise ValueError(f"unknown preview layout {view!r}; choose flat or lit")
 
 
@@ -100,9 +102,14 @@ def visible_stats(maps: MaterialMaps) -> str:
 
 
 class Renderer:
-    """Evaluates and shades programs for one run, caching images and the latest maps."""
+    """Evaluates and shades programs for one run, caching images and the latest maps, in
+    ``session`` (default: the process's default session; its lock serialises the engine work
+    of the runs of a threaded batch)."""
 
-    def __init__(self) -> None:
+    def __init__(self, session: Session | None = None) -> None:
+        from matloom.engine.session import default_session
+
+        self.session = session or default_session()
         self._maps: OrderedDict[tuple[str, int], MaterialMaps] = OrderedDict()
         self._images: dict[tuple[str, int, str], np.ndarray] = {}
 
@@ -115,8 +122,8 @@ class Renderer:
         from matloom.engine.evaluate import evaluate
         from matloom.engine.limits import Usage
 
-        with RENDER_LOCK:
-            maps = evaluate(program, size, size, usage=Usage(preview_tile=1))
+        with self.session.lock:
+            maps = evaluate(program, size, size, usage=Usage(preview_tile=1), session=self.session)
         self._maps[key] = maps
         while len(self._maps) > _MAPS_KEPT:
             self._maps.popitem(last=False)
@@ -127,8 +134,8 @@ class Renderer:
         key = (program, size, view)
         if key not in self._images:
             maps = self.maps(program, size)
-            with RENDER_LOCK:
-                self._images[key] = shade_view(maps, view)
+            with self.session.lock:
+                self._images[key] = shade_view(maps, view, session=self.session)
         return self._images[key]
 
     def stats(self, program: str, kind: str, *, grid: int, size: int) -> str:
@@ -136,9 +143,9 @@ class Renderer:
         ``size``, the critique resolution)."""
         if kind == "visible":
             maps = self.maps(program, size)
-            with RENDER_LOCK:
+            with self.session.lock:
                 return visible_stats(maps)
         from matloom.render.api import stats_text
 
-        with RENDER_LOCK:
+        with self.session.lock:
             return stats_text(program, grid=grid)

@@ -189,13 +189,14 @@ def load_source(
 def _render_program(
     path: Path, out: Path, size: int, unit_m: float | None, program_seed: int, name: str
 ) -> None:
-    from matloom.engine.evaluate import evaluate
+    """Render the program file ``path`` into ``out`` as ``render`` would (the maps and
+    material.json: no preview, no program file); notes on stderr."""
     from matloom.engine.limits import LimitError
-    from matloom.io.export import export_maps
     from matloom.lang.api import analyse
     from matloom.lang.diagnostics import format_diagnostics
-    from matloom.lang.printer import format_program
-    from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
+    from matloom.runtime.job import RenderJob, RenderJobError
+    from matloom.runtime.run import run_render
+    from matloom.runtime.sinks import FolderSink
 
     try:
         text = path.read_text(encoding="utf-8")
@@ -205,37 +206,23 @@ def _render_program(
     errors = [d for d in diags if d.is_error]
     if program is None or errors:
         raise ProgramSourceError(format_diagnostics(errors, str(path)))
-    if has_seedless_noise(program):
-        program = canonicalize_seeds(program, program_seed)
-    _check_unit_m(unit_m, program)
-    try:
-        maps = evaluate(program, size, size)
-    except LimitError as err:
-        raise BlenderJobError(str(err)) from None
-    export_maps(
-        maps,
-        out,
-        program_text=format_program(program),
-        extra_meta={"source": str(path)},
+    job = RenderJob(
+        program,
+        size,
+        size,
         unit_m=unit_m,
         name=name,
+        previews=(),
+        program_seed=program_seed,
+        extra={"source": str(path)},
+        source=str(path),
+        source_text=text,
+        write_program=False,
     )
-
-
-def _check_unit_m(unit_m: float | None, program: Any) -> None:
-    """As ``render``: a physical size presets can store, and a note when ``--unit-m`` replaces
-    the program's own ``unit_m``."""
-    from matloom.io.presets.common import physical_size_problem, unit_m_override_note
-
-    x1, y1, x2, y2 = program.view_tuple
-    effective = unit_m if unit_m is not None else program.unit_m
-    if effective is not None:
-        problem = physical_size_problem(effective, (abs(x2 - x1), abs(y2 - y1)))
-        if problem is not None:
-            raise BlenderJobError(problem)
-    note = unit_m_override_note(unit_m, program.unit_m, abs(x2 - x1))
-    if note is not None:
-        print(note, file=sys.stderr)
+    try:
+        run_render(job, FolderSink(out), notify=lambda line: print(line, file=sys.stderr))
+    except (RenderJobError, LimitError) as err:
+        raise BlenderJobError(str(err)) from None
 
 
 # ------------------------------------------------------------------------ maps

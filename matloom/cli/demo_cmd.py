@@ -36,35 +36,26 @@ DEMO_PROMPTS = (
 )
 def demo_cmd(out_dir: str, size: int) -> None:
     """Render the paper's tile program and generate three materials offline."""
-    from matloom.engine.evaluate import evaluate, prepare
-    from matloom.engine.kernels import compile_report
+    from matloom.engine.evaluate import prepare
+    from matloom.engine.session import Session, use_session
     from matloom.examples import example_text
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.export import MANIFEST_NAME, write_manifest, write_maps
-    from matloom.io.outdir import OutputFolder
-    from matloom.io.png import save_png
-    from matloom.lang.printer import format_program
-    from matloom.render.preview import shade, tile_image
+    from matloom.runtime.cold_start import background_compile
+    from matloom.runtime.job import RenderJob
+    from matloom.runtime.run import run_render
+    from matloom.runtime.sinks import FolderSink
 
     root = Path(out_dir).resolve()
-    notice = _SetupNotice()
-    previous_reporter = compile_report.set_reporter(notice)  # plain words instead of kernels
-    try:
+    notice = _SetupNotice()  # plain words instead of kernels
+    session = Session.from_env(reporter=notice, cold_start=background_compile())
+    with use_session(session):  # (the offline generate below runs in it too)
         lines = []
         t0 = time.perf_counter()
         program = prepare(example_text("black_ceramic_tiles"))
-        text = format_program(program)
-        maps = evaluate(program, size, size)
         dest = root / "paper_tile_program"
-        swatch = shade(maps)
-        first_run = time.perf_counter() - t0
+        job = RenderJob(program, size, size, previews=("preview", "tiled"))
+        result = run_render(job, FolderSink(dest), session)
+        first_run = time.perf_counter() - t0 - result.timings["write"]  # evaluate and shade
         setting_up = _setting_up()  # the first run used the slower renderer meanwhile
-        with OutputFolder(dest) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
-            result = write_maps(maps, staging, final_dir=out.path, program_text=text)
-            atomic_write_bytes(staging / "material.mat", (text + "\n").encode())
-            save_png(staging / "preview.png", swatch)
-            save_png(staging / "preview_tiled.png", tile_image(swatch, 2))
-            write_manifest(result, staging)
         lines.append(f"paper tile program ({size}x{size}, {time.perf_counter() - t0:.2f} s):")
         lines.append(f"  program  {dest / 'material.mat'}")
         lines.append(f"  maps     {dest}/ ({len(result.manifest['maps'])} maps + material.json)")
@@ -73,8 +64,6 @@ def demo_cmd(out_dir: str, size: int) -> None:
         _finish_setup(notice)
         lines.insert(4, _timings(program, size, first_run, setting_up))
         _finish_setup(notice)  # (the warm run may have started it, where nothing had)
-    finally:
-        compile_report.set_reporter(previous_reporter)
     click.echo("\n".join(lines))
 
 
@@ -106,7 +95,7 @@ class _SetupNotice:
 
 
 def _setting_up() -> bool:
-    from matloom.engine.kernels import warmup
+    from matloom.runtime import warmup
 
     return warmup.state().running
 
@@ -121,7 +110,7 @@ def _finish_setup(notice: _SetupNotice) -> None:
     the demo started that has not finished after :data:`SETUP_WAIT_S` is stopped (the next
     command restarts it)."""
     from matloom.cli.progress import LazyProgress
-    from matloom.engine.kernels import warmup
+    from matloom.runtime import warmup
 
     if not warmup.state().running:
         return
@@ -147,8 +136,8 @@ def _timings(program: Any, size: int, first_run: float, setting_up: bool) -> str
     one untimed run (which loads the fast renderer's code) on the fast renderer where it is
     ready."""
     from matloom.engine.evaluate import evaluate
-    from matloom.engine.kernels import warmup
     from matloom.render.preview import shade
+    from matloom.runtime import warmup
 
     backend = "numba" if warmup.state().ready else "auto"
     note = (

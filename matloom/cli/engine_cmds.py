@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import click
@@ -11,21 +10,28 @@ import click
 from matloom.cli import params
 from matloom.cli.lang_cmds import _read
 from matloom.cli.naming import default_material_name
-from matloom.cli.tileable import apply_tileable, tileable_option
+from matloom.cli.tileable import tileable_option
 from matloom.vocab.spec import LANGUAGE_VERSION
 
 
-def load_program(path: str, program_seed: int = 0):  # noqa: ANN201 - returns (Program, text)
-    """Read, parse and seed-canonicalise a program file; exit 2 with diagnostics on errors."""
+def read_program(path: str):  # noqa: ANN201 - returns (Program, text)
+    """Read and parse a program file; exit 2 with diagnostics on errors."""
     from matloom.lang.api import analyse
     from matloom.lang.diagnostics import format_diagnostics
-    from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 
     text = _read(path)
     program, diags = analyse(text)
     if program is None or any(d.is_error for d in diags):
         click.echo(format_diagnostics([d for d in diags if d.is_error], path), err=True)
         sys.exit(2)
+    return program, text
+
+
+def load_program(path: str, program_seed: int = 0):  # noqa: ANN201 - returns (Program, text)
+    """Read, parse and seed-canonicalise a program file; exit 2 with diagnostics on errors."""
+    from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
+
+    program, text = read_program(path)
     if has_seedless_noise(program):
         program = canonicalize_seeds(program, program_seed)
         click.echo(
@@ -55,68 +61,21 @@ def resolve_size(
     return width or height or default, height or width or default
 
 
-def check_ao_radius(units: float, view: tuple[float, float, float, float], w: int, h: int) -> None:
-    """Refuse an AO radius wider than the largest image side (in texels of this View and size)."""
-    from matloom.engine.maps import View
-
-    dx, dy = View(*view).texel_size(w, h)  # > 0: the checker refuses zero and tiny Views
-    texels = units / min(dx, dy)
-    if texels > params.MAX_SIDE:
-        raise click.BadParameter(
-            f"{units:g} units is {texels:.3g} texels at {w}x{h} with this View; the radius may "
-            f"be at most {params.MAX_SIDE} texels ({params.MAX_SIDE * min(dx, dy):.6g} units)",
-            param_hint="'--ao-radius'",
-        )
+#: How a refused job field is named to the user (the option, or the program's own View).
+JOB_FIELD_HINTS = {
+    "ao_radius": "'--ao-radius'",
+    "unit_m": "'--unit-m'",
+    "program_unit_m": "the program's View(..., unit_m=...)",
+}
 
 
-def check_unit_m(
-    unit_m: float | None, program_unit_m: float | None, view: tuple[float, float, float, float]
-) -> None:
-    """Before any work: the physical size (``--unit-m``, else the program's ``unit_m``) must be
-    one the presets can store; a ``--unit-m`` that replaces a different program ``unit_m`` is
-    said on stderr (one line naming both)."""
-    from matloom.io.presets.common import physical_size_problem, unit_m_override_note
+def preset_option(help_text: str):  # noqa: ANN201 - click decorator
+    """``--preset`` (repeatable), the choices from :data:`matloom.io.presets.PRESETS`."""
+    from matloom.io.presets import PRESETS
 
-    effective = unit_m if unit_m is not None else program_unit_m
-    if effective is None:
-        return
-    x1, y1, x2, y2 = view
-    problem = physical_size_problem(effective, (abs(x2 - x1), abs(y2 - y1)))
-    if problem is not None:
-        hint = "'--unit-m'" if unit_m is not None else "the program's View(..., unit_m=...)"
-        raise click.BadParameter(problem, param_hint=hint)
-    note = unit_m_override_note(unit_m, program_unit_m, abs(x2 - x1))
-    if note is not None:
-        click.echo(note, err=True)
-
-
-#: ``--preset`` choices (the registry is imported lazily; this list is checked by a test).
-PRESET_NAMES = ("gltf", "mtlx", "usd", "unreal", "unity", "godot")
-
-
-def square_texel_view(
-    view: tuple[float, float, float, float], w: int, h: int, stretch: bool
-) -> tuple[tuple[float, float, float, float], dict | None]:
-    """The View to render ``w`` x ``h`` with square texels: the program's View widened about
-    its centre along the short side (only when ``w != h`` and not ``stretch``), and a note for
-    the manifest (None when the View is used as it is)."""
-    x1, y1, x2, y2 = view
-    dx, dy = abs(x2 - x1) / w, abs(y2 - y1) / h
-    if w == h or abs(dx - dy) <= 1e-9 * max(dx, dy):
-        return view, None
-    if stretch:
-        return view, {"program_view": list(view), "note": "--stretch: texels are not square"}
-    texel = max(dx, dy)
-    cx, cy = (x1 + x2) / 2, (y1 + y2) / 2
-    half_w = texel * w / 2 * (1 if x2 >= x1 else -1)
-    half_h = texel * h / 2 * (1 if y2 >= y1 else -1)
-    widened = (cx - half_w, cy - half_h, cx + half_w, cy + half_h)
-    note = {
-        "program_view": list(view),
-        "note": "the View was widened about its centre so that texels stay square "
-        "(--stretch keeps the program's View)",
-    }
-    return widened, note
+    return click.option(
+        "--preset", "presets", multiple=True, type=click.Choice(list(PRESETS)), help=help_text
+    )
 
 
 @click.command("render")
@@ -166,13 +125,7 @@ def square_texel_view(
     is_flag=True,
     help="Record constant maps in material.json instead of writing their files.",
 )
-@click.option(
-    "--preset",
-    "presets",
-    multiple=True,
-    type=click.Choice(PRESET_NAMES),
-    help="Also write an engine/interchange preset into DIR/<preset>/ (repeatable).",
-)
+@preset_option("Also write an engine/interchange preset into DIR/<preset>/ (repeatable).")
 @click.option(
     "--unit-m",
     type=params.POSITIVE,
@@ -244,19 +197,12 @@ def render_cmd(
     folder, plus any --preset (gltf, mtlx, usd, unreal, unity, godot) in its subfolder."""
     import json
 
-    from matloom.engine.evaluate import EvalStats, evaluate
-    from matloom.engine.limits import EVALUATE, LimitError, Usage
-    from matloom.io.atomic import atomic_write_bytes
-    from matloom.io.export import (
-        MANIFEST_NAME,
-        MAP_NAMES,
-        Encoding,
-        planned_files,
-        write_manifest,
-        write_maps,
-    )
-    from matloom.io.outdir import OutputFolder
-    from matloom.lang.printer import format_program
+    from matloom.engine.limits import LimitError
+    from matloom.io.encode import Encoding
+    from matloom.io.export import MAP_NAMES
+    from matloom.runtime.job import RenderJob, RenderJobError
+    from matloom.runtime.run import run_render
+    from matloom.runtime.sinks import FolderSink
 
     w, h = resolve_size(size, width, height, 512)
     subset = [m.strip() for m in maps_csv.split(",") if m.strip()] if maps_csv else None
@@ -266,70 +212,48 @@ def render_cmd(
             raise click.UsageError(
                 f"unknown map(s) {', '.join(unknown)}; choose from {', '.join(MAP_NAMES)}"
             )
-    encoding = Encoding(
-        float_format,
-        int(bits),
-        exr_precision,
-        ("gl", "dx") if normal_conv == "both" else (normal_conv,),
-        constants_as_values,
+    program, text = read_program(file)
+    job = RenderJob(
+        program,
+        w,
+        h,
+        tileable=tileable,
+        stretch=stretch,
+        encoding=Encoding(
+            float_format,
+            int(bits),
+            exr_precision,
+            ("gl", "dx") if normal_conv == "both" else (normal_conv,),
+            constants_as_values,
+        ),
+        presets=presets,
+        unit_m=unit_m,
+        name=material_name or default_material_name(Path(file)),
+        map_names=tuple(subset) if subset else None,
+        ao_radius=ao_radius,
+        previews=("preview",) if preview else (),
+        program_seed=program_seed,
+        backend=backend,
+        extra={"ao_radius_units": ao_radius, "source": str(file)},
+        source=file,
+        source_text=text,
     )
-    program, text = load_program(file, program_seed)
-    program = apply_tileable(program, tileable, text, file)
-    view, view_note = square_texel_view(program.view_tuple, w, h, stretch)
-    if ao_radius is not None:
-        check_ao_radius(ao_radius, view, w, h)
-    check_unit_m(unit_m, program.unit_m, view)
-    canonical = format_program(program)
-    name = material_name or default_material_name(Path(file))
-    with OutputFolder(out_dir) as out:  # locked before the work starts: a second writer fails
-        out.check_writable(planned_files(subset, float_format, preview, encoding))
-        t0 = time.perf_counter()
-        stats = EvalStats()
-        try:
-            maps = evaluate(
-                program,
-                w,
-                h,
-                backend=backend,
-                view=view,
-                ao_radius_units=ao_radius,
-                stats=stats,
-                usage=Usage(preview_tile=1) if preview else EVALUATE,  # shading counted too
-            )
-        except LimitError as e:
-            raise click.ClickException(str(e)) from None
-        t_eval = time.perf_counter() - t0
-        with out.batch("render", marker=MANIFEST_NAME) as staging:
-            result = write_maps(
-                maps,
-                staging,
-                final_dir=out.path,
-                maps_subset=subset,
-                program_text=canonical,
-                extra_meta={"ao_radius_units": ao_radius, "source": str(file)},
-                encoding=encoding,
-                unit_m=unit_m,
-                presets=presets,
-                name=name,
-            )
-            if view_note:
-                result.manifest["view_adjusted"] = view_note
-            if preview:
-                from matloom.io.png import save_png
-                from matloom.render.preview import shade
-
-                save_png(staging / "preview.png", shade(maps))
-            atomic_write_bytes(staging / "material.mat", (canonical + "\n").encode("utf-8"))
-            write_manifest(result, staging)
-    for name, n in result.nonfinite_counts.items():
-        click.echo(f"warning: {n} non-finite texel value(s) in {name}", err=True)
-    if stats.zero_divisions:
-        click.echo(f"note: {stats.zero_divisions} division(s) by exactly 0 returned 0", err=True)
-    click.echo(f"rendered {w}x{h} in {t_eval * 1000:.0f} ms -> {out.path}", err=True)
+    try:
+        result = run_render(
+            job, FolderSink(out_dir), notify=lambda line: click.echo(line, err=True)
+        )
+    except RenderJobError as e:
+        if e.field in JOB_FIELD_HINTS:
+            raise click.BadParameter(str(e), param_hint=JOB_FIELD_HINTS[e.field]) from None
+        raise click.ClickException(str(e)) from None
+    except LimitError as e:
+        raise click.ClickException(str(e)) from None
+    t_eval = result.timings["evaluate"]
+    click.echo(f"rendered {w}x{h} in {t_eval * 1000:.0f} ms -> {result.root}", err=True)
     if as_json:
         click.echo(json.dumps(result.manifest, indent=2, default=str))
     else:
-        click.echo(str(out.path))
+        click.echo(str(result.root))
 
 
 @click.command("random")

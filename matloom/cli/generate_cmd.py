@@ -164,9 +164,9 @@ def _say_model_access(
     """Name on stderr, always, the server and the key variable each model's requests use, and
     the config file a default profile came from (so no file turns a run into requests
     silently); say when ./matloom.toml is not read."""
+    from matloom.author.access import describe_access
     from matloom.author.config import (
         default_profile_name,
-        describe_access,
         find_config_file,
         ignored_local_config,
         load_config_file,
@@ -401,7 +401,7 @@ def scorer_cmd() -> None:
 @scorer_cmd.command("list")
 def scorer_list() -> None:
     """List registered scorer names."""
-    from matloom.author.scorers.base import scorer_names
+    from matloom.author.scorers.lookup import scorer_names
 
     for name in scorer_names():
         click.echo(name)
@@ -414,7 +414,8 @@ def scorer_check(name: str, text: str) -> None:
     """Load scorer NAME and score a grey test image (tells whether weights are available)."""
     import numpy as np
 
-    from matloom.author.scorers.base import ScorerUnavailableError, get_scorer
+    from matloom.author.scorers.base import ScorerUnavailableError
+    from matloom.author.scorers.lookup import get_scorer
 
     try:
         scorer = get_scorer(name)

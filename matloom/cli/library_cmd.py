@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from matloom.cli import params
-from matloom.cli.engine_cmds import PRESET_NAMES, render_cmd
+from matloom.cli.engine_cmds import preset_option, render_cmd
 from matloom.library.entry import CATEGORIES
 
 
@@ -77,13 +77,7 @@ def list_cmd(category: str | None, stats: bool) -> None:
 @click.argument("name")
 @click.option("-o", "--out", "out_dir", required=True, type=click.Path(file_okay=False))
 @click.option("--size", type=params.SIZE, default=None, help="Square size in pixels (512).")
-@click.option(
-    "--preset",
-    "presets",
-    multiple=True,
-    type=click.Choice(PRESET_NAMES),
-    help="Also write a preset (as matloom render).",
-)
+@preset_option("Also write a preset (as matloom render).")
 @click.pass_context
 def render_entry_cmd(
     ctx: click.Context, name: str, out_dir: str, size: int | None, presets: tuple[str, ...]

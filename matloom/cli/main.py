@@ -27,6 +27,42 @@ COMMANDS: dict[str, str] = {
 }
 
 
+#: top-level module of an optional dependency -> the extra of pyproject.toml that installs it.
+EXTRAS: dict[str, str] = {
+    "numba": "fast",
+    "llvmlite": "fast",
+    "openai": "llm",
+    "MaterialX": "interop",
+    "pxr": "interop",
+    "torch": "clip",
+    "torchvision": "clip",
+    "open_clip": "clip",
+}
+
+
+def missing_dependency(command: str, err: ImportError) -> str:
+    """One line for a command whose module failed to import: the missing module and the extra
+    (or the reinstall) that provides it."""
+    if isinstance(err, ModuleNotFoundError) and err.name:
+        extra = EXTRAS.get(err.name.split(".")[0])
+        fix = (
+            f"install the extra: pip install 'matloom[{extra}]'"
+            if extra is not None
+            else "reinstall matloom with its dependencies"
+        )
+        return f"`matloom {command}` needs the module '{err.name}', which is not installed: {fix}"
+    reason = " ".join(str(err).split())  # one line
+    return f"`matloom {command}` could not be loaded ({reason}): reinstall matloom"
+
+
+def _is_module_of(err: ImportError, module: str) -> bool:
+    """Whether ``err`` says that ``module`` itself (or a package above it) does not exist, not
+    something ``module`` imports."""
+    return isinstance(err, ModuleNotFoundError) and (
+        err.name is not None and (module == err.name or module.startswith(err.name + "."))
+    )
+
+
 class LazyGroup(click.Group):
     def invoke(self, ctx: click.Context) -> object:
         from matloom.io.outdir import OutputError
@@ -37,30 +73,46 @@ class LazyGroup(click.Group):
             raise click.ClickException(str(err)) from None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return sorted(n for n in COMMANDS if self._load(n) is not None)
+        """The commands that load (one whose dependencies are missing is left out of --help)."""
+        names = []
+        for name in sorted(COMMANDS):
+            try:
+                if self.load(name) is not None:
+                    names.append(name)
+            except click.ClickException:
+                continue
+        return names
 
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
-        return self._load(name)
+        return self.load(name)
 
     @staticmethod
-    def _load(name: str) -> click.Command | None:
+    def load(name: str) -> click.Command | None:
+        """The command ``name``, imported now; None when there is no such command (click then
+        says "No such command"). Raises :class:`click.ClickException`, one line naming the
+        missing module and the extra to install, when a module the command imports is missing.
+        """
         target = COMMANDS.get(name)
         if target is None:
             return None
         module, attr = target.split(":")
         try:
-            return getattr(importlib.import_module(module), attr)
-        except (ImportError, AttributeError):
-            return None
+            loaded = importlib.import_module(module)
+        except ImportError as err:
+            if _is_module_of(err, module):
+                return None
+            raise click.ClickException(missing_dependency(name, err)) from None
+        command = getattr(loaded, attr, None)
+        return command if isinstance(command, click.Command) else None
 
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="matloom")
 def cli() -> None:
     """MatLoom: layered material programs -> PBR texture maps."""
-    from matloom.cli.progress import kernel_start_up
+    from matloom.cli.progress import command_session
 
-    kernel_start_up()  # first-run kernel compilation: progress on stderr, numpy meanwhile
+    command_session()  # the command's session: kernel compilation on stderr, numpy meanwhile
 
 
 def main() -> None:

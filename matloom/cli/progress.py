@@ -1,10 +1,12 @@
 """stderr progress displays: :class:`LazyProgress` for long loops (appears only for work longer
 than a second) and :class:`KernelProgress` for the numba kernels' first-run compilation.
 
-:func:`kernel_start_up` is called by the ``matloom`` command group for every command: while the
-command runs, kernel compilation is reported and ``auto`` evaluations stay on the numpy path
-while the kernels compile in the background (see :mod:`matloom.engine.kernels.warmup`). Nothing
-here imports numba or rich at import time (every command pays for this module).
+:func:`command_session` is called by the ``matloom`` command group for every command: it makes
+the command's :class:`~matloom.engine.session.Session` (backend settings from the environment,
+a :class:`KernelProgress` reporter, the background compiler of :mod:`matloom.runtime.cold_start`
+as its cold start, so ``auto`` evaluations stay on the numpy path while the kernels compile) and
+makes it the process's default session while the command runs. Nothing here imports numba or
+rich at import time (every command pays for this module).
 """
 
 from __future__ import annotations
@@ -13,7 +15,10 @@ import sys
 import threading
 import time
 from types import TracebackType
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 #: The words every compile message starts with (tests look for them).
 COMPILING = "compiling kernels (first run only)"
@@ -129,7 +134,7 @@ class KernelProgress:
 
     @staticmethod
     def _background_summary() -> str:
-        from matloom.engine.kernels import warmup
+        from matloom.runtime import warmup
 
         current = warmup.state()
         if current.ready:
@@ -147,25 +152,20 @@ class KernelProgress:
         )
 
 
-def kernel_start_up() -> None:
-    """For the current click command: report kernel compilation on stderr, and let ``auto``
-    evaluations use the numpy path while the kernels compile in the background. Both end with
-    the command (the previous reporter and policy come back)."""
+def command_session() -> Session | None:
+    """The session of the current click command (None outside one): created here and the
+    process's default session until the command ends, when its reporter writes its summary
+    and the previous default comes back."""
     import click
 
-    from matloom.engine import backends
-    from matloom.engine.kernels import compile_report
+    from matloom.engine.session import Session, use_session
+    from matloom.runtime.cold_start import background_compile
 
     ctx = click.get_current_context(silent=True)
     if ctx is None:
-        return
+        return None
     reporter = KernelProgress()
-    previous_reporter = compile_report.set_reporter(reporter)
-    previous_policy = backends.set_cold_start("background")
-
-    def close() -> None:
-        reporter.close()
-        compile_report.set_reporter(previous_reporter)
-        backends.set_cold_start(previous_policy)
-
-    ctx.call_on_close(close)
+    session = Session.from_env(reporter=reporter, cold_start=background_compile())
+    ctx.with_resource(use_session(session))
+    ctx.call_on_close(reporter.close)
+    return session

@@ -184,10 +184,12 @@ def sweep_cmd(
 ) -> None:
     """Render the original and K seed variants of FILE; with a scorer, keep the best."""
     from matloom.author.scorers.base import ScorerUnavailableError
+    from matloom.author.scorers.lookup import get_scorer
     from matloom.cli.progress import LazyProgress
+    from matloom.engine.schedules.sweep import run_sweep
     from matloom.io.outdir import OutputFolder
     from matloom.lang.printer import format_program
-    from matloom.render.sweep import run_sweep
+    from matloom.render.preview import ShadeParams
 
     if scorer and not prompt:
         raise click.UsageError("--scorer needs --prompt")
@@ -200,8 +202,9 @@ def sweep_cmd(
             res = run_sweep(
                 text,
                 variants=variants,
+                shading=ShadeParams.of(),
                 size=size,
-                scorer=scorer,
+                scorer=get_scorer(scorer) if scorer else None,
                 prompt=prompt,
                 seed=seed,
                 jobs=jobs,

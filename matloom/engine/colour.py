@@ -34,8 +34,16 @@ def _float_array(values: ArrayLike) -> np.ndarray:
 
 def _power(base: np.ndarray, exponent: float) -> np.ndarray:
     """``base ** exponent`` in base's dtype (as numpy's power with a Python float exponent),
-    with the portable power: the same bits on every CPU."""
-    return np.asarray(pow_(base, np.asarray(exponent, dtype=base.dtype)))
+    with the portable power: the same bits on every CPU. A float32 array takes numpy's fast
+    power in float64 and the portable one only where the float32 rounding of that is not
+    certain (:func:`float32_of`): the same bits, about ten times faster."""
+    power = np.asarray(exponent, dtype=base.dtype)
+    if base.dtype != np.float32 or base.ndim == 0:
+        return np.asarray(pow_(base, power))
+    with np.errstate(all="ignore"):
+        fast = np.power(base.astype(np.float64), power.astype(np.float64))
+        fast[base == 0.0] = np.nan  # (the sign of a zero result: the portable power decides)
+        return float32_of(fast, lambda at: np.asarray(pow_(base[at], power)))
 
 
 def srgb_to_linear(values: ArrayLike) -> np.ndarray:

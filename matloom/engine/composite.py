@@ -23,6 +23,11 @@ parity fixtures checked in tests/engine/test_composite.py.
 
 The work runs in bands of rows, accumulating in place in the output arrays, so temporaries stay
 small: constant channels (plain floats) are never expanded to full arrays.
+
+Besides :func:`composite`, the fused schedule (:mod:`matloom.engine.schedules.banded`) uses the
+channel conversions (:func:`convert_scalar`, :func:`colour_to_linear`,
+:func:`colour_to_linear64`, :func:`emitted_radiance`) for constant channels, :func:`ao_radii`,
+and :func:`allocate_maps` with :func:`composite_band` for what its kernel leaves to numpy.
 """
 
 from __future__ import annotations
@@ -141,9 +146,10 @@ def convert_scalar(value: np.ndarray, clamp: tuple[float | None, float | None]) 
     return np.clip(_as_float32(value), -np.inf if lo is None else np.float32(lo), np.float32(hi))
 
 
-def _colour_to_linear64(value: np.ndarray) -> np.ndarray:
+def colour_to_linear64(value: np.ndarray) -> np.ndarray:
     """Authored 0..255 sRGB component -> linear float64: clamp(v/255, 0, 1), decoded (with the
-    portable power: the same bits on every CPU)."""
+    portable power: the same bits on every CPU). The fused schedule decodes a constant emissive
+    colour with it before the kernel multiplies by a varying strength."""
     return srgb_to_linear(_scaled_colour(value))
 
 
@@ -274,8 +280,10 @@ def _finish_band(acc: _BandAccumulators, coverage: np.ndarray) -> None:
         top += np.float32(0.0)  # -0.0 + 0.0 == +0.0
 
 
-def _allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
-    """Zeroed float32 outputs of every channel (max-blended ones: the -inf accumulator)."""
+def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
+    """Zeroed float32 outputs of every channel by ``MaterialMaps`` field, (height, width) or
+    (height, width, 3), ready for :func:`composite_band` (max-blended ones hold the -inf
+    accumulator start)."""
     maps = {}
     for channel in LAYOUT.channels:
         shape = (height, width) + ((3,) if channel.components == 3 else ())
@@ -284,8 +292,14 @@ def _allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
     return maps
 
 
-def _composite_band(layers: Sequence[RawLayer], maps: dict[str, np.ndarray], rows: slice) -> None:
-    """Composite every layer for one band of rows into ``maps`` (in place)."""
+def composite_band(layers: Sequence[RawLayer], maps: dict[str, np.ndarray], rows: slice) -> None:
+    """Composite every layer for the rows ``rows`` into ``maps`` (in place): the numpy
+    reference compositing of one band.
+
+    ``maps`` are outputs as :func:`allocate_maps` makes them (the rows of max-blended channels
+    must hold -inf); each layer value is a float or an array broadcastable to the maps' full
+    (H, W) shape, whose rows ``rows`` are read. The fused schedule calls it for the bands and
+    texels its kernel leaves to numpy."""
     coverage = maps[LAYOUT.coverage.field]
     shape = coverage.shape
     n_rows = rows.stop - rows.start
@@ -318,10 +332,12 @@ def _composite_band(layers: Sequence[RawLayer], maps: dict[str, np.ndarray], row
 # Public entry point
 
 
-def _ao_radii(
+def ao_radii(
     view: View, width: int, height: int, texels: float | None, units: float | None
 ) -> tuple[float, float]:
-    """Per-axis AO radius in texels from the keyword options (default: the reference's 8)."""
+    """Per-axis AO radius in texels of a ``width`` x ``height`` render of ``view``, from the
+    options ``ao_radius_texels`` / ``ao_radius_units`` of :func:`composite` (at most one;
+    default: the reference's 8 texels). Raises ValueError when both are given."""
     if texels is not None and units is not None:
         raise ValueError("give at most one of ao_radius_texels and ao_radius_units")
     if units is not None:
@@ -351,10 +367,10 @@ def composite(
         raise ValueError("material has no layers")
     if width < 1 or height < 1:
         raise ValueError(f"width and height must be >= 1, got {width}x{height}")
-    radius_x, radius_y = _ao_radii(view, width, height, ao_radius_texels, ao_radius_units)
-    maps = _allocate_maps(width, height)
+    radius_x, radius_y = ao_radii(view, width, height, ao_radius_texels, ao_radius_units)
+    maps = allocate_maps(width, height)
     for rows in relief.bands(height, BAND_ROWS):
-        _composite_band(layers, maps, rows)
+        composite_band(layers, maps, rows)
     from matloom.engine.tiling import relief_maps
 
     maps["normal"], maps["ao"] = relief_maps(

@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from matloom.engine.lazy import OP_OF, DeferredField, Lazy, shape_of
-from matloom.engine.ops import Bounds
+from matloom.ops import Bounds
 
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
@@ -83,7 +83,7 @@ def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     result: Bounds
     if isinstance(value, DeferredField):
         result = (value.lo, value.hi) if value.finite_coords else None
-    elif isinstance(value, Lazy):  # the op's bounds rule (engine.ops)
+    elif isinstance(value, Lazy):  # the op's bounds rule (ops)
         args = [channel_bounds(a, memo) for a in value.args]
         if any(a is None for a in args):
             result = None

@@ -3,18 +3,17 @@
 :func:`evaluate` picks a schedule: the fused, banded one (:mod:`matloom.engine.schedules.banded`) for a
 backend with compiled kernels, else the dense one (:mod:`matloom.engine.schedules.dense`). Both
 run the one interpreter (:mod:`matloom.engine.interpret`) over the op table
-(:mod:`matloom.engine.ops`) and give the same maps, bit for bit.
+(:mod:`matloom.ops`) and give the same maps, bit for bit.
 """
 
 from __future__ import annotations
 
 import warnings
 from dataclasses import replace
-from functools import lru_cache
 
 import numpy as np
 
-from matloom.engine.backends import Backend, choose_backend
+from matloom.engine.backends import Backend
 from matloom.engine.grid import sample_axes
 from matloom.engine.interpret import (
     Coords,
@@ -34,6 +33,7 @@ from matloom.engine.limits import (
 )
 from matloom.engine.maps import MaterialMaps, View
 from matloom.engine.schedules.dense import evaluate_dense
+from matloom.engine.session import Session, default_session, running
 from matloom.lang import ast as A
 from matloom.lang.api import parse
 from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
@@ -50,23 +50,21 @@ __all__ = [
 ]
 
 
-@lru_cache(maxsize=64)
-def _parse_cached(text: str) -> A.Program:
-    """``parse`` memoised on the text (the AST is immutable, so sharing it is safe)."""
-    return parse(text)
+def prepare(
+    program_or_text: A.Program | str, program_seed: int = 0, *, session: Session | None = None
+) -> A.Program:
+    """Parse (if text) and make omitted seeds explicit so evaluation is deterministic. Texts
+    are parsed once per ``session`` (default: :func:`default_session`): its ``parsed`` and
+    ``prepared`` caches hold the (immutable, so shareable) programs."""
+    if not isinstance(program_or_text, str):
+        return _with_seeds(program_or_text, program_seed)
+    s = session or default_session()
+    text = program_or_text
 
+    def seeded() -> A.Program:
+        return _with_seeds(s.cached("parsed", text, lambda: parse(text)), program_seed)
 
-def prepare(program_or_text: A.Program | str, program_seed: int = 0) -> A.Program:
-    """Parse (if text) and make omitted seeds explicit so evaluation is deterministic."""
-    if isinstance(program_or_text, str):
-        return _prepare_text(program_or_text, program_seed)
-    return _with_seeds(program_or_text, program_seed)
-
-
-@lru_cache(maxsize=64)
-def _prepare_text(text: str, program_seed: int) -> A.Program:
-    """:func:`prepare` of a text, memoised (the AST is immutable, so sharing it is safe)."""
-    return _with_seeds(_parse_cached(text), program_seed)
+    return s.cached("prepared", (text, program_seed), seeded)
 
 
 def _with_seeds(program: A.Program, program_seed: int) -> A.Program:
@@ -88,6 +86,7 @@ def evaluate(
     stats: EvalStats | None = None,
     usage: Usage = EVALUATE,
     tileable: bool = False,
+    session: Session | None = None,
 ) -> MaterialMaps:
     """Evaluate a program into composited float32 maps at ``width`` x ``height``.
 
@@ -97,10 +96,14 @@ def evaluate(
     a limit (``usage``: what the caller makes of the maps too, e.g. a tiled preview).
     ``tileable=True`` (or ``View(..., tileable=True)`` in the program, or a tileable ``view``)
     makes every map repeat seamlessly with the View's width and height (docs/tileable.md).
+    ``session`` (default: :func:`~matloom.engine.session.default_session`) decides what
+    ``backend="auto"`` means and holds the parse caches; this call does not take its lock.
     """
-    program = prepare(program_or_text, program_seed)
+    s = session or default_session()
+    program = prepare(program_or_text, program_seed, session=s)
     check_size(width, height, limits=limits)
-    be = backend if isinstance(backend, Backend) else choose_backend(backend, width * height)
+    s.evaluations += 1
+    be = backend if isinstance(backend, Backend) else s.choose_backend(backend, width * height)
     check_request(program, width, height, fused=be.fused, usage=usage, limits=limits)
     if not program.layers:
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")
@@ -110,6 +113,20 @@ def evaluate(
     if v.unit_m is None and program.unit_m is not None:
         v = replace(v, unit_m=program.unit_m)
     x, y = sample_axes(v, width, height)
+    with running(s):  # numba's compile events go to this session's reporter
+        return _run(program, x, y, v, be, ao_radius_units, stats)
+
+
+def _run(
+    program: A.Program,
+    x: np.ndarray,
+    y: np.ndarray,
+    v: View,
+    be: Backend,
+    ao_radius_units: float | None,
+    stats: EvalStats | None,
+) -> MaterialMaps:
+    """The schedule for ``be``: fused and banded for compiled kernels, else dense."""
     if be.fused:  # same maps as below, bit for bit (see matloom.engine.schedules.banded)
         from matloom.engine.schedules.banded import evaluate_fused
 

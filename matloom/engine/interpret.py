@@ -25,7 +25,7 @@ from matloom.engine.backends import Backend
 from matloom.engine.composite import RawLayer
 from matloom.engine.kernels import mathops, shapes
 from matloom.engine.kernels.mathops import count_zero
-from matloom.engine.ops import OPS, Kind, Op, operator_ops
+from matloom.ops import OPS, Kind, Op, operator_ops
 from matloom.lang import ast as A
 from matloom.lang.cost import FrameTable, field_params, transform_values
 from matloom.lang.static import param_value
@@ -214,10 +214,10 @@ class Evaluator:
         """The View's periods (W, H) in the frame of ``c``, for a tileable output whose frame
         is an axis-aligned affine map of the grid (Translate, Scale): (|a| W, |e| H). None
         when the output is not tileable, and (with a note) for a rotated frame, a domain
-        warp other than Translate's or a frame whose periods are not finite and positive,
-        where a noise cannot repeat with the View (a Translate warp keeps its coordinates'
-        periods: it adds periodic offsets); Tile's instance frames need no period (their
-        instances repeat)."""
+        warp whose period rule does not keep the periods (``Period.warp_keeps``: Translate's
+        adds periodic offsets) or a frame whose periods are not finite and positive, where a
+        noise cannot repeat with the View; Tile's instance frames need no period (their
+        instances repeat). ``func`` only names the field in the notes."""
         if self.periods is None:
             return None
         fid = self._frame_id(c)
@@ -272,8 +272,10 @@ class Evaluator:
         with np.errstate(all="ignore"):
             new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
         frame = self.new_frame(*new)
-        # a Translate warp adds periodic offsets: its frame keeps the periods of ``c``
-        kept = self.periods_of(c, call.func) if call.func == "Translate" else None
+        # a warp whose period rule keeps the periods (Translate's periodic offsets): its frame
+        # has the periods of ``c``
+        keeps = OPS[call.func].period.warp_keeps
+        kept = self.periods_of(c, call.func) if keeps else None
         self.frame_table.warped[frame.fid] = kept  # type: ignore[attr-defined]
         return frame
 
@@ -282,8 +284,8 @@ class Evaluator:
         return Frame(x, y, self.frame_table.unique())
 
     def motif_support(self, node: A.Node) -> Any:
-        """The box outside which ``node`` is exactly 0, or None (engine.ops.support)."""
-        from matloom.engine.ops.support import support
+        """The box outside which ``node`` is exactly 0, or None (engine.rules.support)."""
+        from matloom.engine.rules.support import support
 
         return support(self, node, OPS, OPERATORS)
 

@@ -24,9 +24,9 @@ import numpy as np
 
 from matloom.engine.interpret import Coords, Evaluator, Field
 from matloom.engine.kernels.mathops import count_zero
-from matloom.engine.kernels.opensimplex import octave_schedule
 from matloom.engine.kernels.register_ops import REGISTER_OPS
-from matloom.engine.ops import OPS, Op
+from matloom.ops import OPS, Op
+from matloom.ops.octaves import octave_schedule
 from matloom.lang import ast as A
 
 #: dtypes the fused kernel can hold exactly in its float64 registers.

@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 
 from matloom.lang import ast as A
 from matloom.lang.checker import MAX_NODES, MAX_OCTAVES
+from matloom.lang.codes import Code
 from matloom.lang.cost import MAX_EXPANDED_NODES, Cost, costliest_call, expanded_cost, over_limit
 
 MEMORY_ENV = "MATLOOM_MAX_MEMORY_MB"
@@ -197,7 +198,7 @@ def _check_work(program: A.Program, width: int, height: int, cost: Cost, limits:
         return
     if cost.nodes > limits.max_expanded_nodes:
         message, hint, _ = over_limit(program, cost, limits.max_expanded_nodes)
-        raise LimitError(f"{message} (E071; {hint})")
+        raise LimitError(f"{message} ({Code.WORK_LIMIT.code}; {hint})")
     heavy = costliest_call(program)
     costliest = (
         f"; the costliest call is {heavy.call.func} in {heavy.owner} ({heavy.work:,} each)"

@@ -6,7 +6,7 @@ periods of its coordinate frame (the View's (W, 0) and (0, H) through the frame'
 see :meth:`matloom.engine.interpret.Evaluator.periods_of`); the noise kernels then make their
 lattices periodic (:mod:`matloom.engine.kernels.noise`: fBm's per-octave sublattice, Worley's
 snapped cell counts), Tile and Hash wrap their cell indices, shapes are drawn with their images
-one period apart (:func:`matloom.engine.ops.fields.wrapped_shape`), and the relief (normals, AO)
+one period apart (:func:`matloom.engine.rules.fields.wrapped_shape`), and the relief (normals, AO)
 is computed on the height padded by wrapping, so that the borders see the opposite edge.
 
 :func:`seam_ratio` measures the result: the mean absolute difference across the wrap edge over

@@ -25,8 +25,10 @@ per coordinate unit) gives the physical size.
 
 With ``float_format="png16"`` the height is also written as ``height16.png`` (16-bit grey,
 normalised to its finite min/max, which ``material.json`` records). A ``material.json``
-manifest describes every file and lists each with its SHA-256. The files are staged and
-installed through :class:`matloom.io.outdir.OutputFolder`, so a failing export never leaves a
+manifest describes every file and lists each with its SHA-256. :func:`write_maps` and
+:func:`write_manifest` write into a staging folder; the render job
+(:func:`matloom.runtime.run.run_render`) delivers it through a sink, for a folder an
+:class:`matloom.io.outdir.OutputFolder` batch, so a failing export never leaves a
 complete-looking folder, never damages a previous one and never touches a file MatLoom did not
 write.
 
@@ -38,7 +40,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -126,7 +127,7 @@ def tiling_fields(maps: MaterialMaps, specs: Sequence[MapSpec]) -> dict[str, Any
 
 @dataclass
 class ExportResult:
-    """What :func:`export_maps` wrote.
+    """What :func:`write_maps` wrote (and :func:`matloom.runtime.export.export_maps` returns).
 
     ``files`` maps each written map name (plus ``"<name>_float"`` for a map's float copy,
     ``"height16"`` and ``"manifest"``) to its final path; ``nonfinite_counts`` holds, per map
@@ -144,11 +145,11 @@ class ExportResult:
 
 
 def _default_engine_version() -> str:
-    """The package's ``__version__`` (or "unknown"). Read from the package, not from
+    """The package's ``__version__``. Read from :mod:`matloom._version`, not from
     ``importlib.metadata``, which costs about 50 ms of CLI start-up."""
-    import matloom
+    from matloom._version import __version__
 
-    return str(getattr(matloom, "__version__", "unknown"))
+    return __version__
 
 
 # --------------------------------------------------------------------------------------------
@@ -317,7 +318,7 @@ def write_maps(
     if unit_m is None:  # the program's View(..., unit_m=...) unless the caller overrides it
         unit_m = maps.view.unit_m
     selected = select_maps(maps_subset)
-    writers = _preset_writers(presets)
+    writers = preset_writers(presets)
     version = engine_version if engine_version is not None else _default_engine_version()
     final = folder if final_dir is None else final_dir
     entries: dict[str, dict[str, Any]] = {}
@@ -347,7 +348,7 @@ def write_maps(
         manifest["height_png16"] = _write_height_png16(maps.height, folder)
         files["height16"] = final / HEIGHT_PNG16_NAME
     if writers:
-        from matloom.io.presets import PresetInput
+        from matloom.io.presets.common import PresetInput
 
         source = PresetInput(maps, name=name, unit_m=unit_m, bits=enc.bits)
         manifest["presets"] = {}
@@ -368,8 +369,9 @@ def write_maps(
     )
 
 
-def _preset_writers(presets: Sequence[str]) -> dict[str, Any]:
-    """The writer of each requested preset (unknown names raise ValueError)."""
+def preset_writers(presets: Sequence[str]) -> dict[str, Any]:
+    """The writer of each requested preset (unknown names raise ValueError; the writers'
+    modules are imported when one is called)."""
     if not presets:
         return {}
     if isinstance(presets, str):
@@ -398,64 +400,6 @@ def write_manifest(result: ExportResult, folder: Path) -> None:
     result.manifest["files"] = listed
     text = json.dumps(result.manifest, indent=2, allow_nan=False, default=str) + "\n"
     atomic_write_bytes(folder / MANIFEST_NAME, text.encode("utf-8"))
-
-
-def export_maps(
-    maps: MaterialMaps,
-    out_dir: str | os.PathLike[str],
-    *,
-    float_format: str = "png",
-    maps_subset: Sequence[str] | None = None,
-    program_text: str | None = None,
-    engine_version: str | None = None,
-    extra_meta: dict[str, Any] | None = None,
-    bits: int = 8,
-    exr_precision: str = "half",
-    normals: Sequence[str] = ("gl",),
-    constants: bool = False,
-    unit_m: float | None = None,
-    presets: Sequence[str] = (),
-    name: str = "material",
-) -> ExportResult:
-    """Write ``maps`` into the folder ``out_dir`` through a staged, locked install.
-
-    ``float_format``: "png" (default: PNG maps, float32 EXR for ior/height/emissive), "exr"
-    (every map as EXR, ``exr_precision`` "half" or "float") or "png16" ("png" plus
-    height16.png). ``bits``: 8 or 16 for every PNG map. ``normals``: "gl" and/or "dx"
-    (``normal_gl`` / ``normal_dx`` files). ``constants``: constant maps become manifest values
-    instead of files. ``unit_m``: metres per coordinate unit (physical size in the manifest and
-    the presets). ``presets``: names from :data:`matloom.io.presets.PRESETS`, each written to
-    its subfolder with files named ``<name>_...``.
-    ``maps_subset``: names from :data:`MAP_NAMES` to write (default: all, in that order);
-    an unknown name raises ValueError before anything is written. ``program_text`` is hashed
-    (SHA-256) into the manifest; ``extra_meta`` is stored under the manifest key "extra".
-    MatLoom's files from a previous export into ``out_dir`` are replaced; any other file there
-    is left alone, and one that would be overwritten raises
-    :class:`matloom.io.outdir.OutputError` before anything changes.
-    """
-    from matloom.io.outdir import output_folder
-
-    # bad arguments fail before the folder is touched
-    enc = Encoding(float_format, bits, exr_precision, tuple(normals), constants)
-    select_maps(maps_subset)
-    _preset_writers(presets)
-    check_unit_m(unit_m)
-    with output_folder(out_dir) as out, out.batch("render", marker=MANIFEST_NAME) as staging:
-        result = write_maps(
-            maps,
-            staging,
-            final_dir=out.path,
-            maps_subset=maps_subset,
-            program_text=program_text,
-            engine_version=engine_version,
-            extra_meta=extra_meta,
-            encoding=enc,
-            unit_m=unit_m,
-            presets=presets,
-            name=name,
-        )
-        write_manifest(result, staging)
-    return result
 
 
 def check_unit_m(unit_m: float | None) -> None:

@@ -4,59 +4,66 @@
 View)`` and returns (a, b), or None when X()/Y() enter it otherwise (a product of coordinates,
 a square root of X(), ...). Terms that repeat with the View are those without coordinates
 (noise, patterns, constants: the engine makes them periodic) and periodic wrappers of
-coordinates with a whole number of cycles per View period (``Fract``, ``Mod`` by a constant,
-``Sin``/``Cos`` and ``Hash``); ``Floor``/``Ceil`` pass the coefficients through when their
-argument advances by a whole number per period (else the floor does not repeat).
+coordinates with a whole number of cycles per View period.
+
+Each function's part is its op's period rule (``Op.period``, :mod:`matloom.ops.period`): a
+coordinate (X(), Y()) gives its axis; a periodic wrapper (``Fract``, ``Mod`` by a constant,
+``Sin``/``Cos``, ``Hash``) repeats over the cycles of its arguments (``ParamSpec.cycle``); a
+step (``Floor``/``Ceil``) passes the coefficients through when its argument advances by a whole
+number per period (else the steps do not repeat); a transform or an instancing (Tile) evaluates
+its operands in frames of their own. No function is named here.
 
 The engine's Hash wraps its cells modulo ``a * Px`` (``b * Py``) when that is a whole number
-(``matloom.engine.ops.fields_math``); the checker warns about the rest
+(``matloom.engine.rules.fields_math``); the checker warns about the rest
 (:mod:`matloom.lang.tileable`).
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 
 from matloom.lang import ast as A
 from matloom.lang.static import is_static, static_number
+from matloom.ops import OPS, Period, Repeats
+from matloom.ops.period import KEEP, Coeffs, whole
+from matloom.vocab import FUNCTIONS
 
-__all__ = ["Coeffs", "coord_coeffs", "whole", "WRAPPERS"]
+__all__ = ["WRAPPERS", "coord_coeffs", "period_of", "periodic_wrap", "wrapper_cycles"]
 
-#: (a, b): the expression is a X() + b Y() + terms that repeat with the View.
-Coeffs = tuple[float, float]
-#: Periodic wrappers: function -> ((argument, cycle length), ...); Mod's cycle is its ``m``.
-WRAPPERS: dict[str, tuple[tuple[str, float], ...]] = {
-    "Fract": (("x", 1.0),),
-    "Sin": (("expr", 2 * math.pi),),
-    "Cos": (("expr", 2 * math.pi),),
-    "Hash": (("x", 1.0), ("y", 1.0)),
-    "Mod": (("x", 0.0),),
+#: Periodic wrappers (ops whose period rule is WRAP): function -> ((argument, cycle), ...), the
+#: arguments with a ``ParamSpec.cycle``: a length, or the parameter holding it (Mod's ``m``).
+WRAPPERS: dict[str, tuple[tuple[str, float | str], ...]] = {
+    name: tuple((p.name, p.cycle) for p in FUNCTIONS[name].params if p.cycle is not None)
+    for name, op in OPS.items()
+    if op.period.repeats is Repeats.WRAP
 }
-_TRANSFORMS = ("Translate", "Scale", "Rotate", "Tile")
-#: How far (in cycles or cells per period) from a whole number still counts as whole: a
-#: thousandth of a cycle is a phase error no one sees (programs print pi as 3.1416).
-WHOLE_TOLERANCE = 1e-3
 
 
-def whole(value: float) -> int | None:
-    """``value`` as a whole number when it is one (within :data:`WHOLE_TOLERANCE`)."""
-    if not math.isfinite(value):
-        return None
-    n = round(value)
-    return int(n) if abs(value - n) <= WHOLE_TOLERANCE else None
+def period_of(func: str) -> Period:
+    """The period rule of ``func`` (``Op.period``; an unknown function keeps the periods)."""
+    op = OPS.get(func)
+    return KEEP if op is None else op.period
+
+
+def own_frames(func: str) -> bool:
+    """``func`` evaluates its operands in frames of their own: a transform (its operand's frame
+    is its period rule's) or an instancing (Tile: the instances' frames, which repeat with the
+    instances; ``FunctionSpec.instances``)."""
+    spec = FUNCTIONS.get(func)
+    return period_of(func).repeats is Repeats.FRAME or (spec is not None and spec.instances > 0)
 
 
 def wrapper_cycles(
     call: A.Call, defines: Mapping[str, A.Node], periods: tuple[float, float]
 ) -> list[tuple[str, Coeffs | None, float]]:
     """(argument, its coefficients, cycle length) of each wrapped argument of a periodic
-    wrapper; Mod's cycle is its constant ``m`` (0 when m is not a constant)."""
+    wrapper; a cycle held by a parameter (Mod's ``m``) is its constant value (0 when it is not
+    a constant)."""
     out = []
     for name, cycle in WRAPPERS[call.func]:
-        if call.func == "Mod":
-            m = call.arg("m")
-            value = static_number(m) if m is not None and is_static(m) else None
+        if isinstance(cycle, str):
+            node = call.arg(cycle)
+            value = static_number(node) if node is not None and is_static(node) else None
             cycle = abs(float(value)) if value else 0.0
         out.append((name, coord_coeffs(call.arg(name), defines, periods), cycle))
     return out
@@ -66,9 +73,11 @@ def periodic_wrap(
     call: A.Call, defines: Mapping[str, A.Node], periods: tuple[float, float]
 ) -> bool:
     """The wrapper repeats with the View: every wrapped argument has a whole number of
-    cycles per period (a coordinate-free argument always does)."""
-    if call.func == "Mod" and not _coordinate_free(call.arg("m"), defines, periods):
-        return False
+    cycles per period (a coordinate-free argument always does), and a parameter holding a
+    cycle (Mod's ``m``) is free of coordinates."""
+    for _, cycle in WRAPPERS[call.func]:
+        if isinstance(cycle, str) and not _coordinate_free(call.arg(cycle), defines, periods):
+            return False
     for _, coeffs, cycle in wrapper_cycles(call, defines, periods):
         if coeffs is None:
             return False
@@ -126,19 +135,18 @@ def _coeffs(
         return (0.0, 0.0)
     if not isinstance(node, A.Call):
         return None
-    func = node.func
-    if func == "X":
-        return (1.0, 0.0)
-    if func == "Y":
-        return (0.0, 1.0)
-    if func in ("Floor", "Ceil"):  # repeats when its argument steps by whole numbers
+    period = period_of(node.func)
+    if period.repeats is Repeats.AXIS:
+        assert period.axis is not None
+        return period.axis
+    if period.repeats is Repeats.STEP:  # repeats when its argument steps by whole numbers
         inner = coord_coeffs(node.arg("expr"), defines, periods, depth + 1, memo)
         if inner is None or any(whole(k * p) is None for k, p in zip(inner, periods)):
             return None
         return inner
-    if func in WRAPPERS:
+    if period.repeats is Repeats.WRAP:
         return (0.0, 0.0) if periodic_wrap(node, defines, periods) else None
-    if func in _TRANSFORMS:
+    if own_frames(node.func):
         return (0.0, 0.0)  # their operands are checked in their own frames
     for arg in node.args:
         if coord_coeffs(arg.value, defines, periods, depth + 1, memo) != (0.0, 0.0):

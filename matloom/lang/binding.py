@@ -1,20 +1,17 @@
 """Binding of call arguments to registry parameters (positional by index, keywords by name).
 
 Keyword arguments may come before positional ones, as in the reference: ``fBm(seed=1, 3)``
-binds 3 to ``octaves``.
+binds 3 to ``octaves``. The expression parser calls :func:`bind_call` with itself as the
+:class:`~matloom.lang.diagnostics.Reporter` of the problems found.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from matloom.lang import ast as A
-from matloom.lang.diagnostics import Span, did_you_mean, hint_for
+from matloom.lang.codes import Code
+from matloom.lang.diagnostics import Reporter, Span, did_you_mean, hint_for
 from matloom.lang.lexer import Token
 from matloom.vocab import CHANNELS, FUNCTIONS
-
-if TYPE_CHECKING:
-    from matloom.lang.parser import Parser
 
 _BINARY = {"Add": "+", "Sub": "-", "Mul": "*", "Div": "/", "Pow": "**"}
 _NOT_FUNCTIONS = {
@@ -27,8 +24,11 @@ _NOT_FUNCTIONS = {
 
 
 def bind_call(
-    p: Parser, name_tok: Token, raw: list[tuple[Token | None, A.Node, Span]], span: Span
+    p: Reporter, name_tok: Token, raw: list[tuple[Token | None, A.Node, Span]], span: Span
 ) -> A.Node:
+    """The call ``name_tok(raw...)`` at ``span`` with its arguments (``raw``: keyword token or
+    None, value, span) bound to the function's parameters; problems are reported to ``p``.
+    Arithmetic functions (``Add`` ...) become their operators."""
     name = name_tok.text
     spec = FUNCTIONS.get(name)
     if spec is None:
@@ -38,7 +38,7 @@ def bind_call(
         if hint is None and name.lower() in CHANNELS:
             hint = f"'{name}' is a layer channel: chain it as .{name.lower()}(...) on a Layer"
         p.diag(
-            "E030",
+            Code.UNKNOWN_FUNCTION,
             f"unknown function '{name}'",
             name_tok.span,
             expected="a function of the MatLoom vocabulary",
@@ -60,7 +60,7 @@ def bind_call(
                 if spec.variadic is not None and pname == spec.variadic.name:
                     hint = f"pass {spec.variadic.name} as extra positional arguments"
                 p.diag(
-                    "E031",
+                    Code.UNKNOWN_PARAMETER,
                     f"unknown parameter '{pname}' for {name}",
                     key.span,
                     expected=_param_list(spec.param_names)
@@ -71,7 +71,7 @@ def bind_call(
                 continue
             if pname in bound:
                 p.diag(
-                    "E033",
+                    Code.DUPLICATE_ARGUMENT,
                     f"duplicate value for parameter '{pname}' in {name}",
                     key.span,
                     expected="each parameter at most once",
@@ -85,7 +85,7 @@ def bind_call(
             pos += 1
             if pname in bound:
                 p.diag(
-                    "E033",
+                    Code.DUPLICATE_ARGUMENT,
                     f"duplicate value for parameter '{pname}' in {name} "
                     "(given by keyword and by position)",
                     aspan,
@@ -97,7 +97,7 @@ def bind_call(
             extra.append(value)
         else:
             p.diag(
-                "E032",
+                Code.TOO_MANY_ARGUMENTS,
                 f"too many positional arguments for {name}: expected at most "
                 f"{len(names)}, got {sum(1 for k, _, _ in raw if k is None)}",
                 aspan,
@@ -106,7 +106,7 @@ def bind_call(
     missing = [q.name for q in spec.params if q.required and q.name not in bound]
     if missing:
         p.diag(
-            "E034",
+            Code.MISSING_ARGUMENT,
             f"{name}() is missing required argument"
             f"{'s' if len(missing) > 1 else ''}: {', '.join(missing)}",
             span,
@@ -114,7 +114,7 @@ def bind_call(
         )
     if spec.variadic is not None and len(extra) < spec.min_variadic and not missing:
         p.diag(
-            "E044",
+            Code.BAD_SEGMENTS,
             f"{name} needs at least {spec.min_variadic} segment (LineTo or CubicTo)",
             span,
             expected=spec.signature(),

@@ -6,10 +6,11 @@ import math
 import sys
 
 from matloom.lang import ast as A
+from matloom.lang.codes import Code
 from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost, over_limit
-from matloom.lang.diagnostics import Diagnostic, Reporter, Severity, Span, hint_for
+from matloom.lang.diagnostics import Diagnostic, Reporter, Span, hint_for
 from matloom.lang.lexer import as_float
-from matloom.lang.parser import MAX_NESTING
+from matloom.lang.parse_expr import MAX_NESTING
 from matloom.lang.seeds import uses_seed
 from matloom.lang.static import static_number, uses_coordinates
 from matloom.vocab import FUNCTIONS, Kind, ParamSpec, Returns
@@ -35,9 +36,6 @@ class Checker(Reporter):
         self.diags: list[Diagnostic] = []
         self.nodes = 0
 
-    def warn(self, code: str, msg: str, span: Span, hint: str | None = None) -> None:
-        self.diag(code, msg, span, hint=hint, severity=Severity.WARNING)
-
     # ---------------------------------------------------------------- program level
     def check(self, program: A.Program) -> list[Diagnostic]:
         self._check_view(program)
@@ -51,7 +49,7 @@ class Checker(Reporter):
                     self.field(a, f"layer {i} .{ch.name}()")
         if self.nodes > MAX_NODES:
             self.diag(
-                "E070",
+                Code.SIZE_LIMIT,
                 f"program has {self.nodes} expression nodes, more than the limit of {MAX_NODES}",
                 program.span,
                 expected=f"at most {MAX_NODES} nodes",
@@ -82,7 +80,7 @@ class Checker(Reporter):
             if depth > MAX_NESTING:
                 what = f"Define '{owner[1]}'" if owner[0] == "define" else f"layer {owner[1]}"
                 self.diag(
-                    "E070",
+                    Code.SIZE_LIMIT,
                     f"{what} is {depth} levels deep with its Defines substituted, "
                     f"more than the limit of {MAX_NESTING}",
                     _span_of(expr, program.span),
@@ -103,7 +101,7 @@ class Checker(Reporter):
             message, hint, call = over_limit(program, cost, MAX_EXPANDED_NODES)
             span = program.span if call is None else _span_of(call, program.span)
             self.diag(
-                "E071",
+                Code.WORK_LIMIT,
                 message,
                 span,
                 expected=f"at most {MAX_EXPANDED_NODES:,} node evaluations",
@@ -117,18 +115,21 @@ class Checker(Reporter):
         vals = v.as_tuple()
         if not all(math.isfinite(x) for x in vals):
             self.diag(
-                "E061",
+                Code.BAD_VIEW,
                 "View corners must be finite numbers",
                 v.span,
                 expected="View(x1, y1, x2, y2) with finite values",
             )
         elif v.x1 == v.x2 or v.y1 == v.y2:
             self.diag(
-                "E061", "View has zero width or height", v.span, expected="x1 != x2 and y1 != y2"
+                Code.BAD_VIEW,
+                "View has zero width or height",
+                v.span,
+                expected="x1 != x2 and y1 != y2",
             )
         elif max(*map(abs, vals), abs(v.x2 - v.x1), abs(v.y2 - v.y1)) > _MAX_COORD:
             self.diag(
-                "E061",
+                Code.BAD_VIEW,
                 "View is too large: its sample coordinates or texel size would be infinite",
                 v.span,
                 expected=f"corners, width and height within +-{_MAX_COORD:.3g}",
@@ -136,14 +137,14 @@ class Checker(Reporter):
             )
         elif min(abs(v.x2 - v.x1), abs(v.y2 - v.y1)) < _MIN_SPAN:
             self.diag(
-                "E061",
+                Code.BAD_VIEW,
                 "View is too small: its texel size would be zero or denormal",
                 v.span,
                 expected=f"a width and height of at least {_MIN_SPAN:.3g}",
             )
         elif v.x1 > v.x2 or v.y1 > v.y2:
-            self.warn(
-                "W007",
+            self.diag(
+                Code.REVERSED_VIEW,
                 "View is reversed (x1 > x2 or y1 > y2), so the image is mirrored",
                 v.span,
                 hint="(x1, y1) is the bottom-left corner, (x2, y2) the top-right",
@@ -161,8 +162,8 @@ class Checker(Reporter):
                     stack.append(by_name[n.name].expr)
         for d in program.defines:
             if d.name not in used:
-                self.warn(
-                    "W001",
+                self.diag(
+                    Code.UNUSED_DEFINE,
                     f"Define '{d.name}' is never used by any layer",
                     d.name_span,
                     hint="remove it or reference it in a layer",
@@ -180,12 +181,16 @@ class Checker(Reporter):
         for i, layer in enumerate(layers):
             alpha = alphas[i]
             if alpha is not None and alpha <= 0:
-                self.warn("W002", f"layer {i} has alpha {alpha} and is never visible", layer.span)
+                self.diag(
+                    Code.HIDDEN_LAYER,
+                    f"layer {i} has alpha {alpha} and is never visible",
+                    layer.span,
+                )
                 continue
             j = opaque_above[i]
             if j is not None:
-                self.warn(
-                    "W002",
+                self.diag(
+                    Code.HIDDEN_LAYER,
                     f"layer {i} is fully hidden by opaque layer {j} above it",
                     layer.span,
                     hint="lower the upper layer's alpha or reorder",
@@ -196,7 +201,7 @@ class Checker(Reporter):
         """``node`` must be a field expression (not a string, bool, shape or segment)."""
         if isinstance(node, A.Str):
             self.diag(
-                "E042",
+                Code.NOT_A_FIELD,
                 f"{where}: expected an expression, got the string {node.value!r}",
                 node.span,
                 expected="a number or field expression",
@@ -205,7 +210,7 @@ class Checker(Reporter):
         if isinstance(node, A.Lit):
             kind = "None" if node.value is None else "bool"
             self.diag(
-                "E042",
+                Code.NOT_A_FIELD,
                 f"{where}: expected an expression, got {kind}",
                 node.span,
                 expected="a number or field expression",
@@ -215,7 +220,7 @@ class Checker(Reporter):
             spec = FUNCTIONS.get(node.func)
             if spec is not None and spec.returns is Returns.SHAPE:
                 self.diag(
-                    "E040",
+                    Code.SHAPE_OUTSIDE_FILL,
                     f"{where}: the shape {node.func}(...) is only valid inline inside "
                     "Fill(...) or Stroke(...)"
                     + (" and cannot be bound by Define" if in_define else ""),
@@ -227,7 +232,7 @@ class Checker(Reporter):
                 return
             if spec is not None and spec.returns is Returns.SEGMENT:
                 self.diag(
-                    "E041",
+                    Code.SEGMENT_OUTSIDE_PATH,
                     f"{where}: {node.func}(...) is a segment and only valid inside Path(...)",
                     node.span,
                     expected="Path(x, y, LineTo(...), ...)",
@@ -252,8 +257,8 @@ class Checker(Reporter):
                 self.expr(a.value)
             return
         if uses_seed(node) and node.arg("seed") is None:
-            self.warn(
-                "W003",
+            self.diag(
+                Code.NO_SEED,
                 f"{spec.name}(...) has no seed; one will be drawn at canonicalisation",
                 node.span,
                 hint="write seed=N so the program is reproducible as written",
@@ -263,8 +268,8 @@ class Checker(Reporter):
             assert p is not None
             self.argument(spec.name, p, arg)
             if p.needs is not None and _absent(node.arg(p.needs)) and not _is_none(arg.value):
-                self.warn(
-                    "W008",
+                self.diag(
+                    Code.NO_EFFECT,
                     f"{spec.name}: {p.name} has no effect without {p.needs}",
                     arg.span,
                     hint=f"write {p.needs}=... or remove {p.name} (fmt drops it)",
@@ -273,7 +278,7 @@ class Checker(Reporter):
             seg_spec = FUNCTIONS.get(seg.func) if isinstance(seg, A.Call) else None
             if seg_spec is None or seg_spec.returns is not Returns.SEGMENT:
                 self.diag(
-                    "E044",
+                    Code.BAD_SEGMENTS,
                     f"{spec.name}(...) segments must be LineTo(...) or CubicTo(...)",
                     getattr(seg, "span", node.span),
                     expected="LineTo(x, y) or CubicTo(c1x, c1y, c2x, c2y, x, y)",
@@ -290,7 +295,7 @@ class Checker(Reporter):
             fx, fy = node.arg("base_freq_x"), node.arg("base_freq_y")
             if fx is None or fy is None or _is_none(fx) or _is_none(fy):
                 self.diag(
-                    "E055",
+                    Code.BASE_FREQ_AXES,
                     f"{node.func}: base_freq=None requires both base_freq_x and base_freq_y",
                     node.span,
                     expected="base_freq_x=... and base_freq_y=...",
@@ -305,7 +310,7 @@ class Checker(Reporter):
             spec = FUNCTIONS.get(v.func) if isinstance(v, A.Call) else None
             if spec is None or spec.returns is not Returns.SHAPE:
                 self.diag(
-                    "E043",
+                    Code.EXPECTED_SHAPE,
                     f"{func} expects a shape (Rect, Ellipse or Path) as '{p.name}'",
                     getattr(v, "span", arg.span),
                     expected="Rect(...), Ellipse(...) or Path(...)",
@@ -328,7 +333,7 @@ class Checker(Reporter):
             )
             if not ok:
                 self.diag(
-                    "E053",
+                    Code.NOT_A_BOOL,
                     f"{func}: {p.name} must be True or False",
                     v.span,
                     expected="True or False",
@@ -344,7 +349,7 @@ class Checker(Reporter):
         if hint is None and isinstance(v, A.Ref) and v.name in p.choices:
             hint = f'quote it: {p.name}="{v.name}"'
         self.diag(
-            "E051",
+            Code.BAD_CHOICE,
             f"{func}: {p.name} must be {p.constraint_text()}, got {got}",
             getattr(v, "span", None) or Span(0, 0, 1, 1),
             expected=p.constraint_text(),
@@ -355,7 +360,7 @@ class Checker(Reporter):
         span = v.span
         if isinstance(v, A.Str | A.Lit):
             self.diag(
-                "E045",
+                Code.NOT_A_NUMBER,
                 f"{func}: {p.name} must be a number, got {_describe(v)}",
                 span,
                 expected=f"a number{', ' + p.constraint_text() if p.constraint_text() else ''}",
@@ -367,7 +372,7 @@ class Checker(Reporter):
         raw = static_number(v)
         if raw is None:
             self.diag(
-                "E045",
+                Code.NOT_A_NUMBER,
                 f"{func}: {p.name} must be a number, not a field expression",
                 span,
                 expected="a constant such as 0.5",
@@ -377,8 +382,8 @@ class Checker(Reporter):
             return
         value = raw if isinstance(raw, float) else _as_number(raw)
         if uses_coordinates(v):
-            self.warn(
-                "W004",
+            self.diag(
+                Code.COORDINATES_IN_NUMBER,
                 f"{func}: {p.name} uses X()/Y(); it is evaluated once at (0, 0)",
                 span,
                 hint=(
@@ -389,7 +394,7 @@ class Checker(Reporter):
             )
         if isinstance(value, float) and not math.isfinite(value):
             self.diag(
-                "E050",
+                Code.OUT_OF_RANGE,
                 f"{func}: {p.name} must be finite, got {value}",
                 span,
                 expected="a finite number",
@@ -397,7 +402,7 @@ class Checker(Reporter):
             return
         if p.kind is Kind.INT and not float(value).is_integer():
             self.diag(
-                "E052",
+                Code.NOT_AN_INTEGER,
                 f"{func}: {p.name} must be an integer, got {value}",
                 span,
                 expected="a whole number",
@@ -405,12 +410,12 @@ class Checker(Reporter):
             return
         problem = p.check_value(value)
         if problem is not None:
-            code = "E054" if p.nonzero and value == 0 else "E050"
+            code = Code.ZERO_NOT_ALLOWED if p.nonzero and value == 0 else Code.OUT_OF_RANGE
             self.diag(code, f"{func}: {problem}", span, expected=p.constraint_text())
             return
         if p.name == "octaves" and value > MAX_OCTAVES:
             self.diag(
-                "E070",
+                Code.SIZE_LIMIT,
                 f"{func}: octaves={int(value)} exceeds the limit of {MAX_OCTAVES}",
                 span,
                 expected=f"octaves <= {MAX_OCTAVES}",

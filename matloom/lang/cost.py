@@ -9,7 +9,7 @@ sampling grid to the coordinates an expression is evaluated at (``Translate``, `
 frame, and so are two rotations applied in either order. :class:`FrameTable` numbers the distinct frames for the evaluator and for
 :func:`expanded_cost`, which counts, without evaluating anything, the expression nodes the
 evaluator will visit: each Define once per distinct frame it is used in, and each call weighted by
-its op's *work* (``Op.work``, :mod:`matloom.engine.ops.work`: a bound, from the call's static
+its op's *work* (``Op.work``, :mod:`matloom.ops.work`: a bound, from the call's static
 parameters, of every loop its kernels run, in units of one element-wise operation). That count
 times the texel count bounds the work of an evaluation (see ``docs/limits.md``).
 """
@@ -47,12 +47,10 @@ def transform_values(call: A.Call) -> tuple[float, float]:
     if call.func == "Scale":
         return param_value(call, "sx"), param_value(call, "sy")
     # the portable cos and sin: the C library's pick their last bit by CPU (FMA or not)
-    import numpy as np
+    from matloom.ops import portable_math as pm
 
-    from matloom.engine.kernels.mathops import cos, sin
-
-    rad = np.float64(math.radians(param_value(call, "degrees")))
-    return float(cos(rad)), float(sin(rad))
+    rad = math.radians(param_value(call, "degrees"))
+    return pm.scalar(pm.cos, rad), pm.scalar(pm.sin, rad)
 
 
 def field_params(call: A.Call) -> tuple[str, ...]:
@@ -203,9 +201,9 @@ def _field_children(node: A.Node) -> tuple[A.Node, ...]:
 
 def op_work(call: A.Call) -> int:
     """Node evaluations one evaluation of ``call`` counts by itself: its op's ``work``
-    (:mod:`matloom.engine.ops.work`: a number, or a rule over the call's static parameters
+    (:mod:`matloom.ops.work`: a number, or a rule over the call's static parameters
     that bounds every loop its kernels run), at least 1."""
-    from matloom.engine.ops import OPS
+    from matloom.ops import OPS
 
     op = OPS.get(call.func)
     work = 1 if op is None else op.work
@@ -283,7 +281,7 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
 
 def _arrays(node: A.Node) -> int:
     """Field-sized arrays one evaluation of ``node`` allocates (the op table's ``arrays``)."""
-    from matloom.engine.ops import OPS
+    from matloom.ops import OPS
 
     op = OPS.get(node.func) if isinstance(node, A.Call) else None
     return op.arrays if op is not None else 1
@@ -422,7 +420,7 @@ def over_limit(program: A.Program, cost: Cost, limit: int) -> tuple[str, str, A.
     """(message, hint, call to point at) for a program counting more than ``limit`` node
     evaluations: the call whose own work is a large share of it (a loop its parameters make
     long), else the Define evaluated in the most coordinate frames."""
-    from matloom.engine.ops.work import HINTS
+    from matloom.ops.work import HINTS
     from matloom.lang.printer import format_expr
 
     heavy = costliest_call(program)

@@ -1,5 +1,7 @@
 """Structured diagnostics: stable code, position, caret excerpt, expectation and hint.
 
+The codes, their severities and meanings are the table of :mod:`matloom.lang.codes`.
+
 The formatted text of a diagnostic is exactly what the repair loop sends back to a model.
 """
 
@@ -9,8 +11,12 @@ import difflib
 import enum
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from matloom.lang.excerpt import caret_excerpt
+
+if TYPE_CHECKING:
+    from matloom.lang.codes import Code
 
 
 class Severity(enum.Enum):
@@ -138,14 +144,12 @@ class Reporter:
 
     def diag(
         self,
-        code: str,
+        code: Code,
         msg: str,
         span: Span,
         expected: str | None = None,
         hint: str | None = None,
-        severity: Severity = Severity.ERROR,
     ) -> None:
-        """Record one diagnostic with its caret excerpt of :attr:`src`."""
-        self.diags.append(
-            Diagnostic(code, msg, span, severity, expected, hint, caret_excerpt(self.src, span))
-        )
+        """Record one diagnostic of ``code`` (which sets its severity) with its caret excerpt
+        of :attr:`src`."""
+        self.diags.append(code.diagnostic(msg, span, expected, hint, caret_excerpt(self.src, span)))

@@ -7,8 +7,9 @@ from dataclasses import replace
 
 from matloom.lang import ast as A
 from matloom.lang.checker import MAX_NODES
+from matloom.lang.codes import Code
 from matloom.lang.cost import field_params
-from matloom.lang.diagnostics import Diagnostic, ProgramError
+from matloom.lang.diagnostics import ProgramError
 from matloom.lang.rewrite import map_expr, map_program
 from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 from matloom.lang.static import static_number
@@ -34,8 +35,8 @@ def inline_defines(program: A.Program, program_seed: int = 0) -> A.Program:
     if size > MAX_NODES:
         message = f"inlining gives {size} expression nodes, more than the limit of {MAX_NODES}"
         hint = "keep the Defines: the program is valid as written"
-        too_big = Diagnostic(
-            "E070", message, program.span, expected=f"at most {MAX_NODES} nodes", hint=hint
+        too_big = Code.SIZE_LIMIT.diagnostic(
+            message, program.span, expected=f"at most {MAX_NODES} nodes", hint=hint
         )
         raise ProgramError([too_big])
     if program.defines and has_seedless_noise(program):

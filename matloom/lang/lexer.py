@@ -9,6 +9,7 @@ import sys
 from dataclasses import dataclass
 
 from matloom.lang.brackets import wrong_bracket_hint
+from matloom.lang.codes import Code
 from matloom.lang.diagnostics import Span
 
 MAX_SOURCE_CHARS = 2_000_000
@@ -51,7 +52,7 @@ class Token:
 class LexError(Exception):
     def __init__(
         self,
-        code: str,
+        code: Code,
         message: str,
         span: Span,
         expected: str | None = None,
@@ -87,7 +88,7 @@ class Lexer:
             kind, end = m.lastgroup, m.end()
             if len(out) >= MAX_TOKENS and kind not in ("ws", "comment"):
                 raise LexError(
-                    "E070",
+                    Code.SIZE_LIMIT,
                     f"program has more than {MAX_TOKENS} tokens",
                     self.span(i, end),
                     expected=f"at most {MAX_TOKENS} tokens",
@@ -112,7 +113,7 @@ class Lexer:
         c = self.src[i]
         if c in "\"'":
             return LexError(
-                "E002",
+                Code.UNTERMINATED_STRING,
                 "unterminated string literal",
                 self.span(i, i + 1),
                 expected=f"a closing {c} on the same line",
@@ -125,7 +126,7 @@ class Lexer:
         elif c == "`":
             hint = "remove Markdown code fences around the program"
         return LexError(
-            "E001",
+            Code.BAD_CHARACTER,
             f"unexpected character {c!r}",
             self.span(i, i + 1),
             expected="a number, name, string, operator or parenthesis",
@@ -139,7 +140,7 @@ class Lexer:
         span = self.span(i, m.end())
         if len(text) > MAX_NUMBER_DIGITS:
             raise LexError(
-                "E003",
+                Code.BAD_NUMBER,
                 "numeric literal is too long",
                 span,
                 expected=f"at most {MAX_NUMBER_DIGITS} characters",
@@ -147,7 +148,7 @@ class Lexer:
         mant, _, exp = text.lower().partition("e")
         if "e" in text.lower() and not exp.lstrip("+-"):
             raise LexError(
-                "E003",
+                Code.BAD_NUMBER,
                 f"malformed number {text!r}: exponent has no digits",
                 span,
                 expected="digits after 'e', as in 1e-3",
@@ -155,7 +156,7 @@ class Lexer:
         value = _literal_value(text)
         if value is None:
             raise LexError(
-                "E003",
+                Code.BAD_NUMBER,
                 f"number {_abbreviate(text)} is too large",
                 span,
                 expected=f"a finite number (at most about {sys.float_info.max:.3g})",

@@ -1,32 +1,47 @@
-"""The parser's base: token cursor, diagnostics and the bracket hints of syntax errors.
+"""The parser's base: token cursor, diagnostics, the names in scope and the bracket hints of
+syntax errors.
 
-:class:`matloom.lang.parser.Parser` builds on it (statements, Material, Layers) through
-:class:`matloom.lang.parse_expr.ExpressionParser` (expressions and calls).
+The parser is built in layers, each module importing only the public names of the ones before:
+
+1. here, :class:`ParserBase` (the cursor over the tokens, :meth:`ParserBase.fail` raising
+   :class:`Bail`) and the span helpers;
+2. :mod:`matloom.lang.parse_expr`: :class:`~matloom.lang.parse_expr.ExpressionParser`
+   (expressions and calls; arguments bound by :func:`matloom.lang.binding.bind_call`);
+3. :mod:`matloom.lang.parse_view`: the View statement, a function of an expression parser;
+4. :mod:`matloom.lang.parser`: :class:`~matloom.lang.parser.Parser` (statements, Material,
+   Layers, recovery) and :func:`~matloom.lang.parser.parse_source`.
 """
 
 from __future__ import annotations
 
 from matloom.lang import ast as A
 from matloom.lang.brackets import Brackets, analyse, construct, pos
+from matloom.lang.codes import Code
 from matloom.lang.diagnostics import Diagnostic, Reporter, Span
 from matloom.lang.lexer import Lexer, Token
 
 
-class _Bail(Exception):
-    """Abort the current statement after a syntax error has been recorded."""
+class Bail(Exception):
+    """Abort the current statement after a syntax error has been recorded (raised by
+    :meth:`ParserBase.fail`; the statement loop of the parser resynchronises on it)."""
 
 
 class ParserBase(Reporter):
-    """Token cursor and diagnostics of one parse."""
+    """Token cursor, diagnostics and names in scope of one parse."""
 
     def __init__(self, source: str) -> None:
         self.src = source
         self.lexer = Lexer(source)
+        #: The tokens (set by the statement loop) and the index of the current one.
         self.toks: list[Token] = []
         self.i = 0
+        #: Expression nesting depth (bounded by ``parse_expr.MAX_NESTING``).
         self.depth = 0
         self.diags: list[Diagnostic] = []
-        self.defined: dict[str, None] = {}  # ordered set: O(1) lookups on huge inputs
+        #: The Defines parsed so far (an ordered set: O(1) lookups on huge inputs), every
+        #: Define name in the program, the Defines whose statement failed (their uses are not
+        #: reported again) and the Define whose expression is being parsed.
+        self.defined: dict[str, None] = {}
         self.all_define_names: set[str] = set()
         self.broken_defines: set[str] = set()
         self.current_define: str | None = None
@@ -43,10 +58,11 @@ class ParserBase(Reporter):
     # ---------------------------------------------------------------- diagnostics
 
     def fail(
-        self, code: str, msg: str, span: Span, expected: str | None = None, hint: str | None = None
-    ) -> _Bail:
+        self, code: Code, msg: str, span: Span, expected: str | None = None, hint: str | None = None
+    ) -> Bail:
+        """Record an error and return the :class:`Bail` that the caller raises."""
         self.diag(code, msg, span, expected, hint)
-        return _Bail()
+        return Bail()
 
     # ---------------------------------------------------------------- token helpers
     def peek(self, k: int = 0) -> Token:
@@ -73,7 +89,7 @@ class ParserBase(Reporter):
         elif text == "," and tok.text == ")":
             hint = "an argument is missing"
         raise self.fail(
-            "E010",
+            Code.EXPECTED_TOKEN,
             f"expected '{text}'{where} but found {tok.describe()}",
             tok.span,
             expected=f"'{text}'",

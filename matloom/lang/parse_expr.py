@@ -12,10 +12,12 @@ from __future__ import annotations
 
 from matloom.lang import ast as A
 from matloom.lang.aliases import name_alias
+from matloom.lang.binding import bind_call
 from matloom.lang.brackets import STATEMENTS, closing_context
+from matloom.lang.codes import Code
 from matloom.lang.diagnostics import Span, hint_for
 from matloom.lang.lexer import Token
-from matloom.lang.parse_base import ParserBase, _Bail, join_spans, node_span, tree_depth
+from matloom.lang.parse_base import Bail, ParserBase, join_spans, node_span, tree_depth
 from matloom.vocab import CONSTANTS, FUNCTIONS, LITERALS
 
 MAX_NESTING = 100
@@ -30,14 +32,15 @@ KEYWORDS = ("View", "Define", "Material", "Layer")
 
 
 class ExpressionParser(ParserBase):
-    """Expression parsing; :class:`matloom.lang.parser.Parser` adds the statements."""
+    """Expression parsing (:meth:`parse_expr`); :class:`matloom.lang.parser.Parser` adds the
+    statements, :func:`matloom.lang.parse_view.parse_view` the View."""
 
     def parse_expr(self) -> A.Node:
         self.depth += 1
         try:
             if self.depth > MAX_NESTING:
                 raise self.fail(
-                    "E070",
+                    Code.SIZE_LIMIT,
                     f"expression nested deeper than {MAX_NESTING} levels",
                     self.peek().span,
                     expected="a shallower expression",
@@ -53,7 +56,7 @@ class ExpressionParser(ParserBase):
                 left = A.BinOp(op.text, left, right, join_spans(left, right, op.span))
             if self.depth == 1 and tree_depth(left) > MAX_NESTING:  # long operator chains
                 raise self.fail(
-                    "E070",
+                    Code.SIZE_LIMIT,
                     f"expression tree deeper than {MAX_NESTING} levels",
                     node_span(left, self.peek().span),
                     expected="a shallower expression",
@@ -67,7 +70,7 @@ class ExpressionParser(ParserBase):
         """Fail early on an operator chain whose tree alone would exceed :data:`MAX_NESTING`."""
         if chain >= MAX_NESTING:  # the chain alone makes the tree deeper than the limit
             raise self.fail(
-                "E070",
+                Code.SIZE_LIMIT,
                 f"expression tree deeper than {MAX_NESTING} levels",
                 op.span,
                 expected="a shallower expression",
@@ -92,7 +95,7 @@ class ExpressionParser(ParserBase):
             nxt = self.peek()
             if nxt.kind == "OP" and nxt.text in ("-", "+"):
                 raise self.fail(
-                    "E011",
+                    Code.EXPECTED_EXPRESSION,
                     f"expected an expression after '{tok.text}' but found {nxt.describe()}",
                     nxt.span,
                     expected="a number, name or '('",
@@ -112,7 +115,7 @@ class ExpressionParser(ParserBase):
             try:
                 if self.depth > MAX_NESTING:
                     raise self.fail(
-                        "E070",
+                        Code.SIZE_LIMIT,
                         f"expression nested deeper than {MAX_NESTING} levels",
                         op.span,
                         expected="a shallower expression",
@@ -143,7 +146,7 @@ class ExpressionParser(ParserBase):
             return self.parse_name()
         if tok.kind == "EOF":
             raise self.fail(
-                "E011",
+                Code.EXPECTED_EXPRESSION,
                 "expected an expression but found end of input",
                 tok.span,
                 expected="a number, name, call or '('",
@@ -154,7 +157,7 @@ class ExpressionParser(ParserBase):
         if tok.text == ".":
             hint = "write numbers with a digit after the point, e.g. 0.5"
         raise self.fail(
-            "E011",
+            Code.EXPECTED_EXPRESSION,
             f"expected an expression but found {tok.describe()}",
             tok.span,
             expected="a number, name, call or '('",
@@ -170,7 +173,7 @@ class ExpressionParser(ParserBase):
         if o is None:
             return
         raise self.fail(
-            "E010",
+            Code.EXPECTED_TOKEN,
             f"expected ')' to close {closing_context(self.toks, o)} but found '{tok.text}'",
             tok.span,
             expected="')'",
@@ -186,7 +189,7 @@ class ExpressionParser(ParserBase):
             return A.Const(name, tok.span)
         if name in FUNCTIONS:
             self.diag(
-                "E035",
+                Code.FUNCTION_NOT_CALLED,
                 f"'{name}' is a function — call it as {name}()",
                 tok.span,
                 expected=f"{name}(...)",
@@ -196,7 +199,7 @@ class ExpressionParser(ParserBase):
             return A.Ref(name, tok.span)
         if name == self.current_define:
             self.diag(
-                "E060",
+                Code.DEFINE_ORDER,
                 f"Define '{name}' refers to itself",
                 tok.span,
                 expected="only earlier Defines",
@@ -204,7 +207,7 @@ class ExpressionParser(ParserBase):
             )
         elif name in self.all_define_names:
             self.diag(
-                "E060",
+                Code.DEFINE_ORDER,
                 f"'{name}' is used before its Define",
                 tok.span,
                 expected="only Defines that appear earlier in the program",
@@ -215,7 +218,7 @@ class ExpressionParser(ParserBase):
             if hint is None and name in KEYWORDS:
                 hint = f"{name}(...) is a statement, not an expression"
             self.diag(
-                "E036",
+                Code.UNKNOWN_NAME,
                 f"unknown name '{name}'",
                 tok.span,
                 expected="an earlier Define, pi, e, or a function call",
@@ -224,8 +227,6 @@ class ExpressionParser(ParserBase):
         return A.Ref(name, tok.span)
 
     def parse_call(self) -> A.Node:
-        from matloom.lang.binding import bind_call
-
         name_tok = self.next()
         self.next()  # '('
         raw: list[tuple[Token | None, A.Node, Span]] = []
@@ -246,12 +247,12 @@ class ExpressionParser(ParserBase):
                 break
         self.expect(")", f"to close {name_tok.text}(...)")
         span = self.span_from(name_tok.span)
-        return bind_call(self, name_tok, raw, span)  # type: ignore[arg-type]
+        return bind_call(self, name_tok, raw, span)
 
-    def trailing_comma(self, comma: Token, expected: str) -> _Bail:
+    def trailing_comma(self, comma: Token, expected: str) -> Bail:
         """E013 at ``comma``, the token before the current ``)``."""
         return self.fail(
-            "E013",
+            Code.TRAILING_COMMA,
             "trailing comma in argument list",
             comma.span,
             expected=expected,

@@ -2,24 +2,21 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from matloom.lang import ast as A
+from matloom.lang.codes import Code
 from matloom.lang.lexer import as_float
+from matloom.lang.parse_base import Bail, node_span
+from matloom.lang.parse_expr import ExpressionParser
 from matloom.lang.static import is_static, static_number
 from matloom.vocab import LITERALS
-
-if TYPE_CHECKING:
-    from matloom.lang.parser import Parser
 
 #: View's keyword arguments after the four corners.
 VIEW_KEYWORDS = ("tileable", "unit_m")
 
 
-def parse_view(p: Parser) -> A.ViewDecl | None:
-    """Parse a View statement at ``p``'s current token (the ``View`` name)."""
-    from matloom.lang.parser import _Bail, node_span
-
+def parse_view(p: ExpressionParser) -> A.ViewDecl:
+    """Parse a View statement at ``p``'s current token (the ``View`` name); raises
+    :class:`~matloom.lang.parse_base.Bail` after reporting a malformed one."""
     kw = p.next()
     p.expect("(", "after View")
     values: list[float] = []
@@ -32,7 +29,7 @@ def parse_view(p: Parser) -> A.ViewDecl | None:
         v = static_number(node) if is_static(node) else None  # X()/Y() are not numbers here
         if v is None:
             p.diag(
-                "E061",
+                Code.BAD_VIEW,
                 "View arguments must be numbers",
                 node_span(node, tok.span),
                 expected="View(x1, y1, x2, y2) with numeric corners",
@@ -48,13 +45,13 @@ def parse_view(p: Parser) -> A.ViewDecl | None:
         p.next()
         tok = p.peek()
         if key in seen:
-            raise p.fail("E027", f"View's {key} is given twice", tok.span)
+            raise p.fail(Code.ARGUMENT_COUNT, f"View's {key} is given twice", tok.span)
         seen.add(key)
         if key == "tileable":
             value = LITERALS.get(tok.text, 0) if tok.kind == "IDENT" else 0
             if not isinstance(value, bool):
                 raise p.fail(
-                    "E061",
+                    Code.BAD_VIEW,
                     "View's tileable must be True or False",
                     tok.span,
                     expected="View(x1, y1, x2, y2, tileable=True)",
@@ -67,7 +64,7 @@ def parse_view(p: Parser) -> A.ViewDecl | None:
             metres = as_float(number) if isinstance(number, int | float) else None
             if metres is None or not 0 < metres < float("inf"):
                 raise p.fail(
-                    "E061",
+                    Code.BAD_VIEW,
                     "View's unit_m must be a number of metres > 0",
                     node_span(node, tok.span),
                     expected="View(x1, y1, x2, y2, unit_m=0.5)",
@@ -75,12 +72,12 @@ def parse_view(p: Parser) -> A.ViewDecl | None:
             unit_m = metres
     if p.at(","):
         raise p.fail(
-            "E027",
+            Code.ARGUMENT_COUNT,
             "View takes exactly 4 arguments",
             p.peek().span,
             expected="View(x1, y1, x2, y2) or View(x1, y1, x2, y2, tileable=True, unit_m=0.5)",
         )
     p.expect(")", "to close View(...)")
     if bad:  # drop the View, so its placeholder corners cause no follow-on errors
-        raise _Bail()
+        raise Bail()
     return A.ViewDecl(*values, span=p.span_from(kw.span), tileable=tileable, unit_m=unit_m)

@@ -16,9 +16,11 @@ One grammar for the whole program (no regex splitting):
 
 Statements, Material and Layers are parsed here, View in :mod:`matloom.lang.parse_view`,
 expressions and calls in :mod:`matloom.lang.parse_expr`; the token cursor and diagnostics are
-in :mod:`matloom.lang.parse_base`. Bracket-related errors get their hints from the bracket
-analysis of :mod:`matloom.lang.brackets` (which construct's parenthesis is extra or missing).
-Binding of arguments to registry parameters happens here; value checks live in the checker.
+in :mod:`matloom.lang.parse_base` (which lists these layers). Bracket-related errors get their
+hints from the bracket analysis of :mod:`matloom.lang.brackets` (which construct's parenthesis
+is extra or missing). Arguments are bound to registry parameters by
+:mod:`matloom.lang.binding`; value checks live in the checker. The codes of the diagnostics are
+:class:`matloom.lang.codes.Code` members.
 Syntax errors inside one statement are reported and the parser resynchronises at the next
 statement, so one pass reports as many independent problems as possible.
 """
@@ -27,13 +29,14 @@ from __future__ import annotations
 
 from matloom.lang import ast as A
 from matloom.lang.aliases import channel_alias
+from matloom.lang.codes import Code
 from matloom.lang.comments import attach_comments
-from matloom.lang.diagnostics import Diagnostic, Severity, Span, hint_for
+from matloom.lang.diagnostics import Diagnostic, Span, hint_for
 from matloom.lang.lexer import MAX_SOURCE_CHARS, LexError, Token
-from matloom.lang.parse_base import _Bail as _Bail
-from matloom.lang.parse_base import node_span as node_span
-from matloom.lang.parse_expr import KEYWORDS, MAX_NESTING, ExpressionParser
-from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS, Returns
+from matloom.lang.parse_base import Bail
+from matloom.lang.parse_expr import KEYWORDS, ExpressionParser
+from matloom.lang.parse_view import parse_view
+from matloom.vocab import CHANNELS, CONSTANTS, FUNCTIONS, LITERALS
 
 
 class Parser(ExpressionParser):
@@ -43,7 +46,7 @@ class Parser(ExpressionParser):
     def parse(self) -> A.Program | None:
         if len(self.src) > MAX_SOURCE_CHARS:
             self.diag(
-                "E070",
+                Code.SIZE_LIMIT,
                 f"program is too large ({len(self.src)} characters)",
                 Span(0, 1, 1, 1),
                 expected=f"at most {MAX_SOURCE_CHARS} characters",
@@ -71,18 +74,18 @@ class Parser(ExpressionParser):
                             else "View after " + ("Material" if layers is not None else "a Define")
                         )
                         self.diag(
-                            "E020",
+                            Code.VIEW_NOT_FIRST,
                             f"{what}: View must be the first statement",
                             tok.span,
                             expected="View(...) before any Define or Material",
                             hint="move the View line to the top of the program",
                         )
-                    v = self.parse_view()
+                    v = parse_view(self)
                     view = view or v
                 elif tok.text == "Define" and tok.kind == "IDENT":
                     if layers is not None:
                         self.diag(
-                            "E023",
+                            Code.AFTER_MATERIAL,
                             "Define after Material: nothing may follow Material(...)",
                             tok.span,
                             expected="end of input",
@@ -96,7 +99,7 @@ class Parser(ExpressionParser):
                     self.material_started = True
                     if layers is not None:
                         self.diag(
-                            "E023",
+                            Code.AFTER_MATERIAL,
                             "a second Material: a program has exactly one",
                             tok.span,
                             expected="end of input",
@@ -105,7 +108,7 @@ class Parser(ExpressionParser):
                     layers = parsed if layers is None else layers
                 elif tok.text == "Layer" and tok.kind == "IDENT":
                     raise self.fail(
-                        "E025",
+                        Code.MISPLACED_LAYER,
                         "Layer outside Material(...)",
                         tok.span,
                         expected="Material(Layer(...), ...)",
@@ -114,17 +117,18 @@ class Parser(ExpressionParser):
                     )
                 else:
                     raise self._unexpected_statement(tok, layers is not None)
-            except _Bail:
+            except Bail:
                 if tok.text == "Define" and start + 2 < len(self.toks):
                     self.broken_defines.add(self.toks[start + 2].text)  # uses are not re-reported
                 self._skip_statement(start)
         if layers is None:
             eof = self.peek()
             if not self.material_started and not any(
-                d.code in ("E012", "E025") for d in self.diags
+                d.code in (Code.UNEXPECTED_INPUT.code, Code.MISPLACED_LAYER.code)
+                for d in self.diags
             ):
                 self.diag(
-                    "E022",
+                    Code.MISSING_MATERIAL,
                     "missing Material(...)",
                     eof.span,
                     expected="Material(Layer(...), ...) as the last statement",
@@ -133,7 +137,7 @@ class Parser(ExpressionParser):
         program = A.Program(view, tuple(defines), layers, Span(0, len(self.src), 1, 1))
         return attach_comments(program, self.lexer.comments, self.toks)
 
-    def _unexpected_statement(self, tok: Token, after_material: bool) -> _Bail:
+    def _unexpected_statement(self, tok: Token, after_material: bool) -> Bail:
         hint = None
         if _is_close(tok):
             hint = self.brackets.extra_close(self.i)
@@ -142,14 +146,14 @@ class Parser(ExpressionParser):
         hint = hint or self.brackets.closed_early(self.i)
         if after_material:
             return self.fail(
-                "E012",
+                Code.UNEXPECTED_INPUT,
                 f"unexpected trailing input {tok.describe()} after Material(...)",
                 tok.span,
                 expected="end of input",
                 hint=hint,
             )
         return self.fail(
-            "E012",
+            Code.UNEXPECTED_INPUT,
             f"unexpected {tok.describe()} at top level",
             tok.span,
             expected="View(...), Define(...) or Material(...)",
@@ -201,18 +205,13 @@ class Parser(ExpressionParser):
         first_on_line = self.i == 0 or self.toks[self.i - 1].span.line < tok.span.line
         return first_on_line and self.at("(", 1)
 
-    def parse_view(self) -> A.ViewDecl | None:
-        from matloom.lang.parse_view import parse_view
-
-        return parse_view(self)
-
     def parse_define(self) -> A.Define | None:
         kw = self.next()
         self.expect("(", "after Define")
         name_tok = self.peek()
         if name_tok.kind != "IDENT":
             raise self.fail(
-                "E010",
+                Code.EXPECTED_TOKEN,
                 f"expected a name for the Define but found {name_tok.describe()}",
                 name_tok.span,
                 expected="Define(name, expression)",
@@ -226,7 +225,7 @@ class Parser(ExpressionParser):
             self.current_define = None
         if self.at(","):
             raise self.fail(
-                "E027",
+                Code.ARGUMENT_COUNT,
                 "Define takes exactly 2 arguments (name, expression)",
                 self.peek().span,
                 expected="')'",
@@ -235,7 +234,7 @@ class Parser(ExpressionParser):
         name = name_tok.text
         if name in self.defined:
             self.diag(
-                "E038",
+                Code.DUPLICATE_DEFINE,
                 f"Define '{name}' is defined twice",
                 name_tok.span,
                 expected="a unique name",
@@ -243,10 +242,9 @@ class Parser(ExpressionParser):
             )
         elif name in FUNCTIONS or name in CONSTANTS or name in LITERALS or name in KEYWORDS:
             self.diag(
-                "W005",
+                Code.SHADOWED_DEFINE,
                 f"Define name '{name}' is shadowed by a built-in and can never be referenced",
                 name_tok.span,
-                severity=Severity.WARNING,
                 hint="choose another name",
             )
         self.defined[name] = None
@@ -259,7 +257,7 @@ class Parser(ExpressionParser):
         layers: list[A.Layer] = []
         if self.at(")"):
             self.diag(
-                "E024",
+                Code.EMPTY_MATERIAL,
                 "Material has no layers",
                 self.span_from(kw.span),
                 expected="at least one Layer(...)",
@@ -272,7 +270,7 @@ class Parser(ExpressionParser):
             if not (tok.kind == "IDENT" and tok.text == "Layer"):
                 if tok.text == ")" and layers:
                     raise self.fail(
-                        "E013",
+                        Code.TRAILING_COMMA,
                         "trailing comma after the last layer",
                         tok.span,
                         expected="another Layer(...) or no comma",
@@ -288,7 +286,7 @@ class Parser(ExpressionParser):
             tok = self.peek()
             hint = "a ',' may be missing between layers" if tok.text == "Layer" else None
             raise self.fail(
-                "E010",
+                Code.EXPECTED_TOKEN,
                 f"expected ',' or ')' after a layer but found {tok.describe()}",
                 tok.span,
                 expected="',' between layers or ')' to close Material",
@@ -297,7 +295,7 @@ class Parser(ExpressionParser):
         self.next()
         return tuple(layers)
 
-    def _not_a_layer(self, tok: Token) -> _Bail:
+    def _not_a_layer(self, tok: Token) -> Bail:
         """E025 where a ``Layer(`` should stand in Material(...)."""
         hint = hint_for(tok.text, ["Layer"]) if tok.kind == "IDENT" else None
         if tok.kind == "EOF":
@@ -305,7 +303,7 @@ class Parser(ExpressionParser):
         elif tok.kind == "OP" and tok.text == "(":
             hint = f"Material(...) holds only Layer(...) calls: remove the '(' at {tok.span.line}:{tok.span.col}"
         return self.fail(
-            "E025",
+            Code.MISPLACED_LAYER,
             f"expected Layer(...) but found {tok.describe()}",
             tok.span,
             expected="Layer(...)",
@@ -320,7 +318,7 @@ class Parser(ExpressionParser):
             alpha = self.parse_expr()
             if self.at(","):
                 raise self.fail(
-                    "E028",
+                    Code.LAYER_ARGUMENTS,
                     "Layer takes at most one argument (its alpha)",
                     self.peek().span,
                     expected="')'",
@@ -333,7 +331,7 @@ class Parser(ExpressionParser):
             name_tok = self.peek()
             if name_tok.kind != "IDENT":
                 raise self.fail(
-                    "E010",
+                    Code.EXPECTED_TOKEN,
                     f"expected a channel name after '.' but found {name_tok.describe()}",
                     name_tok.span,
                     expected="one of " + ", ".join(CHANNELS),
@@ -345,7 +343,7 @@ class Parser(ExpressionParser):
             span = self.span_from(name_tok.span)
             if spec is None:
                 self.diag(
-                    "E026",
+                    Code.UNKNOWN_CHANNEL,
                     f"unknown layer channel '.{name}'",
                     name_tok.span,
                     expected="one of " + ", ".join(CHANNELS),
@@ -354,7 +352,7 @@ class Parser(ExpressionParser):
                 continue
             if len(args) != spec.arity:
                 self.diag(
-                    "E027",
+                    Code.ARGUMENT_COUNT,
                     f"{name}() expects {spec.arity} argument"
                     f"{'s' if spec.arity != 1 else ''}, got {len(args)}",
                     span,
@@ -363,10 +361,9 @@ class Parser(ExpressionParser):
                 continue
             if name in chans:
                 self.diag(
-                    "W006",
+                    Code.CHANNEL_SET_TWICE,
                     f"channel '.{name}' is set twice; the last one wins",
                     name_tok.span,
-                    severity=Severity.WARNING,
                 )
             if name == "alpha":
                 alpha = args[0]
@@ -387,7 +384,7 @@ class Parser(ExpressionParser):
             if self.peek().kind == "IDENT" and self.at("=", 1):
                 tok = self.peek()
                 raise self.fail(
-                    "E031",
+                    Code.UNKNOWN_PARAMETER,
                     f"channel .{name_tok.text}() takes positional values, not '{tok.text}='",
                     tok.span,
                     expected="a value",
@@ -415,4 +412,4 @@ def parse_source(source: str) -> tuple[A.Program | None, list[Diagnostic]]:
     return program, p.diags
 
 
-__all__ = ["MAX_NESTING", "Parser", "Returns", "parse_source"]
+__all__ = ["Parser", "parse_source"]

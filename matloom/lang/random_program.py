@@ -30,6 +30,7 @@ import random
 from dataclasses import dataclass
 
 from matloom.lang import ast as A
+from matloom.lang.codes import Code
 from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost
 from matloom.lang.printer import format_program
 from matloom.lang.static import static_number, uses_coordinates
@@ -142,7 +143,9 @@ def random_program_ast(
             return program
         rng = random.Random(f"{seed}/{attempt}")
         program = _Generator(rng, config).program(layers, defines)
-    raise ValueError(f"seed {seed}: every draw of this config exceeds the work limit (E071)")
+    raise ValueError(
+        f"seed {seed}: every draw of this config exceeds the work limit ({Code.WORK_LIMIT.code})"
+    )
 
 
 #: Draws tried for one seed before giving up (a config whose programs are all too costly).

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from matloom.engine.ops import OPS, operator_ops
+from matloom.ops import OPS, operator_ops
 from matloom.lang import ast as A
 from matloom.vocab import CONSTANTS, FUNCTIONS
 
@@ -75,7 +75,7 @@ def _binop(op: str, a: float | int, b: float | int) -> float | int:
 
 
 def _call(node: A.Call, strict: bool) -> float | int | None:
-    """The call's static rule (:mod:`matloom.engine.ops`) over its arguments' values."""
+    """The call's static rule (:mod:`matloom.ops`) over its arguments' values."""
     op = OPS.get(node.func)
     if op is None:
         return None

@@ -8,14 +8,16 @@ grout", "gold veins"), else to the free slots in order, main colour first; plain
 ("red") on natural materials are pulled toward the entry's own colour so "red brick" still looks
 like brick. Slots the request left alone whose strong hue contradicts its palette take a shade
 of a requested colour ("red and black tartan" has no yellow line). Every change is described
-in a short note for the explanation.
+in a short note for the explanation. The category kinds (natural, patterned), the gloss of each
+finish and the roles of tone nouns are data (``data/words.toml``).
 """
 
 from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field, replace
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 from matloom.lang import ast as A
 from matloom.lang.parser import parse_source
@@ -25,44 +27,24 @@ from matloom.library.entry import Entry, PresetValue
 from matloom.library.overlay import constant, define_value, view_width
 from matloom.library.query import ColourMention, Request, plural_stem
 
-#: categories whose colours are natural material colours ("red brick" stays brick-like).
-NATURAL = frozenset(
-    {"wood", "stone", "masonry", "concrete", "metal", "ground", "leather", "organic", "natural"}
-)
-#: categories whose other colours follow the request's palette even when it names one colour
-PATTERNED = frozenset(
-    {"fabric", "carpet", "tiles", "paper", "plastic", "ornament", "ceramic", "glass", "scifi"}
-)
 #: a slot colour this grey (HSV saturation) is neutral: it never contradicts a palette
 NEUTRAL_SAT = 0.18
 #: a slot whose hue is this close (degrees) to a requested colour already fits the palette
 PALETTE_HUE = 30
 VIEW_RANGE = (0.25, 4.0)
-_ROLE_OF_NOUN = {
-    "mortar": "grout",
-    "grout": "grout",
-    "joint": "grout",
-    "background": "base",
-    "base": "base",
-    "frame": "frame",
-    "stripe": "accent",
-    "dot": "accent",
-    "vein": "accent",
-}
-_GLOSSY = {"glossy": 0.8, "polished": 0.9, "shiny": 0.6, "satin": 0.3, "matte": 0.0}
 
 
-@dataclass
+@dataclass(frozen=True)
 class Adapted:
     """The adapted program and what changed."""
 
     program: A.Program
     view: float
     scale: float
-    notes: list[str] = field(default_factory=list)
-    used: set[int] = field(default_factory=set)
+    notes: tuple[str, ...] = ()
+    used: frozenset[int] = frozenset()
     #: colour words the request gave that no slot took (reported as ignored)
-    unused: list[str] = field(default_factory=list)
+    unused: tuple[str, ...] = ()
 
 
 @functools.cache
@@ -107,20 +89,31 @@ def find_phrase(req: Request, phrase: str) -> list[int] | None:
 
 
 class Adapter:
-    """Applies one request to one entry."""
+    """Applies one request to one entry (its working state; :func:`adapt` returns the result)."""
 
     def __init__(self, entry: Entry, program: A.Program, req: Request, words: Words) -> None:
         self.entry = entry
         self.req = req
         self.w = words
-        self.out = Adapted(program, view_width(program), 1.0)
+        self.program = program
+        self.side = view_width(program)
+        self.scale = 1.0
+        self.notes: list[str] = []
+        self.used: set[int] = set()
+        self.unused: list[str] = []
 
-    @property
-    def program(self) -> A.Program:
-        return self.out.program
+    def result(self) -> Adapted:
+        return Adapted(
+            self.program,
+            self.side,
+            self.scale,
+            tuple(self.notes),
+            frozenset(self.used),
+            tuple(self.unused),
+        )
 
     def note(self, text: str) -> None:
-        self.out.notes.append(text)
+        self.notes.append(text)
 
     def scalar_slots(self, kind: str) -> list[str]:
         return [n for n, k in self.entry.scalars.items() if k == kind]
@@ -130,17 +123,17 @@ class Adapter:
         explicit: set[str] = set()
         for word in sorted(presets, key=lambda w: (-len(w.split()), w)):
             idx = find_phrase(self.req, word)
-            if idx is None or any(i in self.out.used for i in idx):
+            if idx is None or any(i in self.used for i in idx):
                 continue
-            self.out.used.update(idx)
+            self.used.update(idx)
             for slot, value in presets[word].items():
                 if isinstance(value, tuple):
-                    self.out.program = set_colour(self.program, slot, value)
+                    self.program = set_colour(self.program, slot, value)
                     explicit.add(slot)
                 elif isinstance(value, str):
-                    self.out.program = define_value(self.program, slot, parse_expression(value))
+                    self.program = define_value(self.program, slot, parse_expression(value))
                 else:
-                    self.out.program = define_value(self.program, slot, value)
+                    self.program = define_value(self.program, slot, value)
             self.note(
                 f"preset '{word}': " + ", ".join(f"{k} {v}" for k, v in presets[word].items())
             )
@@ -153,42 +146,42 @@ class Adapter:
             if key in self.w.finish_roughness and not rough_done:
                 for slot in self.scalar_slots("roughness"):
                     value = self.w.finish_roughness[key]
-                    self.out.program = define_value(self.program, slot, value)
+                    self.program = define_value(self.program, slot, value)
                     self.note(f"{slot} = {value:g} (finish '{word}')")
                     rough_done = True
             if key in self.w.finish_relief:
                 for slot in self.scalar_slots("relief"):
                     old = constant(self.program, slot) or 1.0
                     value = round(old * self.w.finish_relief[key], 4)
-                    self.out.program = define_value(self.program, slot, value)
+                    self.program = define_value(self.program, slot, value)
                     self.note(f"{slot} x{self.w.finish_relief[key]:g} (finish '{word}')")
             if key == "metallic":
                 for slot in self.scalar_slots("metallic"):
-                    self.out.program = define_value(self.program, slot, 1)
+                    self.program = define_value(self.program, slot, 1)
                     self.note(f"{slot} = 1 (finish '{word}')")
-            if key in _GLOSSY:
+            if key in self.w.finish_gloss:
                 for slot in self.scalar_slots("gloss"):
-                    self.out.program = define_value(self.program, slot, _GLOSSY[key])
-                    self.note(f"{slot} = {_GLOSSY[key]:g} (finish '{word}')")
+                    self.program = define_value(self.program, slot, self.w.finish_gloss[key])
+                    self.note(f"{slot} = {self.w.finish_gloss[key]:g} (finish '{word}')")
 
-    def amounts(self, absorbed: list[tuple[str, float]]) -> None:
+    def amounts(self, absorbed: Sequence[tuple[str, float]]) -> None:
         for name, amount in absorbed:
             for slot in self.scalar_slots("wear"):
                 old = constant(self.program, slot) or 0.0
                 # an amount word below the default lowers it ("slightly corroded copper")
                 value = round(amount if amount < 0.5 else max(old, amount), 3)
-                self.out.program = define_value(self.program, slot, value)
+                self.program = define_value(self.program, slot, value)
                 self.note(f"{slot} = {value:g} ('{name}' is part of the entry)")
         if self.req.percents:
             for slot in self.scalar_slots("cover"):
                 value = max(0.05, min(0.95, self.req.percents[0]))
-                self.out.program = define_value(self.program, slot, value)
+                self.program = define_value(self.program, slot, value)
                 self.note(f"{slot} = {value:g} (stated percentage)")
 
     # ------------------------------------------------------------------ View
     def view(self) -> None:
         e, req = self.entry, self.req
-        view0 = self.out.view
+        view0 = self.side
         scale, why = 1.0, ""
         units = {plural_stem(u) for u in e.units}
         for count in req.counts:
@@ -201,7 +194,7 @@ class Adapter:
                 if e.feature_m and (not size.noun or size.noun in units or len(req.sizes) == 1):
                     scale = size.metres / e.feature_m
                     why = f"{size.words} {size.noun}".strip()
-                    self.out.used.update(
+                    self.used.update(
                         i
                         for i, t in enumerate(req.tokens)
                         if size.noun and plural_stem(t) == size.noun
@@ -213,9 +206,9 @@ class Adapter:
         if scale == 1.0:
             return
         scale = max(1 / VIEW_RANGE[1], min(1 / VIEW_RANGE[0], scale))
-        self.out.scale = scale
-        self.out.view = round(view0 / scale, 4)
-        self.note(f"View {view0:g} -> {self.out.view:g} ({why})")
+        self.scale = scale
+        self.side = round(view0 / scale, 4)
+        self.note(f"View {view0:g} -> {self.side:g} ({why})")
 
     # ------------------------------------------------------------------ colours
     def colours(self, explicit: set[str]) -> None:
@@ -249,11 +242,11 @@ class Adapter:
             self.give(m, slot, "prompt order", taken)
         for m in pending[len(free + grout) :]:
             self.note(f"colour '{m.words}' unused: no free colour slot")
-            self.out.unused.append(m.words)
+            self.unused.append(m.words)
         named = [(m.rgb, m.words) for m in mentions]
-        if named and (len(named) > 1 or e.category in PATTERNED):
+        if named and (len(named) > 1 or e.category in self.w.patterned):
             free_primary = [s for s in primary if s not in taken | explicit]
-            if e.category in NATURAL and e.colours:  # the wood of "black and gray lines"
+            if e.category in self.w.natural and e.colours:  # the wood of "black and gray lines"
                 free_primary = [s for s in free_primary if s != e.colours[0]]
             said = {plural_stem(t) for t in self.req.tokens}  # "flecks of dried petals"
             free_primary = [s for s in free_primary if s.split("_")[0] not in said]
@@ -279,25 +272,26 @@ class Adapter:
             near, words = min(named, key=lambda n: abs(C.luminance(n[0]) - C.luminance(old)))
             light = C.lightness(near) + (C.lightness(old) - C.lightness(near)) * 0.75
             rgb = C.with_lightness(near, light)
-            self.out.program = set_colour(self.program, slot, rgb)
+            self.program = set_colour(self.program, slot, rgb)
             self.note(f"colour {slot} = {rgb} (a shade of '{words}': only the requested palette)")
 
     def give(self, m: ColourMention, slot: str, why: str, taken: set[str]) -> None:
         rgb = m.rgb
         default = slot_colour(self.program, slot)
-        if self.entry.category in NATURAL and m.words in C.BASIC and default is not None:
+        natural = self.entry.category in self.w.natural
+        if natural and m.words in self.w.basic and default is not None:
             if C.saturation(default) >= 0.12 and C.hue_distance(rgb, default) <= 35:
                 rgb = C.mix(rgb, default, 0.45)
-        self.out.program = set_colour(self.program, slot, rgb)
+        self.program = set_colour(self.program, slot, rgb)
         taken.add(slot)
-        self.out.used.update(range(m.index, m.index + len(m.words.split())))
+        self.used.update(range(m.index, m.index + len(m.words.split())))
         self.note(f"colour {slot} = '{m.words}' {rgb} ({why})")
 
     def tones(self, explicit: set[str]) -> None:
         e = self.entry
         for modifier, noun, index in self.req.tones:
             target = None
-            role = _ROLE_OF_NOUN.get(noun)
+            role = self.w.tone_roles.get(noun)
             if role is not None:
                 target = next((s for s in e.colours if e.role(s) == role), None)
             elif noun in e.tags or noun in e.name or noun in (t for t in e.synonyms):
@@ -308,8 +302,8 @@ class Adapter:
             if current is None:
                 continue
             rgb = C.apply_tone(current, modifier, self.w.tones[modifier])
-            self.out.program = set_colour(self.program, target, rgb)
-            self.out.used.add(index)
+            self.program = set_colour(self.program, target, rgb)
+            self.used.add(index)
             self.note(f"colour {target} made {modifier} ('{modifier} {noun}') {rgb}")
 
 
@@ -319,7 +313,7 @@ def adapt(
     req: Request,
     words: Words,
     presets: dict[str, dict[str, PresetValue]],
-    absorbed: list[tuple[str, float]],
+    absorbed: Sequence[tuple[str, float]],
 ) -> Adapted:
     """Apply ``req`` to ``entry``'s parsed ``program``; the View is resized later (tiling)."""
     a = Adapter(entry, program, req, words)
@@ -328,7 +322,7 @@ def adapt(
     a.amounts(absorbed)
     a.view()
     a.colours(explicit)
-    return a.out
+    return a.result()
 
 
 def resize_view(program: A.Program, side: float) -> A.Program:

@@ -16,9 +16,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import matloom
 from matloom.engine.maps import View
 from matloom.lang import ast as A
+from matloom.lang.api import analyse, check, parse
+from matloom.lang.diagnostics import ProgramError
 from matloom.library.adapt import parse_expression, place_origin
 from matloom.library.data import words
 from matloom.library.entry import Entry
@@ -56,7 +57,7 @@ class EntryReport:
 
 def static_problems(lib: Library, entry: Entry) -> list[str]:
     """Front matter vs program problems and diagnostics (no evaluation)."""
-    _, diags = matloom.analyse(entry.program)
+    _, diags = analyse(entry.program)
     if diags:
         return [f"{d.severity.name.lower()} {d.code}: {d.message}" for d in diags]
     program = lib.ast(entry.name)
@@ -101,10 +102,11 @@ def evaluate_problems(
     program: str | A.Program, size: int, tileable: bool
 ) -> tuple[list[str], dict[str, float]]:
     """(problems, seam ratios) of evaluating a program at ``size`` x ``size``."""
+    from matloom.engine.evaluate import evaluate
     from matloom.engine.tiling import manifest_entry
     from matloom.vocab.layout import LAYOUT
 
-    maps = matloom.evaluate(program, size, size, backend="numpy")
+    maps = evaluate(program, size, size, backend="numpy")
     out: list[str] = []
     for name in LAYOUT.map_fields:
         values = np.asarray(getattr(maps, name))
@@ -132,19 +134,20 @@ def period_problems(program: str | A.Program, size: int = PERIOD_SIZE) -> list[s
     on it). The View starts at ``PERIOD_CORNER``, binary fractions whose sums with W and 2W are
     exact, so that the moved View has exactly the same size in float arithmetic: a size one
     rounding step off can pick another noise lattice for the same periods, which is no seam."""
+    from matloom.engine.evaluate import evaluate
     from matloom.vocab.layout import LAYOUT
 
-    prog = matloom.parse(program) if isinstance(program, str) else program
+    prog = parse(program) if isinstance(program, str) else program
     x1, y1, x2, y2 = prog.view_tuple
     # sizes on a 2**-40 grid (a change below 1e-12): every sum below is then exact
     w, h = (round(abs(v) * 2.0**40) / 2.0**40 for v in (x2 - x1, y2 - y1))
     cx, cy = PERIOD_CORNER
     v = View(cx, cy, cx + w, cy + h, tileable=True)
-    base = matloom.evaluate(prog, size, size, backend="numpy", view=v)
+    base = evaluate(prog, size, size, backend="numpy", view=v)
     out: list[str] = []
     for what, dx, dy in (("width", w, 0.0), ("height", 0.0, h)):
         moved = View(v.x1 + dx, v.y1 + dy, v.x2 + dx, v.y2 + dy, tileable=True)
-        other = matloom.evaluate(prog, size, size, backend="numpy", view=moved)
+        other = evaluate(prog, size, size, backend="numpy", view=moved)
         bad = []
         for name in LAYOUT.map_fields:
             a = np.asarray(getattr(base, name), dtype=np.float64)
@@ -172,7 +175,7 @@ def check_entry(
     report = EntryReport(entry.name)
     try:
         report.problems = static_problems(lib, entry)
-    except (matloom.ProgramError, ValueError) as exc:
+    except (ProgramError, ValueError) as exc:
         report.problems = [str(exc)]
     if report.problems:
         return report
@@ -192,7 +195,7 @@ def overlay_reports(lib: Library, overlays: list[Overlay] | None = None) -> dict
     for ov in overlays or list(lib.overlays.values()):
         try:
             check_overlay(ov)
-            out[ov.name] = [f"{d.code}: {d.message}" for d in matloom.check(ov.program)]
-        except (ValueError, matloom.ProgramError) as exc:
+            out[ov.name] = [f"{d.code}: {d.message}" for d in check(ov.program)]
+        except (ValueError, ProgramError) as exc:
             out[ov.name] = [str(exc)]
     return out

@@ -11,10 +11,6 @@ import colorsys
 RGB = tuple[int, int, int]
 
 
-#: the basic colour words ("red", "grey"): families, not specific shades
-BASIC = frozenset("red green blue brown yellow orange grey gray purple pink white black".split())
-
-
 def clamp_rgb(rgb: tuple[float, float, float]) -> RGB:
     """Round and clamp a colour to integers in 0-255."""
     return (

@@ -1,11 +1,13 @@
 """The library's word data: colours, request words, synonyms and shared presets (TOML files in
 ``matloom/library/data/``), read once per process.
 
-``colours.toml``  named colours, multi-word colour phrases, ``-ish`` forms, tone modifiers and
-                  the colour names that are usually materials ("slate", "copper");
+``colours.toml``  named colours, multi-word colour phrases, ``-ish`` forms, tone modifiers, the
+                  colour names that are usually materials ("slate", "copper") and the basic
+                  colour words;
 ``words.toml``    negations, stop words, finishes, scale, amount, unit and number words, the
                   nouns that give a colour its role ("grout", "veins", "background"), material
-                  nouns, motif words and extra overlay words;
+                  nouns, motif words, extra overlay words, the adapter's category kinds and
+                  the request reader's grammar words (``[grammar]``);
 ``synonyms.toml`` request words or phrases -> extra retrieval terms ("desert" -> "arid dry sand");
 ``presets.toml``  word presets shared by several entries ("walnut" -> the ``wood`` colour).
 """
@@ -55,6 +57,36 @@ class Words:
     overlay_words: dict[str, str]
     #: colour names that are metals ("silver"): colours unless the entry is that metal
     metal_colours: frozenset[str]
+    #: the basic colour words ("red", "grey"): families, not specific shades
+    basic: frozenset[str]
+    #: the words a specific colour name may come before as its family ("cornflower blue")
+    families: frozenset[str]
+    #: finish key -> the gloss slot value it requests
+    finish_gloss: dict[str, float]
+    #: words before a tone that soften or strengthen it ("slightly darker") -> strength
+    intensity: dict[str, float]
+    #: the noun after a tone word -> the role of the slot it changes ("pale mortar": grout)
+    tone_roles: dict[str, str]
+    #: categories whose colours are natural material colours ("red brick" stays brick-like)
+    natural: frozenset[str]
+    #: categories whose other colours follow the request's palette
+    patterned: frozenset[str]
+    #: the reader's grammar words ([grammar] of words.toml; each list is described there)
+    clause_end: frozenset[str]
+    head_end: frozenset[str]
+    list_join: frozenset[str]
+    colour_suffix: frozenset[str]
+    condition_tones: frozenset[str]
+    tone_only: frozenset[str]
+    role_stop: frozenset[str]
+    plain_roles: frozenset[str]
+    scale_skip: frozenset[str]
+    colour_nouns: frozenset[str]
+    copulas: frozenset[str]
+    metals: frozenset[str]
+    colour_join: frozenset[str]
+    #: nouns after a colour that are no thing of their own (the colour nouns included)
+    no_thing: frozenset[str]
     synonyms: dict[str, tuple[str, ...]]
     preset_sets: dict[str, dict[str, dict[str, PresetValue]]]
 
@@ -90,6 +122,10 @@ def _rgb_table(data: dict[str, Any], file: str, key: str) -> dict[str, RGB]:
     return out
 
 
+def _word_set(table: dict[str, Any], key: str) -> frozenset[str]:
+    return frozenset(table.get(key, []))
+
+
 def _fail_in(file: str):  # noqa: ANN202 - a small error factory for read_presets
     def fail(key: str, problem: str) -> LibraryError:
         return LibraryError(f"{DATA_DIR / file}: key '{key}': {problem}")
@@ -109,6 +145,9 @@ def words() -> Words:
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise LibraryError(f"{DATA_DIR / 'synonyms.toml'}: {key!r}: expected a list of words")
         synonyms[key.lower()] = tuple(v.lower() for v in value)
+    basic = col.get("basic", {})
+    grammar = w.get("grammar", {})
+    colour_nouns = _word_set(grammar, "colour_nouns")
     sets = {
         name: read_presets(table, _fail_in("presets.toml"))
         for name, table in pre.items()
@@ -138,6 +177,27 @@ def words() -> Words:
         motifs={k: frozenset(v) for k, v in w.get("motifs", {}).items()},
         overlay_words={k.lower(): v for k, v in w.get("overlay_words", {}).items()},
         metal_colours=frozenset(col.get("metal_colours", {}).get("words", [])),
+        basic=_word_set(basic, "words"),
+        families=_word_set(basic, "words") | _word_set(basic, "families"),
+        finish_gloss={k: float(v) for k, v in w.get("finish_gloss", {}).items()},
+        intensity={k: float(v) for k, v in w.get("intensity", {}).items()},
+        tone_roles=dict(w.get("tone_roles", {})),
+        natural=_word_set(w.get("categories", {}), "natural"),
+        patterned=_word_set(w.get("categories", {}), "patterned"),
+        clause_end=_word_set(grammar, "clause_end"),
+        head_end=_word_set(grammar, "head_end"),
+        list_join=_word_set(grammar, "list_join"),
+        colour_suffix=_word_set(grammar, "colour_suffix"),
+        condition_tones=_word_set(grammar, "condition_tones"),
+        tone_only=_word_set(grammar, "tone_only"),
+        role_stop=_word_set(grammar, "role_stop"),
+        plain_roles=_word_set(grammar, "plain_roles"),
+        scale_skip=_word_set(grammar, "scale_skip"),
+        colour_nouns=colour_nouns,
+        copulas=_word_set(grammar, "copulas"),
+        metals=_word_set(grammar, "metals"),
+        colour_join=_word_set(grammar, "colour_join"),
+        no_thing=colour_nouns | _word_set(grammar, "no_thing"),
         synonyms=synonyms,
         preset_sets=sets,
     )

@@ -13,8 +13,8 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import matloom
 from matloom.lang import ast as A
+from matloom.lang.api import parse
 from matloom.library.data import words
 from matloom.library.entry import CATEGORIES, Entry, LibraryError, PresetValue, load_entry
 from matloom.library.overlay import OVERLAY_DIR, Overlay, load_overlay
@@ -43,7 +43,7 @@ class Library:
     def ast(self, name: str) -> A.Program:
         """The parsed program of entry ``name`` (cached)."""
         if name not in self._asts:
-            self._asts[name] = matloom.parse(self.entry(name).program)
+            self._asts[name] = parse(self.entry(name).program)
         return self._asts[name]
 
     def by_category(self, category: str | None = None) -> list[Entry]:

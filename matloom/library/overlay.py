@@ -20,9 +20,11 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TypeGuard
 
-import matloom
 from matloom.lang import ast as A
+from matloom.lang.api import parse
+from matloom.lang.diagnostics import ProgramError
 from matloom.lang.rewrite import map_expr
 from matloom.library.entry import FrontMatterReader, LibraryError, split_front_matter
 from matloom.vocab import FUNCTIONS
@@ -49,7 +51,7 @@ class Overlay:
     @functools.cached_property
     def ast(self) -> A.Program:
         """The parsed program (cached)."""
-        return matloom.parse(self.program)
+        return parse(self.program)
 
 
 def load_overlay(path: Path | str) -> Overlay:
@@ -137,14 +139,20 @@ def rename_refs(node: A.Node, names: dict[str, str]) -> A.Node:
     return map_expr(node, fn)
 
 
+def is_noise_call(node: A.Node) -> TypeGuard[A.Call]:
+    """Is ``node`` a call with noise frequencies (a ``base_freq`` parameter)? The one place the
+    library reads a function's parameters to size an overlay's features (and so keep its noise
+    periods whole numbers across the View)."""
+    if not isinstance(node, A.Call) or node.func not in FUNCTIONS:
+        return False
+    return any(p.name == "base_freq" for p in FUNCTIONS[node.func].params)
+
+
 def scale_frequencies(node: A.Node, factor: float) -> A.Node:
     """Multiply the frequency parameters of every noise call in ``node`` by ``factor``."""
 
     def fn(n: A.Node) -> A.Node:
-        if not isinstance(n, A.Call) or n.func not in FUNCTIONS:
-            return n
-        params = {p.name for p in FUNCTIONS[n.func].params}
-        if "base_freq" not in params:
+        if not is_noise_call(n):
             return n
         args = []
         seen = set()
@@ -245,7 +253,7 @@ def check_overlay(overlay: Overlay) -> None:
     """Raise :class:`LibraryError` when the overlay's program does not fit the rules."""
     try:
         program = overlay.ast
-    except matloom.ProgramError as exc:
+    except ProgramError as exc:
         raise LibraryError(f"{overlay.path}: {exc}") from None
     if len(program.layers) < 2:
         raise LibraryError(

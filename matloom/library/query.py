@@ -7,46 +7,29 @@ role a nearby noun gives them: "white grout", "gold veins"), finish words, overl
 wood"). Colour names that are usually materials ("copper", "charcoal") count as colours in
 colour context ("in charcoal", "the colour is silver", "gold velvet"); a scale word before an
 overlay sizes the overlay ("small cracks"). Every rule records the tokens it used, so the
-author can report the words nothing used.
-Retrieval then reads the remaining words (see :mod:`matloom.library.retrieval`).
+author can report the words nothing used. The reader's grammar words (clause ends, list joins,
+colour nouns ...) are data: ``[grammar]`` of ``data/words.toml``.
+
+The :class:`Request` is a frozen value: the passes after :func:`read` annotate it, they never
+change it. Retrieval then reads the remaining words (see :mod:`matloom.library.retrieval`).
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence, Set
+from dataclasses import dataclass, field, fields, replace
+from types import MappingProxyType
 
 from matloom.library import colour as C
 from matloom.library.data import Words
 
 _TOKEN_RE = re.compile(r"\d+/\d+|\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[\",.;:!?()/&%]")
-_CLAUSE_END = frozenset({".", ";", ":", "!", "?", "("})
-_HEAD_END = frozenset({":", ".", ";", "(", "with", "featuring", ","})
-_LIST_JOIN = frozenset({",", "and", "or", "/", "&", "with"})
-_COLOUR_SUFFIX = frozenset({"color", "colour", "colored", "coloured", "tone", "toned", "hue"})
-#: tone words that describe a condition rather than a colour when no colour follows
-_CONDITION_TONES = frozenset({"faded", "dirty", "dusty", "burnt", "washed", "earthy"})
-#: words that end the forward search for a colour's role noun ("white marble with gold veins")
-_ROLE_STOP = frozenset({"with", "and", "or", "on", "over"})
-_SCALE_SKIP = frozenset(
-    "shirt dress weight weighted terrain area areas landscape surface surfaces scene map world room space".split()
-)
-#: nouns that say the next words are a colour ("the color of it is silver", "a shade of gold")
-COLOUR_NOUNS = frozenset({"color", "colour", "colors", "colours", "hue", "shade", "tone"})
-_COPULAS = frozenset({"is", "are", "was", "were", "be"})
-#: words before a tone that soften or strengthen it ("slightly darker brown")
-_INTENSITY = {"slightly": 0.5, "somewhat": 0.6, "bit": 0.5, "very": 1.4, "much": 1.3}
-#: basic colour words a specific colour name may come before ("cornflower blue" is one colour)
-_BASIC = C.BASIC | {"violet"}
-#: materials a metal colour name before them does not colour ("steel wool", "gold metal")
-_METALS = frozenset(
-    "metal metals metallic iron tin zinc titanium aluminium aluminum wool chrome steel".split()
-)
 #: the longest head term a "term: definition" request may have
 _TERM_MAX = 5
 
 
-@dataclass
+@dataclass(frozen=True)
 class ColourMention:
     """A colour the prompt names, the words it came from and the role a nearby noun gives it."""
 
@@ -54,12 +37,12 @@ class ColourMention:
     words: str
     index: int
     role: str | None = None
-    #: the colour slot it must go to (set by the author for the colour of an overlay the entry
-    #: already shows: "orange painted metal" colours the entry's paint)
+    #: the colour slot it must go to (the author's fit pass sets it for the colour of an overlay
+    #: the entry already shows: "orange painted metal" colours the entry's paint)
     slot: str | None = None
 
 
-@dataclass
+@dataclass(frozen=True)
 class OverlayMention:
     """A request for an overlay ("mossy"): its name, the word, an amount and a colour."""
 
@@ -68,8 +51,8 @@ class OverlayMention:
     index: int
     amount: float = 0.5
     colour: C.RGB | None = None
-    #: the ColourMention that gave ``colour`` ("orange" in "orange painted")
-    colour_mention: ColourMention | None = None
+    #: the token index of the ColourMention that gave ``colour`` ("orange" in "orange painted")
+    colour_at: int | None = None
     #: feature-size factor of the overlay itself ("small cracks" 0.65, "hairline cracks" 0.45)
     scale: float = 1.0
 
@@ -91,12 +74,16 @@ class Count:
     noun: str
 
 
-@dataclass
+def _words_at(tokens: Sequence[str], negated: Set[int]) -> list[tuple[int, str]]:
+    return [(i, t) for i, t in enumerate(tokens) if t[:1].isalpha() and i not in negated]
+
+
+@dataclass(frozen=True)
 class Request:
     """Everything :func:`read` recognised in one prompt; ``used`` maps token index -> rule."""
 
     prompt: str
-    tokens: list[str]
+    tokens: tuple[str, ...]
     head_end: int = 0
     #: end of the term of a "term: definition" request (0 when there is none)
     term_end: int = 0
@@ -104,6 +91,33 @@ class Request:
     sentence_end: int = 0
     #: overlay words that are material nouns when the request names no other material ("fresh
     #: powder snow", "green moss"): they name the material, not an overlay on another one
+    lone_materials: frozenset[int] = frozenset()
+    negated: frozenset[int] = frozenset()
+    colours: tuple[ColourMention, ...] = ()
+    finishes: tuple[tuple[str, str], ...] = ()
+    overlays: tuple[OverlayMention, ...] = ()
+    scale: float = 1.0
+    scale_words: tuple[str, ...] = ()
+    sizes: tuple[Size, ...] = ()
+    counts: tuple[Count, ...] = ()
+    percents: tuple[float, ...] = ()
+    tones: tuple[tuple[str, str, int], ...] = ()
+    used: Mapping[int, str] = field(default_factory=lambda: MappingProxyType({}))
+
+    def words_at(self) -> list[tuple[int, str]]:
+        """(index, word) of every non-negated word token."""
+        return _words_at(self.tokens, self.negated)
+
+
+@dataclass
+class _Draft:
+    """The request while :class:`_Reader` fills it in (frozen into a :class:`Request`)."""
+
+    prompt: str
+    tokens: list[str]
+    head_end: int = 0
+    term_end: int = 0
+    sentence_end: int = 0
     lone_materials: set[int] = field(default_factory=set)
     negated: set[int] = field(default_factory=set)
     colours: list[ColourMention] = field(default_factory=list)
@@ -118,10 +132,20 @@ class Request:
     used: dict[int, str] = field(default_factory=dict)
 
     def words_at(self) -> list[tuple[int, str]]:
-        """(index, word) of every non-negated word token."""
-        return [
-            (i, t) for i, t in enumerate(self.tokens) if t[:1].isalpha() and i not in self.negated
-        ]
+        return _words_at(self.tokens, self.negated)
+
+    def freeze(self) -> Request:
+        return Request(**{f.name: _frozen(getattr(self, f.name)) for f in fields(self)})
+
+
+def _frozen(value: object) -> object:
+    if isinstance(value, list):
+        return tuple(value)
+    if isinstance(value, set):
+        return frozenset(value)
+    if isinstance(value, dict):
+        return MappingProxyType(dict(value))
+    return value
 
 
 def tokenize(prompt: str) -> list[str]:
@@ -151,7 +175,7 @@ class _Reader:
         self.triggers = triggers
         self.weak = weak
         self.t = tokenize(prompt)
-        self.out = Request(prompt=prompt, tokens=self.t)
+        self.out = _Draft(prompt=prompt, tokens=self.t)
 
     def at(self, i: int) -> str:
         return self.t[i] if 0 <= i < len(self.t) else ""
@@ -164,7 +188,7 @@ class _Reader:
         return i not in self.out.used and i not in self.out.negated
 
     def run(self) -> Request:
-        end = next((i for i, w in enumerate(self.t) if w in _HEAD_END and i > 0), len(self.t))
+        end = next((i for i, w in enumerate(self.t) if w in self.w.head_end and i > 0), len(self.t))
         self.out.head_end = end
         if self.at(end) == ":" and end <= _TERM_MAX:
             self.out.term_end = end
@@ -179,7 +203,7 @@ class _Reader:
         self.numbers()
         self.tones()
         self.lone_materials()
-        return self.out
+        return self.out.freeze()
 
     def is_material(self, word: str) -> bool:
         """Is ``word`` (or its singular) a material noun ("rocks", "tiles")?"""
@@ -199,7 +223,7 @@ class _Reader:
                 continue
             self.use("negation", i)
             for j in range(i + 1, min(i + 4, len(self.t))):
-                if self.t[j] in _CLAUSE_END or self.t[j] in {",", "but", "and"}:
+                if self.t[j] in self.w.clause_end or self.t[j] in {",", "but", "and"}:
                     break
                 self.out.negated.add(j)
 
@@ -210,7 +234,8 @@ class _Reader:
 
     def colours(self) -> None:
         i = 0
-        found: dict[str, ColourMention] = {}
+        colours = self.out.colours
+        found: dict[str, int] = {}  # words -> position in ``colours``
         while i < len(self.t):
             span = self.colour_at(i)
             if span is None:
@@ -223,15 +248,17 @@ class _Reader:
             role = self.role_near(start, end)
             self.use("colour", *range(start, end))
             alternative = self.at(start - 1) in {"or", "like"}
-            if alternative and self.out.colours:
-                prev = self.out.colours[-1]
-                prev.rgb = C.mix(prev.rgb, rgb, 0.5)
-                prev.words = f"{prev.words} ~ {words}"
+            if alternative and colours:
+                prev = colours[-1]
+                colours[-1] = replace(
+                    prev, rgb=C.mix(prev.rgb, rgb, 0.5), words=f"{prev.words} ~ {words}"
+                )
             elif words in found:
-                found[words].role = found[words].role or role
+                k = found[words]
+                colours[k] = replace(colours[k], role=colours[k].role or role)
             else:
-                found[words] = ColourMention(rgb, words, start, role)
-                self.out.colours.append(found[words])
+                found[words] = len(colours)
+                colours.append(ColourMention(rgb, words, start, role))
             i = end
 
     def colour_at(self, i: int) -> tuple[int, int, C.RGB, str] | None:
@@ -242,14 +269,14 @@ class _Reader:
         mods: list[str] = []
         j = i
         strength = 1.0
-        if self.at(j) in _INTENSITY and self.at(j + 1) in self.w.tones:
-            strength = _INTENSITY[self.at(j)]
+        if self.at(j) in self.w.intensity and self.at(j + 1) in self.w.tones:
+            strength = self.w.intensity[self.at(j)]
             mods.append(self.at(j))
             j += 1
         while self.at(j) in self.w.tones and len(mods) < 3:
             mods.append(self.at(j))
             j += 1
-        tonal = [m for m in mods if m not in _CONDITION_TONES]
+        tonal = [m for m in mods if m not in self.w.condition_tones]
         base = self.base_colour_at(j, modified=bool(tonal))
         if base is None:
             return None
@@ -283,9 +310,10 @@ class _Reader:
         if rgb is None and w.endswith("s") and self.w.colour(w[:-1]) is not None:
             near = [self.at(k) for k in (j - 2, j + 2)]
             listed = any(self.w.colour(x) or self.w.colour(x[:-1] or "-") for x in near if x)
-            if listed and (self.at(j - 1) in _LIST_JOIN or self.at(j + 1) in _LIST_JOIN):
+            join = self.w.list_join
+            if listed and (self.at(j - 1) in join or self.at(j + 1) in join):
                 return j + 1, self.w.colour(w[:-1]), w[:-1]  # type: ignore[return-value]
-        if rgb is None or w in {"dark", "light", "pale", "deep"}:
+        if rgb is None or w in self.w.tone_only:
             return None
         if w in self.w.materialish and not modified and not self.colour_context(j):
             return None
@@ -294,7 +322,8 @@ class _Reader:
     def same_colour(self, name: str, nxt: str) -> bool:
         """Is ``nxt`` a basic colour word that only names the family of the specific colour
         ``name`` ("cornflower blue", "pearl white"), not a second colour ("gold black")?"""
-        if name in _BASIC or nxt not in _BASIC or nxt == name:
+        families = self.w.families
+        if name in families or nxt not in families or nxt == name:
             return False
         a, b = self.w.colour(name), self.w.colour(nxt)
         if a is None or b is None:
@@ -305,37 +334,36 @@ class _Reader:
 
     def colour_context(self, j: int) -> bool:
         """Is the material-ish word at ``j`` used as a colour ("slate grey", "copper colour")?"""
+        w = self.w
         nxt, prev = self.at(j + 1), self.at(j - 1)
-        if nxt in _COLOUR_SUFFIX or self.colour_word_at(j + 1):
+        if nxt in w.colour_suffix or self.colour_word_at(j + 1):
             return True
-        if self.w.roles.get(nxt, "none") != "none" and nxt not in {"fabric", "body", "ground"}:
+        if w.roles.get(nxt, "none") != "none" and nxt not in w.plain_roles:
             return True
-        if nxt in self.w.carriers or (nxt in self.triggers and nxt not in self.w.materials):
+        if nxt in w.carriers or (nxt in self.triggers and nxt not in w.materials):
             return True
-        if prev in _LIST_JOIN and (
-            self.colour_word_at(j - 2) or self.at(j - 2) in self.w.materialish
-        ):
+        if prev in w.list_join and (self.colour_word_at(j - 2) or self.at(j - 2) in w.materialish):
             return True
         if nxt in {",", "and", "or", "/"} and self.colour_word_at(j + 2):
             return True
-        w = self.at(j)
-        if w in self.w.metal_colours and nxt in self.w.materials and nxt not in _METALS:
+        word = self.at(j)
+        if word in w.metal_colours and nxt in w.materials and nxt not in w.metals:
             return True  # "gold velvet", "silver fabric": a metal's colour on another material
-        if prev == "in" and (w in self.w.metal_colours or w not in self.w.materials):
+        if prev == "in" and (word in w.metal_colours or word not in w.materials):
             return True  # "in charcoal and cream", "fish scales in copper"; not "in slate"
-        if prev in _COLOUR_SUFFIX or prev in COLOUR_NOUNS:
+        if prev in w.colour_suffix or prev in w.colour_nouns:
             return True  # "coloured silver", "shade gold"
-        if prev == ":" and self.at(j - 2) in COLOUR_NOUNS:
+        if prev == ":" and self.at(j - 2) in w.colour_nouns:
             return True  # "colour: gold"
-        if prev == "of" and self.at(j - 2) in COLOUR_NOUNS:
+        if prev == "of" and self.at(j - 2) in w.colour_nouns:
             return True  # "a shade of gold"
-        if prev in _COPULAS:  # "the color of it is silver"
+        if prev in w.copulas:  # "the color of it is silver"
             for k in range(j - 2, max(j - 8, -1), -1):
-                if self.at(k) in _CLAUSE_END or self.at(k) == ",":
+                if self.at(k) in w.clause_end or self.at(k) == ",":
                     break
-                if self.at(k) in COLOUR_NOUNS:
+                if self.at(k) in w.colour_nouns:
                     return True
-        return nxt == "in" and self.at(j + 2) in _COLOUR_SUFFIX
+        return nxt == "in" and self.at(j + 2) in w.colour_suffix
 
     def role_near(self, start: int, end: int) -> str | None:
         k = end  # the forward window is 4 words, not counting a list of colours after this one
@@ -348,7 +376,11 @@ class _Reader:
         for span in (forward, range(start - 1, max(start - 7, -1), -1)):
             for k in span:
                 w = self.t[k]
-                if w in _CLAUSE_END or w == "," or (span is forward and w in _ROLE_STOP):
+                if (
+                    w in self.w.clause_end
+                    or w == ","
+                    or (span is forward and w in self.w.role_stop)
+                ):
                     break
                 if w in self.w.roles:
                     role = self.w.roles[w]
@@ -377,20 +409,23 @@ class _Reader:
             if w in self.w.amounts and w not in self.w.scale and self.free(k):
                 amount = self.w.amounts[w]
                 self.use("amount", k)
-        mention = None
-        for m in reversed(self.out.colours):
-            if i - 2 <= m.index < i:
-                mention, m.role = m, "overlay"
+        colours, mention = self.out.colours, None
+        for k in range(len(colours) - 1, -1, -1):
+            if i - 2 <= colours[k].index < i:
+                mention = colours[k] = replace(colours[k], role="overlay")
                 break
         colour = mention.rgb if mention else None
+        at = mention.index if mention else None
         self.use("overlay", *range(i, i + n))
-        for existing in self.out.overlays:
+        overlays = self.out.overlays
+        for k, existing in enumerate(overlays):
             if existing.name == name:
-                existing.amount = max(existing.amount, amount)
+                merged = replace(existing, amount=max(existing.amount, amount))
                 if existing.colour is None:
-                    existing.colour, existing.colour_mention = colour, mention
+                    merged = replace(merged, colour=colour, colour_at=at)
+                overlays[k] = merged
                 return
-        self.out.overlays.append(OverlayMention(name, phrase, i, amount, colour, mention))
+        overlays.append(OverlayMention(name, phrase, i, amount, colour, at))
 
     # ------------------------------------------------------------------ finishes
     def finishes(self) -> None:
@@ -419,16 +454,17 @@ class _Reader:
                 ),
                 "",
             )
-            if not target or target in _SCALE_SKIP or target in self.w.stop_words:
+            if not target or target in self.w.scale_skip or target in self.w.stop_words:
                 continue
             sized = self.t.index(target, i + 1)
             if (w, sized) in seen:
                 self.use("scale", i)
                 continue
             seen.add((w, sized))
-            overlay = self.overlay_at(sized)
-            if overlay is not None:  # "small cracks": the overlay's features, not the View
-                overlay.scale *= self.w.scale[w]
+            k = self.overlay_at(sized)
+            if k is not None:  # "small cracks": the overlay's features, not the View
+                overlay = self.out.overlays[k]
+                self.out.overlays[k] = replace(overlay, scale=overlay.scale * self.w.scale[w])
                 self.use("scale", i)
                 continue
             factors.append(self.w.scale[w])
@@ -440,11 +476,11 @@ class _Reader:
                 prod *= f
             self.out.scale = prod ** (1.0 / len(factors))
 
-    def overlay_at(self, k: int) -> OverlayMention | None:
-        """The overlay mention whose words include token ``k``."""
-        for m in self.out.overlays:
+    def overlay_at(self, k: int) -> int | None:
+        """The position of the overlay mention whose words include token ``k``."""
+        for n, m in enumerate(self.out.overlays):
             if m.index <= k < m.index + len(m.word.split()):
-                return m
+                return n
         return None
 
     def number(self, tok: str) -> float | None:

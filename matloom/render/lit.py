@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +31,9 @@ from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
 from matloom.render import lit_model as M
 from matloom.render.preview import DEFAULT_LIGHT, Light, pick_shader
 from matloom.vocab.layout import LAYOUT
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 #: The maps the lit shading reads, in the kernel's order (every array field but the height,
 #: which shows through the normal and AO derived from it).
@@ -223,22 +227,29 @@ def available_backends() -> list[str]:
     return sorted(name for name in _SHADERS if name != "numba" or _numba_importable())
 
 
-def _resolve_backend(backend: str) -> str:
+def _resolve_backend(backend: str, texels: int = 0, session: Session | None = None) -> str:
     """As :func:`matloom.render.preview.shade` resolves it (:func:`pick_shader`)."""
-    return pick_shader(backend, _SHADERS, _numba_importable)
+    return pick_shader(backend, _SHADERS, _numba_importable, texels=texels, session=session)
 
 
 def shade_lit(
-    maps: MaterialMaps, *, key_light: Light | None = None, tile: int = 1, backend: str = "auto"
+    maps: MaterialMaps,
+    *,
+    key_light: Light | None = None,
+    tile: int = 1,
+    backend: str = "auto",
+    session: Session | None = None,
 ) -> np.ndarray:
     """Shade ``maps`` in the lit studio; uint8 (tile H, tile W, 3) sRGB, like
     :func:`~matloom.render.preview.shade`.
 
     ``key_light`` replaces the studio's grazing key light (azimuth 135, elevation 25 degrees).
     ``tile`` > 1 shades the maps repeated n x n as one surface (the camera's view of the studio
-    spans the whole image, so the tiling adds no seams of its own). ``backend``: ``auto``,
-    ``numba`` or ``numpy`` (the same formulas). Raises ValueError on mis-shaped maps.
+    spans the whole image, so the tiling adds no seams of its own). ``backend``: ``auto``
+    (``session``'s choice), ``numba`` or ``numpy`` (the same formulas). Raises ValueError on
+    mis-shaped maps.
     """
     if tile < 1:
         raise ValueError(f"tile count must be >= 1, got {tile}")
-    return _SHADERS[_resolve_backend(backend)](_inputs(maps), _lights(key_light), tile)
+    shader = _resolve_backend(backend, int(np.size(maps.alpha)) * tile * tile, session)
+    return _SHADERS[shader](_inputs(maps), _lights(key_light), tile)

@@ -6,12 +6,14 @@ emissive and a transmission / coverage mix over 0.5 grey. :func:`shade` applies 
 shading to a :class:`~matloom.engine.maps.MaterialMaps`. The seed sweep calls it ~1000 times per
 prompt, so it has two implementations with the same results:
 
-* ``numba`` (used when numba is loaded or asked for; kernels in
+* ``numba`` (used when asked for, or when the session's policy picks it: numba loaded or a
+  large image, :meth:`matloom.engine.session.Session.choose_shader`; kernels in
   :mod:`matloom.engine.kernels.shade_numba`): per-texel kernels, no full-size temporaries. The
   three pow-like steps are vectorised numpy calls between the kernels (numpy's SIMD ``pow`` is
   several times faster than a scalar libm call in a loop), and so is the anisotropy rotation
   (only when some angle is not 0; it is the numpy path's own function, so both agree).
-* ``numpy`` (fallback without numba, or ``MATLOOM_BACKEND=numpy``): the formulas on whole arrays.
+* ``numpy`` (a short command's, the fallback without numba, or ``MATLOOM_BACKEND=numpy``): the
+  formulas on whole arrays.
 
 Precision: the maps are float32 (the reference blends them in float64, a ~1e-7 relative
 difference). Both implementations shade in float64 as the reference does; the numba path only
@@ -40,15 +42,18 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from matloom.engine.colour import linear_to_srgb
 from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
 from matloom.vocab.layout import LAYOUT
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 #: Composited maps only other maps are derived from (height -> normal, AO).
 _RELIEF_SOURCES = frozenset(LAYOUT[d.source].field for d in LAYOUT.derived)
@@ -93,14 +98,34 @@ class Light:
 DEFAULT_LIGHT: Light = Light()
 
 
-def _light_and_half_vectors(light: Light | None) -> tuple[np.ndarray, np.ndarray]:
-    """Return (L, H) as float64 3-vectors, with H = normalize(L + V) and V = (0, 0, 1)."""
-    direction = np.array((light or DEFAULT_LIGHT).direction(), dtype=np.float64)
-    half = direction + np.array([0.0, 0.0, 1.0])
-    norm = math.sqrt(half.dot(half))  # what np.linalg.norm computes, without importing linalg
-    # A light straight from below (L = -V) has no half vector; any unit H is as good as another.
-    half = half / norm if norm > 0.0 else np.array([0.0, 0.0, 1.0])
-    return direction, half
+@dataclass(frozen=True, eq=False)
+class ShadeParams:
+    """The flat preview's shading parameters for one light: the light, its unit vector L
+    (``direction``) and the half vector H = normalize(L + V), V = (0, 0, 1), float64 3-vectors.
+
+    Public so that the seed sweep (:func:`matloom.engine.schedules.sweep.run_sweep`, an engine
+    schedule whose float32 kernel shades its candidates) shades with the same vectors, and
+    previews what its kernel cannot take with :meth:`shade`.
+    """
+
+    light: Light
+    direction: np.ndarray
+    half: np.ndarray
+
+    @classmethod
+    def of(cls, light: Light | None = None) -> ShadeParams:
+        """The parameters of ``light`` (default: the reference's light)."""
+        light = light or DEFAULT_LIGHT
+        direction = np.array(light.direction(), dtype=np.float64)
+        half = direction + np.array([0.0, 0.0, 1.0])
+        norm = math.sqrt(half.dot(half))  # what np.linalg.norm computes, without linalg
+        # A light straight from below (L = -V) has no half vector; any unit H is as good.
+        half = half / norm if norm > 0.0 else np.array([0.0, 0.0, 1.0])
+        return cls(light, direction, half)
+
+    def shade(self, maps: MaterialMaps, backend: str = "auto") -> np.ndarray:
+        """:func:`shade` of ``maps`` with this light."""
+        return shade(maps, light=self.light, backend=backend)
 
 
 _SRGB_EXPONENT = 1.0 / 2.4
@@ -291,42 +316,61 @@ def available_shaders() -> list[str]:
     return sorted(name for name in _SHADERS if name != "numba" or _numba_importable())
 
 
-def pick_shader(backend: str, names: Collection[str], numba_ok: Callable[[], bool]) -> str:
+def pick_shader(
+    backend: str,
+    names: Collection[str],
+    numba_ok: Callable[[], bool],
+    *,
+    texels: int = 0,
+    session: Session | None = None,
+) -> str:
     """The shader to use among ``names`` (``numba`` counts only when ``numba_ok()``): ``auto``
-    -> $MATLOOM_BACKEND if it names one of them, else numba when it is installed, else numpy;
-    an explicit name must be available (ValueError otherwise). Shared by every preview layout.
+    -> the session's choice for an image of ``texels`` texels
+    (:meth:`~matloom.engine.session.Session.choose_shader`: numpy for a short command, numba
+    where numba is loaded, or the image is large, and its kernels are usable), numpy where
+    numba is not installed; an explicit name must be available (ValueError otherwise). Shared
+    by every preview layout. ``session`` defaults to the process's default session.
 
-    ``auto`` never depends on what this process happens to have loaded or compiled: a preview
-    made while the engine's kernels still compile (the numpy evaluation path of a cold start)
-    has the same bytes as one made later.
+    The numpy and numba shaders may differ by one level on rare texels (see the module
+    docstring), so ``auto``'s preview of a short command (numpy) and of a warm process (numba)
+    may differ there.
     """
     if backend == "auto":
-        wanted = os.environ.get("MATLOOM_BACKEND", "auto")
-        if wanted in names:
-            backend = wanted
-        else:
-            return "numba" if numba_ok() else "numpy"
-    have = sorted(name for name in names if name != "numba" or numba_ok())
-    if backend not in have:
+        from matloom.engine.session import default_session
+
+        backend = (session or default_session()).choose_shader("auto", texels)
+        if backend not in names or (backend == "numba" and not numba_ok()):
+            return "numpy"
+        return backend
+    if backend not in names or (backend == "numba" and not numba_ok()):
+        have = sorted(name for name in names if name != "numba" or numba_ok())
         raise ValueError(f"unknown or unavailable shader {backend!r}; have {have}")
     return backend
 
 
-def _resolve_backend(backend: str) -> str:
-    return pick_shader(backend, _SHADERS, _numba_importable)
+def _resolve_backend(backend: str, texels: int = 0, session: Session | None = None) -> str:
+    return pick_shader(backend, _SHADERS, _numba_importable, texels=texels, session=session)
 
 
-def shade(maps: MaterialMaps, *, light: Light | None = None, backend: str = "auto") -> np.ndarray:
+def shade(
+    maps: MaterialMaps,
+    *,
+    light: Light | None = None,
+    backend: str = "auto",
+    session: Session | None = None,
+) -> np.ndarray:
     """Shade ``maps`` with the reference's fixed-light preview; uint8 (H, W, 3) RGB.
 
     ``light`` defaults to the reference's light normalize(0.5, 0.5, 1); any other light only
     changes L (and the half vector), never the formulas. The result does not depend on the
     maps' View: the reference previews whatever window the maps were evaluated on. ``backend``
-    is ``auto``, ``numba`` or ``numpy`` (identical results). Never raises on non-finite values
-    (see the module docstring); raises ValueError on mis-shaped maps.
+    is ``auto`` (``session``'s choice, :func:`pick_shader`), ``numba`` or ``numpy`` (the same
+    images but for one level on rare texels). Never raises on non-finite values (see the module
+    docstring); raises ValueError on mis-shaped maps.
     """
-    direction, half = _light_and_half_vectors(light)
-    return _SHADERS[_resolve_backend(backend)](_kernel_inputs(maps), direction, half)
+    params = ShadeParams.of(light)
+    shader = _resolve_backend(backend, int(np.size(maps.alpha)), session)
+    return _SHADERS[shader](_kernel_inputs(maps), params.direction, params.half)
 
 
 def tile_image(img: np.ndarray, n: int = 2) -> np.ndarray:

@@ -58,6 +58,9 @@ _UNARY = {
     "Cos": "cosine of expr in radians",
 }
 
+#: The unary functions that repeat: their argument's cycle (``ParamSpec.cycle``).
+_CYCLES = {"Sin": 2 * math.pi, "Cos": 2 * math.pi}
+
 _BINARY = {
     "Add": ("+", ("left", "right"), "sum; prefer the `+` operator"),
     "Sub": ("-", ("minuend", "subtrahend"), "difference; prefer the `-` operator"),
@@ -81,9 +84,8 @@ def _math_specs() -> list[FunctionSpec]:
         ),
     ]
     for name, doc in _UNARY.items():
-        specs.append(
-            FunctionSpec(name, "math", doc, f"{name}(X() - 0.5)", (_expr("expr", "input field"),))
-        )
+        expr = P("expr", Kind.EXPR, "input field", cycle=_CYCLES.get(name))
+        specs.append(FunctionSpec(name, "math", doc, f"{name}(X() - 0.5)", (expr,)))
     specs.append(
         FunctionSpec(
             "Log",
@@ -440,7 +442,15 @@ def _transform_specs() -> list[FunctionSpec]:
             "Rotate(Bricks(), 45)",
             (
                 body,
-                P("degrees", Kind.FLOAT, "angle in degrees", 0.0, search=(-360, 360), field=True),
+                P(
+                    "degrees",
+                    Kind.FLOAT,
+                    "angle in degrees",
+                    0.0,
+                    search=(-360, 360),
+                    field=True,
+                    cycle=360.0,
+                ),
             ),
         ),
     ]

@@ -16,8 +16,10 @@ from matloom.vocab.spec import REQUIRED, FunctionSpec, Kind, ParamSpec, PrintSty
 _V2 = 2
 
 
-def _field(name: str, doc: str, default: Any = REQUIRED) -> ParamSpec:
-    return ParamSpec(name, Kind.EXPR, doc, default)
+def _field(
+    name: str, doc: str, default: Any = REQUIRED, cycle: float | str | None = None
+) -> ParamSpec:
+    return ParamSpec(name, Kind.EXPR, doc, default, cycle=cycle)
 
 
 def _seed() -> ParamSpec:
@@ -52,7 +54,7 @@ def math_v2_specs() -> list[FunctionSpec]:
             "fractional part x - Floor(x), in [0, 1) also for negative x (Fract(-0.25) = "
             "0.75); a sawtooth that repeats every unit; NaN for infinite x",
             "Fract(X() * 4)",
-            (_field("x", "input field"),),
+            (_field("x", "input field", cycle=1.0),),
             since=_V2,
         ),
         FunctionSpec(
@@ -62,7 +64,7 @@ def math_v2_specs() -> list[FunctionSpec]:
             "(Mod(-1, 3) = 2, Mod(1, -3) = -2); 0 where m is exactly 0, like `/`; NaN where x or "
             "m is infinite",
             "Mod(X() * 5, 2)",
-            (_field("x", "dividend"), _field("m", "divisor: the period")),
+            (_field("x", "dividend", cycle="m"), _field("m", "divisor: the period")),
             since=_V2,
         ),
         FunctionSpec(
@@ -123,8 +125,8 @@ def math_v2_specs() -> list[FunctionSpec]:
             "cells per unit); NaN where x or y is NaN, infinite or beyond +-9.2e18",
             "Hash(X() * 8, Y() * 8, seed=5)",
             (
-                _field("x", "cell coordinate along x"),
-                _field("y", "cell coordinate along y (0: one row of cells)", 0.0),
+                _field("x", "cell coordinate along x", cycle=1.0),
+                _field("y", "cell coordinate along y (0: one row of cells)", 0.0, cycle=1.0),
                 _seed(),
             ),
             print_style=PrintStyle.WRITTEN_KEYWORDS,

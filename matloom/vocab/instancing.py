@@ -1,7 +1,7 @@
 """Registry entry of ``Tile``: instancing of a motif over a grid of cells (language 2).
 
 They join :data:`matloom.vocab.functions.FUNCTIONS`; the engine's rule is
-:func:`matloom.engine.ops.fields.tile` and the per-instance geometry lives in
+:func:`matloom.engine.rules.fields.tile` and the per-instance geometry lives in
 :mod:`matloom.engine.kernels.tile`.
 """
 

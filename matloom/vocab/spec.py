@@ -100,6 +100,12 @@ class ParamSpec:
     #: Bricks' ``("output", ("cell_value",))``. For other values the seed has no effect, and
     #: canonicalisation draws none (``matloom.lang.seeds.uses_seed``). None: always used.
     used_when: tuple[str, tuple[str, ...]] | None = None
+    #: The parameter's cycle: the change of its value after which the function gives the same
+    #: result again (Sin's and Cos' 2 pi, Fract's 1, Hash's unit cells, Rotate's 360 degrees), or
+    #: the name of the parameter whose value it is (Mod's ``x`` repeats every ``m``); None: not
+    #: periodic. The op table's period rules read it (:mod:`matloom.ops.period`): an argument
+    #: with a cycle repeats with the View where it advances by whole cycles per View period.
+    cycle: float | str | None = None
 
     @property
     def required(self) -> bool:

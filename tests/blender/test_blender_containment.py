@@ -24,7 +24,7 @@ from matloom.blender.job import (
     check_source,
     load_source,
 )
-from matloom.io.export import export_maps
+from matloom.runtime.export import export_maps
 
 SECRET = b"-----BEGIN OPENSSH PRIVATE KEY-----\nnot for a .blend\n"
 PROGRAM = "Material(Layer(1).basecolor(200, 30, 30).roughness(X()))\n"

@@ -155,7 +155,7 @@ def test_a_set_up_that_runs_too_long_is_stopped_with_its_process_group(
 ) -> None:
     # what the demo does after waiting SETUP_WAIT_S: its own background compiler (a session
     # leader, with a helper in its group) is stopped, and its lock released
-    from matloom.engine.kernels import warmup
+    from matloom.runtime import warmup
 
     leader = subprocess.Popen(  # stands in for the compiler and the helper it starts
         [sys.executable, "-c", "import subprocess, sys, time; subprocess.Popen([sys.executable,"

@@ -52,7 +52,7 @@ def test_every_kernel_is_stamped_with_its_abi_hash() -> None:
 
 
 def test_kernels_hash_is_part_of_the_warmup_stamp(monkeypatch: pytest.MonkeyPatch) -> None:
-    from matloom.engine.kernels import warmup
+    from matloom.runtime import warmup
 
     key = warmup.stamp_key()
     monkeypatch.setattr(abi, "kernels_hash", lambda: "an edited kernel")

@@ -12,6 +12,7 @@ import pytest
 
 from matloom.engine.backends import Backend, available_backends, get_backend, noise_kernels
 from matloom.engine.kernels import noise, noise_c, noise_numpy
+from matloom.engine.session import Session
 
 FBM: dict[str, Any] = dict(octaves=3, lacunarity=2.0, gain=0.5, freq_x=5.0, freq_y=4.0)
 WORLEY: dict[str, Any] = dict(distance="manhattan", combination="F2-F1", freq_x=3.0, freq_y=2.0)
@@ -43,12 +44,17 @@ def test_every_backend_fills_every_kernel() -> None:
 
 
 def test_numpy_backend_runs_the_c_loops_where_built(monkeypatch: pytest.MonkeyPatch) -> None:
+    """MATLOOM_PURE_NUMPY=1 is read when a session is made: that session's numpy backend runs
+    the pure-numpy loops."""
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    loops = get_backend("numpy").fbm_loops
-    assert loops is not None
+    loops = Session.from_env().get_backend("numpy").fbm_loops
+    assert loops is not None and loops is get_backend("numpy").fbm_loops
     assert loops().name == ("c" if noise_c.available() else "numpy")
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    assert loops() is noise_numpy.FBM_LOOPS
+    assert loops().name == ("c" if noise_c.available() else "numpy")  # a made session keeps it
+    pure = Session.from_env().get_backend("numpy").fbm_loops
+    assert pure is not None and pure() is noise_numpy.FBM_LOOPS
+    assert get_backend("numpy", pure_numpy=True).fbm_loops is pure
 
 
 class _Recorder:

@@ -119,8 +119,8 @@ def test_each_channel_reaches_its_own_map_through_the_kernel(name: str) -> None:
     no other one, and the kernel's maps equal the numpy compositing's bit for bit."""
     with np.errstate(all="ignore"):
         ours, without = _kernel_maps(_layers(name)), _kernel_maps(_layers(None))
-        reference = composite._allocate_maps(W, H)
-        composite._composite_band(_layers(name), reference, slice(0, H))
+        reference = composite.allocate_maps(W, H)
+        composite.composite_band(_layers(name), reference, slice(0, H))
     for field_name in reference:
         assert np.array_equal(_bits(ours[field_name]), _bits(reference[field_name])), field_name
     own = LAYOUT[name].field

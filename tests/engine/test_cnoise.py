@@ -23,6 +23,8 @@ from hypothesis import strategies as st
 
 from matloom.engine import backends
 from matloom.engine.kernels import noise, noise_c, noise_numpy, opensimplex
+from matloom.engine.session import Session
+from matloom.ops import periodic
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE: dict[str, Any] = dict(
@@ -257,8 +259,8 @@ def test_single_octave_matches_opensimplex_package() -> None:
 def test_constants_match_python_module() -> None:
     from matloom.engine.kernels import _cnoise
 
-    assert _cnoise.STRETCH_CONSTANT2 == opensimplex.STRETCH_CONSTANT2
-    assert _cnoise.SQUISH_CONSTANT2 == opensimplex.SQUISH_CONSTANT2
+    assert _cnoise.STRETCH_CONSTANT2 == periodic.STRETCH_CONSTANT2
+    assert _cnoise.SQUISH_CONSTANT2 == periodic.SQUISH_CONSTANT2
     assert _cnoise.NORM_CONSTANT2 == opensimplex.NORM_CONSTANT2
     assert _cnoise.FBM_SCALE == opensimplex.FBM_SCALE
 
@@ -267,8 +269,8 @@ def test_constants_match_python_module() -> None:
 
 
 def test_numpy_backend_chooses_c_unless_pure_numpy(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The numpy backend runs the C loops unless MATLOOM_PURE_NUMPY=1 (read at every call), for
-    single fields and seed batches alike; same numbers either way."""
+    """The numpy backend runs the C loops unless MATLOOM_PURE_NUMPY=1 (read when a session is
+    made), for single fields and seed batches alike; same numbers either way."""
     calls: list[int] = []
     real = noise_c.FBM_LOOPS
 
@@ -277,31 +279,30 @@ def test_numpy_backend_chooses_c_unless_pure_numpy(monkeypatch: pytest.MonkeyPat
         real.separable(*args)
 
     monkeypatch.setattr(noise_c, "FBM_LOOPS", replace(real, separable=spy))
-    numpy_backend = backends.get_backend("numpy")
     x, y = axes(23, 17, np.float32)
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
+    numpy_backend = Session.from_env().get_backend("numpy")
     assert numpy_backend.fbm_loops is not None and numpy_backend.fbm_loops().name == "c"
     with_c = numpy_backend.fbm(x, y, **BASE)
     assert calls == [1]
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    assert numpy_backend.fbm_loops().name == "numpy"
-    pure = numpy_backend.fbm(x, y, **BASE)
+    pure_backend = Session.from_env().get_backend("numpy")
+    assert pure_backend.fbm_loops is not None and pure_backend.fbm_loops().name == "numpy"
+    pure = pure_backend.fbm(x, y, **BASE)
     assert calls == [1]
     assert_bit_identical(with_c, pure)
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "0")
     kw = {k: v for k, v in BASE.items() if k != "seed"}
-    numpy_backend.fbm_seed_batch(x, y, seeds=[1, 2], **kw)
+    Session.from_env().get_backend("numpy").fbm_seed_batch(x, y, seeds=[1, 2], **kw)
     assert calls == [1, 1, 1]
 
 
-def test_seed_batch_through_c_matches_numpy(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_seed_batch_through_c_matches_numpy() -> None:
     x, y = axes(19, 11, np.float32)
     kw = {k: v for k, v in BASE.items() if k != "seed"}
-    numpy_backend = backends.get_backend("numpy")
-    monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    fast = numpy_backend.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
-    monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    pure = numpy_backend.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
+    fast = backends.get_backend("numpy").fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
+    pure_backend = backends.get_backend("numpy", pure_numpy=True)
+    pure = pure_backend.fbm_seed_batch(x, y, seeds=[3, -4, 2**64], **kw)
     assert fast.dtype == pure.dtype == np.float32
     assert np.array_equal(fast, pure)
 

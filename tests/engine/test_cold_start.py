@@ -1,4 +1,4 @@
-"""First-run kernel compilation: readiness stamp and lock, the CLI's cold-start policy, the
+"""First-run kernel compilation: readiness stamp and lock, the CLI session's cold start, the
 compile progress messages, and (slow) the whole flow from an empty numba cache."""
 
 from __future__ import annotations
@@ -8,13 +8,15 @@ import os
 import signal
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from matloom.cli.progress import COMPILING, KernelProgress
-from matloom.engine import backends
-from matloom.engine.kernels import compile_report, warmup
+from matloom.engine.session import Session, running, use_session
+from matloom.runtime import warmup
+from matloom.runtime.cold_start import BACKGROUND_ENV, BackgroundCompile, background_compile
 
 ROOT = Path(__file__).resolve().parents[2]
 TILE = ROOT / "tests" / "data" / "parity" / "tile.mat"
@@ -51,12 +53,15 @@ def test_stamp_key_follows_code_generation_settings(monkeypatch: pytest.MonkeyPa
     assert warmup.stamp_key() != key
 
 
-def test_background_compiler_can_be_switched_off(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setenv(warmup.BACKGROUND_ENV, "0")
-    assert warmup.ensure_background(tmp_path) == warmup.WarmupState(ready=False)
-    assert not (tmp_path / warmup.LOCK_NAME).exists()
+def test_background_compiler_can_be_switched_off(monkeypatch: pytest.MonkeyPatch) -> None:
+    """$MATLOOM_BACKGROUND_COMPILE=0: the CLI's session gets no cold start (numba compiles on
+    first use); the variable is read when the session is made."""
+    monkeypatch.setenv(BACKGROUND_ENV, "0")
+    assert background_compile() is None
+    assert background_compile({}) is not None or os.name != "posix"
+    monkeypatch.delenv(BACKGROUND_ENV)
+    if os.name == "posix":
+        assert isinstance(background_compile(), BackgroundCompile)
 
 
 class _Recorder:
@@ -74,34 +79,35 @@ class _Recorder:
 
 
 @pytest.fixture()
-def recorder(monkeypatch: pytest.MonkeyPatch) -> _Recorder:
+def recorder() -> Iterator[_Recorder]:
+    """A recorder, the reporter of the default session during the test."""
     rec = _Recorder()
-    previous = compile_report.set_reporter(rec)
-    yield rec
-    compile_report.set_reporter(previous)
+    with use_session(Session(reporter=rec)):
+        yield rec
 
 
-def test_cold_start_policy_evaluates_on_numpy_while_the_kernels_compile(
-    monkeypatch: pytest.MonkeyPatch, recorder: _Recorder
+def test_cold_start_evaluates_on_numpy_while_the_kernels_compile(
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     pytest.importorskip("numba")
     states = [warmup.WarmupState(False, running=True, done=1, total=6)]
     monkeypatch.setattr(warmup, "ensure_background", lambda: states[0])
-    monkeypatch.setattr(backends, "_ready", [False])
     big = 1024 * 1024
-    assert backends.choose_backend("auto", big).name == "numba"  # library default: compile
-    assert recorder.events == []
-    previous = backends.set_cold_start("background")
-    try:
-        assert backends.choose_backend("auto", big).name == "numpy"
-        assert recorder.events == [("background", "1/6")]
-        assert backends.choose_backend("numba", big).name == "numba"  # asked for: no fallback
-        states[0] = warmup.WarmupState(ready=True)
-        assert backends.choose_backend("auto", big).name == "numba"
-    finally:
-        backends.set_cold_start(previous)
-    with pytest.raises(ValueError, match="cold-start policy"):
-        backends.set_cold_start("later")
+    rec = _Recorder()
+    library = Session(reporter=rec)  # the library's default: numba compiles on first use
+    assert library.choose_backend("auto", big).name == "numba"
+    assert rec.events == []
+    cli = Session(reporter=rec, cold_start=BackgroundCompile())
+    assert cli.choose_backend("auto", big).name == "numpy"
+    assert cli.choose_shader("auto", big) == "numpy"
+    assert rec.events == [("background", "1/6"), ("background", "1/6")]
+    assert cli.choose_backend("numba", big).name == "numba"  # asked for: no fallback
+    assert cli.choose_shader("numba", big) == "numba"
+    states[0] = warmup.WarmupState(ready=True)
+    assert cli.choose_backend("auto", big).name == "numba"
+    assert cli.kernels_ready
+    states[0] = warmup.WarmupState(False, running=True)  # asked until ready, not after
+    assert cli.choose_backend("auto", big).name == "numba"
 
 
 def test_compile_events_of_matloom_kernels_reach_the_reporter(recorder: _Recorder) -> None:
@@ -121,6 +127,11 @@ def test_compile_events_of_matloom_kernels_reach_the_reporter(recorder: _Recorde
         ("compiling", "example.ours"),
         ("compiled", "example.ours"),
     ]
+    evaluating = _Recorder()  # the session evaluating in this thread hears, not the default
+    with running(Session(reporter=evaluating)):
+        numba.njit(ours)(2.0)
+    assert evaluating.events == [("compiling", "example.ours"), ("compiled", "example.ours")]
+    assert len(recorder.events) == 2
 
 
 def test_kernel_progress_lines(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -162,7 +173,7 @@ def test_first_render_says_it_compiles_and_a_warm_one_is_quiet(
     cache = tmp_path / "numba-cache"
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    env.pop(warmup.BACKGROUND_ENV, None)
+    env.pop(BACKGROUND_ENV, None)
     try:
         cold = _render(tmp_path / "cold", env)
         assert cold.returncode == 0, cold.stderr

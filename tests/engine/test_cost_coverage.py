@@ -29,7 +29,7 @@ import pytest
 
 from matloom.engine.backends import get_backend
 from matloom.engine.evaluate import Evaluator, prepare
-from matloom.engine.ops import OPS
+from matloom.ops import OPS
 from matloom.lang.api import analyse
 from matloom.lang.cost import expanded_cost
 from matloom.vocab import FUNCTIONS, Kind
@@ -267,7 +267,7 @@ def test_the_weave_of_the_issue_is_rejected_by_check_with_one_line() -> None:
 
 
 def test_weave_along_counts_its_search_steps() -> None:
-    from matloom.engine.ops import work as W
+    from matloom.ops import work as W
 
     def work(**kw: object) -> int:
         params = {"output": "along", "over": 1, "under": 1, "shift": 1, **kw}
@@ -282,7 +282,7 @@ def test_weave_along_counts_its_search_steps() -> None:
 
 def test_work_constants_match_the_kernels_and_registry() -> None:
     from matloom.engine.kernels.shapes import CUBIC_STEPS
-    from matloom.engine.ops import work as W
+    from matloom.ops import work as W
 
     assert W.CUBIC_EDGES == CUBIC_STEPS
     assert OPS["Tile"].work == W.tile_work(FUNCTIONS["Tile"].instances)

@@ -170,7 +170,7 @@ def determinism_programs() -> dict[str, str]:
 def test_maps_are_identical_on_every_cpu_dispatch():
     """Every map of every program is bit-identical whichever SIMD code numpy dispatches to
     (AVX-512, AVX2, baseline) and with numba compiling for a generic CPU, on both backends:
-    the transcendental functions are portable (kernels.portable_math), not the CPU's."""
+    the transcendental functions are portable (ops.portable_math), not the CPU's."""
     import os
 
     from matloom.engine.backends import available_backends

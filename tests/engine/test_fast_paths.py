@@ -23,12 +23,19 @@ from matloom.engine.evaluate import evaluate  # noqa: E402
 from matloom.engine.kernels import composite_numba, relief_numba  # noqa: E402
 from matloom.engine.maps import ARRAY_FIELDS, NEWER_FIELDS  # noqa: E402
 from matloom.engine.schedules import banded as fused  # noqa: E402
+from matloom.engine.schedules import sweep  # noqa: E402
+from matloom.engine.schedules.sweep import variant_program  # noqa: E402
 from matloom.lang.random_program import random_program  # noqa: E402
-from matloom.render.sweep import run_sweep  # noqa: E402
+from matloom.render.preview import ShadeParams  # noqa: E402
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "parity"
 PROGRAMS = sorted(json.loads((DATA / "manifest.json").read_text())["programs"])
 SWEEP_PROGRAMS = ["tile", "brick", "reptile_scales", "terrain_thresholds", "denim_twill"]
+
+
+def run_sweep(text: str, **kwargs: object) -> sweep.SweepResult:
+    """The engine's seed sweep with the reference's light."""
+    return sweep.run_sweep(text, shading=ShadeParams.of(), **kwargs)  # type: ignore[arg-type]
 
 
 def _source(name: str) -> str:
@@ -198,10 +205,11 @@ def test_relief_kernels_are_bit_identical(
 
 
 def test_auto_backend_is_numba_for_large_requests() -> None:
-    from matloom.engine.backends import choose_backend
+    from matloom.engine.session import Session
 
-    assert choose_backend("auto", 4096 * 4096).name == get_backend("auto").name
-    assert choose_backend("numpy", 4096 * 4096).name == "numpy"
+    session = Session()
+    assert session.choose_backend("auto", 4096 * 4096).name == get_backend("auto").name
+    assert session.choose_backend("numpy", 4096 * 4096).name == "numpy"
 
 
 # --------------------------------------------------------------------------------------------
@@ -223,8 +231,6 @@ def test_sweep_variants_match_their_previews() -> None:
     """Candidate k of a chunk is the preview of variant k's text (within one level)."""
     text = _source("brick")
     result = run_sweep(text, variants=3, size=48, jobs=1, keep=4)
-    from matloom.render.sweep import variant_program
-
     canonical = matloom.format(text)
     for index, image in result.top_images:
         preview = matloom.preview(variant_program(canonical, index, 3), 48)
@@ -235,8 +241,6 @@ def test_sweep_buffers_stay_clean_after_nan_coverage() -> None:
     """One shading thread reuses its buffers without re-zeroing the channels no layer writes:
     a candidate whose coverage is NaN somewhere touches them (NaN x 0), but only where its
     coverage is NaN, where 0 is written; the next candidate must match its exact preview."""
-    from matloom.render.sweep import variant_program
-
     text = (
         "View(0, 0, 1, 1)\nMaterial(\n  Layer(1).basecolor(40, 40, 200).roughness(0.6),\n"
         "  Layer(Sqrt(fBm(octaves=1, base_freq=0.6, to_01=True, seed=3) - 0.5))"
@@ -265,7 +269,7 @@ class MeanRedScorer:
 def _scorers() -> list[object]:
     scorers: list[object] = [MeanRedScorer()]
     try:
-        from matloom.author.scorers.base import get_scorer
+        from matloom.author.scorers.lookup import get_scorer
 
         scorers.append(get_scorer("test-brightness"))
     except (ImportError, KeyError, RuntimeError):
@@ -313,6 +317,23 @@ def test_sweep_falls_back_for_unsupported_programs(monkeypatch: pytest.MonkeyPat
     assert np.array_equal(dict(result.top_images)[0], preview)
 
 
+def test_sweep_honours_its_backend() -> None:
+    """``numpy`` previews every variant with the exact numpy engine; ``numba`` and ``auto`` use
+    the kernels (the same previews here); an unknown name is refused before any work."""
+    text = _source("brick")
+    exact = run_sweep(text, variants=2, size=32, jobs=1, keep=3, backend="numpy")
+    canonical = matloom.format(text)
+    for index, image in exact.top_images:
+        preview = matloom.preview(variant_program(canonical, index, 2), 32, backend="numpy")
+        assert np.array_equal(image, preview), index
+    kernels = run_sweep(text, variants=2, size=32, jobs=1, keep=3, backend="numba")
+    auto = run_sweep(text, variants=2, size=32, jobs=1, keep=3)
+    for (i, a), (j, b) in zip(kernels.top_images, auto.top_images, strict=True):
+        assert i == j and np.array_equal(a, b)
+    with pytest.raises(ValueError, match="unknown sweep backend"):
+        run_sweep(text, variants=2, size=32, backend="cuda")
+
+
 def test_sweep_and_evaluate_work_without_numba() -> None:
     """numba is optional: the sweep then previews each variant with the numpy engine."""
     import os
@@ -322,9 +343,10 @@ def test_sweep_and_evaluate_work_without_numba() -> None:
     code = (
         "import sys; sys.modules['numba'] = None\n"
         "import numpy as np, matloom\n"
-        "from matloom.render.sweep import run_sweep\n"
+        "from matloom.engine.schedules.sweep import run_sweep\n"
+        "from matloom.render.preview import ShadeParams\n"
         f"text = open({str(DATA / 'tile.mat')!r}).read()\n"
-        "r = run_sweep(text, variants=2, size=24, keep=3)\n"
+        "r = run_sweep(text, variants=2, shading=ShadeParams.of(), size=24, keep=3)\n"
         "assert r.n_candidates == 3\n"
         "assert np.array_equal(dict(r.top_images)[0], matloom.preview(text, 24))\n"
         "print('ok')\n"

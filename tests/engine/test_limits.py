@@ -24,9 +24,9 @@ from matloom.engine.limits import (
     fit_seed_batch,
     memory_budget_mb,
 )
+from matloom.engine.schedules.seed_batch import seeded_nodes
 from matloom.lang.cost import MAX_EXPANDED_NODES, FrameTable, expanded_cost, frame_key
 from matloom.lang.random_program import RandomConfig, random_program
-from matloom.render.sweep import seeded_nodes
 
 BACKENDS = available_backends()
 

@@ -17,10 +17,10 @@ from matloom.engine.grid import sample_axes
 from matloom.engine.interpret import EvalStats, Evaluator
 from matloom.engine.kernels import hashing, mathops
 from matloom.engine.maps import ARRAY_FIELDS, View
-from matloom.engine.ops import OPS
 from matloom.lang import ast as A
 from matloom.lang.seeds import canonicalize_seeds, seed_variants
 from matloom.lang.static import static_number
+from matloom.ops import OPS
 
 BACKENDS = available_backends()
 NUMBA = "numba" in BACKENDS
@@ -484,10 +484,11 @@ def test_seed_batch_gives_each_candidate_its_hash() -> None:
 
 @needs_numba
 def test_sweep_varies_the_hash_seed() -> None:
-    from matloom.render.sweep import run_sweep, variant_program
+    from matloom.engine.schedules.sweep import run_sweep, variant_program
+    from matloom.render.preview import ShadeParams
 
     text = "Material(Layer(1).basecolor(Hash(X() * 6, Y() * 6, seed=3) * 255, 90, 40))"
-    result = run_sweep(text, variants=3, size=32, jobs=1, keep=4)
+    result = run_sweep(text, variants=3, shading=ShadeParams.of(), size=32, jobs=1, keep=4)
     assert result.n_candidates == 4
     images = dict(result.top_images)
     assert not np.array_equal(images[0], images[1])

@@ -1,4 +1,4 @@
-"""The op table (matloom.engine.ops): one entry per registry function, every rule stated, and a
+"""The op table (matloom.ops): one entry per registry function, every rule stated, and a
 new element-wise function needs nothing but its registry entry and its op entry."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pytest
 import matloom
 from matloom.engine import interpret
 from matloom.engine.kernels.register_ops import REGISTER_OPS
-from matloom.engine.ops import NUMPY, OPS, Kind, Op, Ref, operator_ops, unbounded
+from matloom.ops import NUMPY, OPS, Kind, Op, Ref, operator_ops, unbounded
 from matloom.lang.static import static_number
 from matloom.vocab import FUNCTIONS
 from matloom.vocab.spec import FunctionSpec, ParamSpec, Returns

@@ -17,7 +17,7 @@ except where the reference is numerically wrong (docs/compatibility.md, "Random 
   author's CPU (AVX-512), whose last bit is CPU-specific: its float64 ``power`` is not correctly
   rounded in ~5 % of cases (sRGB decode ``x ** 2.4``: rand_s009, rand_s375), and it computes
   ``Sin``/``Cos``/``Log`` of float32 grids in float32 (numpy's float32 routines, up to 1.5 ulp;
-  rand_s306). MatLoom uses portable functions (kernels.portable_math: fdlibm's algorithms, below
+  rand_s306). MatLoom uses portable functions (ops.portable_math: fdlibm's algorithms, below
   1 ulp, float32 results rounded from float64) that give the same bits on every CPU; a last-bit
   difference then moves a ``Floor``/``Threshold`` and whole texels. Only the arrays listed in
   :data:`CPU_SPECIFIC_REFERENCE` may differ, at no more texels than listed; the counts are the

@@ -1,4 +1,4 @@
-"""The portable transcendental functions (engine.kernels.portable_math): fdlibm's constants,
+"""The portable transcendental functions (engine.ops.portable_math): fdlibm's constants,
 accuracy against exact arithmetic, C99/numpy special values, dtypes, and constant folding
 that gives the bits the arrays get."""
 
@@ -14,8 +14,8 @@ import pytest
 
 import matloom
 from matloom.engine.kernels import mathops
-from matloom.engine.kernels import portable_constants as K
-from matloom.engine.kernels import portable_math as pm
+from matloom.ops import portable_constants as K
+from matloom.ops import portable_math as pm
 from matloom.lang.static import static_number
 
 #: fdlibm's bit patterns (FreeBSD msun e_rem_pio2.c, k_sin.c, k_cos.c, e_pow.c).

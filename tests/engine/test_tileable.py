@@ -232,7 +232,7 @@ def test_tile_snaps_its_cells_to_the_view() -> None:
 
 def test_fbm_octave_maps_stay_close_to_the_frequencies() -> None:
     """The per-octave lattice map is within half a lattice cell per period of f * (x, y)."""
-    from matloom.engine.kernels.periodic import simplex_tiling
+    from matloom.engine.kernels.noise import simplex_tiling
 
     maps, lattices = simplex_tiling((4.0, 8.0, 16.0, 32.0), (4.0, 8.0, 16.0, 32.0), (1.0, 1.0))
     for (m00, m01, m10, m11), f in zip(maps, (4, 8, 16, 32), strict=True):

@@ -1,7 +1,7 @@
 """Tileable shapes (Fill, Stroke outside a Tile motif) and the seam ratio of angle maps.
 
 In a tileable output a shape is drawn with its images one View period apart, so that a shape
-crossing the View's edge comes back on the opposite side (``matloom.engine.ops.fields``,
+crossing the View's edge comes back on the opposite side (``matloom.engine.rules.fields``,
 ``periodic.image_shifts``); shapes under a Rotate are warned about (W009).
 """
 
@@ -15,7 +15,7 @@ from matloom.engine.backends import available_backends, get_backend
 from matloom.engine.evaluate import prepare
 from matloom.engine.grid import sample_axes
 from matloom.engine.interpret import Evaluator
-from matloom.engine.kernels.periodic import image_shifts
+from matloom.ops.periodic import image_shifts
 from matloom.engine.maps import View
 from matloom.engine.tiling import seam_ratio, seam_ratios
 

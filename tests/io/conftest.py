@@ -11,7 +11,8 @@ import pytest
 
 import matloom
 from matloom.engine.maps import MaterialMaps
-from matloom.io.export import ExportResult, export_maps
+from matloom.io.export import ExportResult
+from matloom.runtime.export import export_maps
 
 #: Every channel varies (extensions, ior texture, anisotropy texture, emissive strength > 1).
 FULL = """View(0, 0, 2, 2)

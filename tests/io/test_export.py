@@ -12,8 +12,9 @@ import pytest
 
 from matloom.engine.maps import MaterialMaps, View
 from matloom.io import atomic, exr, png
-from matloom.io.export import MAP_NAMES, export_maps
+from matloom.io.export import MAP_NAMES
 from matloom.io.outdir import OutputError
+from matloom.runtime.export import export_maps
 
 PARITY = Path(__file__).resolve().parents[1] / "data" / "parity"
 MANIFEST = json.loads((PARITY / "manifest.json").read_text())["programs"]

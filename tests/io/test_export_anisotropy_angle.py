@@ -14,7 +14,8 @@ import pytest
 from matloom.engine.evaluate import evaluate
 from matloom.engine.maps import MaterialMaps
 from matloom.io import exr, png
-from matloom.io.export import MAP_NAMES, export_maps, periodic_unit, planned_files
+from matloom.io.export import MAP_NAMES, periodic_unit, planned_files
+from matloom.runtime.export import export_maps
 
 ANGLES = np.array(
     [[0.0, 45.0, 90.0, 135.0], [180.0, -90.0, 540.0, 359.0], [np.nan, np.inf, -30.0, 1e-3]],

@@ -15,7 +15,7 @@ import pytest
 
 import matloom
 from matloom.io import png
-from matloom.io.export import export_maps
+from matloom.runtime.export import export_maps
 
 
 def _export(tmp_path: Path, angle: str, preset: str) -> Path:

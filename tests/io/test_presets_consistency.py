@@ -13,8 +13,8 @@ import pytest
 
 import matloom
 from matloom.io import png
-from matloom.io.export import export_maps
 from matloom.io.presets import PRESETS
+from matloom.runtime.export import export_maps
 
 ROOT = Path(__file__).resolve().parents[2]
 #: compositing leaves its ior (1.5 in every layer) 1.4999999 .. 1.5000001 (float rounding)

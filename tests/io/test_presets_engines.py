@@ -12,8 +12,8 @@ import pytest
 
 from matloom.engine.colour import linear_to_srgb
 from matloom.io import exr, png
-from matloom.io.export import export_maps
 from matloom.io.presets import PRESETS
+from matloom.runtime.export import export_maps
 
 
 def _q8(values: np.ndarray) -> np.ndarray:

@@ -10,7 +10,7 @@ from xml.etree import ElementTree as ET
 import numpy as np
 
 import matloom
-from matloom.io.export import export_maps
+from matloom.runtime.export import export_maps
 
 HUGE = "Material(Layer(1).roughness(0.5).height((X() - 0.5) * 5.8e38))"
 MODEST = "Material(Layer(1).roughness(0.5).height(X() * 0.25))"

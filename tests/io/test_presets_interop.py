@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from matloom.io.export import export_maps
+from matloom.runtime.export import export_maps
 
 try:
     import MaterialX as mx

@@ -11,8 +11,8 @@ from xml.etree import ElementTree as ET
 import pytest
 
 import matloom
-from matloom.io.export import export_maps
 from matloom.io.presets.common import identifier
+from matloom.runtime.export import export_maps
 
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 PROGRAM = (

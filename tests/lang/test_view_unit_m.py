@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 import matloom
-from matloom.io.export import export_maps
 from matloom.lang.api import check
+from matloom.runtime.export import export_maps
 
 TEXT = (
     "View(0, 0, 2, 1, tileable=True, unit_m=0.25)\n"

@@ -132,7 +132,7 @@ def test_an_extra_colour_goes_to_a_free_grout_slot() -> None:
     entry = lib.entry("square-tiles")
     out = adapt(entry, lib.ast("square-tiles"), req("khaki and taupe tiles"), words(), {}, [])
     assert slot_colour(out.program, "grout") == words().named["taupe"]
-    assert out.unused == []
+    assert out.unused == ()
 
 
 # ---------------------------------------------------------------- motif and material words

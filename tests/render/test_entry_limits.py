@@ -15,7 +15,9 @@ import pytest
 import matloom
 from matloom.engine import evaluate as evaluate_module
 from matloom.engine.limits import MEMORY_ENV, LimitError
-from matloom.render import api, sweep
+from matloom.engine.schedules import sweep
+from matloom.render import api
+from matloom.render.preview import ShadeParams
 
 REPO = Path(__file__).resolve().parents[2]
 PROGRAM = "Define(n, fBm(seed=3))\nMaterial(Layer(1).basecolor((n * 200), 90, 40).height(n))\n"
@@ -65,21 +67,23 @@ def test_sweep_size_is_checked_before_any_work(monkeypatch: pytest.MonkeyPatch) 
     def refuse(*args: object) -> None:
         raise AssertionError("the sweep was not checked before any work")
 
-    monkeypatch.setattr(sweep, "_Renderer", refuse)
-    monkeypatch.setattr(sweep, "_ExactRenderer", refuse)
+    monkeypatch.setattr(sweep, "KernelRenderer", refuse)
+    monkeypatch.setattr(sweep, "ExactRenderer", refuse)
+    shading = ShadeParams.of()
     with pytest.raises(LimitError, match="maximum resolution"):
-        sweep.run_sweep(PROGRAM, variants=2, size=100_000)
+        sweep.run_sweep(PROGRAM, variants=2, shading=shading, size=100_000)
     monkeypatch.setenv(MEMORY_ENV, "1")
     with pytest.raises(LimitError, match="sweeping at 1024x1024 needs about"):
-        sweep.run_sweep(PROGRAM, variants=2, size=1024)
+        sweep.run_sweep(PROGRAM, variants=2, shading=shading, size=1024)
 
 
 def test_sweep_results_do_not_depend_on_the_chunk(monkeypatch: pytest.MonkeyPatch) -> None:
     """A budget that shrinks the chunk (down to one candidate) changes no preview."""
     pytest.importorskip("numba")
-    full = sweep.run_sweep(PROGRAM, variants=5, size=32, keep=6)
+    shading = ShadeParams.of()
+    full = sweep.run_sweep(PROGRAM, variants=5, shading=shading, size=32, keep=6)
     monkeypatch.setattr(sweep, "check_sweep", lambda *args: 1)
-    single = sweep.run_sweep(PROGRAM, variants=5, size=32, keep=6)
+    single = sweep.run_sweep(PROGRAM, variants=5, shading=shading, size=32, keep=6)
     assert [i for i, _ in full.top_images] == [i for i, _ in single.top_images]
     for (_, a), (_, b) in zip(full.top_images, single.top_images, strict=True):
         np.testing.assert_array_equal(a, b)

@@ -14,7 +14,7 @@ from PIL import Image
 import matloom
 from matloom.engine.maps import MaterialMaps, View
 from matloom.render import preview
-from matloom.render.preview import _light_and_half_vectors, anisotropy_direction_factor, shade
+from matloom.render.preview import ShadeParams, anisotropy_direction_factor, shade
 
 PARITY = Path(__file__).resolve().parents[1] / "data" / "parity"
 MANIFEST = json.loads((PARITY / "manifest.json").read_text())["programs"]
@@ -64,7 +64,7 @@ def test_previews_without_the_channel_keep_every_byte(
 
 
 def test_direction_factor() -> None:
-    _, half = _light_and_half_vectors(None)
+    half = ShadeParams.of().half
     angles = np.array([0.0, 45.0, 135.0, 225.0, -45.0, 90.0])
     full = anisotropy_direction_factor(angles, np.ones(6), half)
     assert full[0] == 1.0  # exactly: the reference's exponent
@@ -123,7 +123,7 @@ def test_shaders_agree_with_a_varying_angle() -> None:
 def test_sweep_preview_follows_the_angle() -> None:
     """The sweep's float32 shading kernel rotates the highlight like matloom.preview."""
     pytest.importorskip("numba")
-    from matloom.render.sweep import run_sweep
+    from matloom.engine.schedules.sweep import run_sweep
 
     noisy = BRUSHED.replace(
         ".roughness(0.25)",
@@ -132,7 +132,7 @@ def test_sweep_preview_follows_the_angle() -> None:
     originals = {}
     for angle in ("0", "45", "X() * 360 - 30"):
         text = noisy.replace("ANGLE", angle)
-        result = run_sweep(text, variants=2, size=32, jobs=1, keep=3)
+        result = run_sweep(text, variants=2, shading=ShadeParams.of(), size=32, jobs=1, keep=3)
         originals[angle] = dict(result.top_images)[0].astype(np.int16)
         exact = matloom.preview(text, 32).astype(np.int16)
         diff = np.abs(originals[angle] - exact)

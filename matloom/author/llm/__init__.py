@@ -10,10 +10,9 @@ from matloom.author.llm.base import (
     ModelTimeoutError,
     ModelUnavailableError,
     complete_within,
-    get_model,
-    provider_names,
     register_provider,
 )
+from matloom.author.llm.providers import get_model, provider_names
 
 __all__ = [
     "BadReplyError",

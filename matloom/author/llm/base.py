@@ -126,23 +126,7 @@ def register_provider(name: str) -> Callable[[ProviderFactory], ProviderFactory]
     return decorate
 
 
-def provider_names() -> list[str]:
-    """Registered provider names (built-ins are loaded first)."""
-    _load_builtin_providers()
-    return sorted(_PROVIDERS)
-
-
-def get_model(settings: ModelSettings) -> ChatModel:
-    """Instantiate the chat model described by ``settings``."""
-    _load_builtin_providers()
-    factory = _PROVIDERS.get(settings.provider)
-    if factory is None:
-        known = ", ".join(sorted(_PROVIDERS))
-        raise ModelError(f"unknown model provider {settings.provider!r} (known: {known})")
-    return factory(settings)
-
-
-def _load_builtin_providers() -> None:
-    """Import the modules that register the built-in providers (idempotent, lazy)."""
-    import matloom.author.llm.openai_compat  # noqa: F401
-    import matloom.author.llm.scripted  # noqa: F401
+def registered_providers() -> dict[str, ProviderFactory]:
+    """The providers registered so far, by name (a copy; :mod:`matloom.author.llm.providers`
+    loads the built-in ones first)."""
+    return dict(_PROVIDERS)

@@ -13,6 +13,7 @@ import json
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
+from matloom.author.prompts.previews import module_layout_note
 from matloom.author.prompts.system import dsl_reference
 
 #: Field descriptions of the critic's JSON answer (the first three: paper appendix, verbatim).
@@ -35,21 +36,6 @@ _BOTH_NOTE = (
     "reflectance or transmission; judge gloss, metal, sheen, coat, transmission and relief from "
     "the lit render."
 )
-
-
-def module_layout_note(view: str) -> str | None:
-    """What the preview module says of layout ``view`` (``LIT_LAYOUT_NOTE`` of
-    :mod:`matloom.render.lit`, without its "lit preview: " lead), or None when it says
-    nothing."""
-    if view != "lit":
-        return None
-    try:
-        from matloom.render.lit import LIT_LAYOUT_NOTE
-    except ImportError:
-        return None
-    note = str(LIT_LAYOUT_NOTE).strip()
-    prefix = f"{view} preview: "
-    return note[len(prefix) :] if note.lower().startswith(prefix) else note
 
 
 def layout_notes(views: Sequence[str]) -> str:

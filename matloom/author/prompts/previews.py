@@ -45,10 +45,10 @@ def _probed_channels() -> list[ChannelSpec]:
 @cache
 def _image(view: str, layer: str) -> np.ndarray:
     """A probe material shaded in preview layout ``view`` (float, to take differences)."""
-    import matloom
     from matloom.author.views import shade_view
+    from matloom.engine.evaluate import evaluate
 
-    maps = matloom.evaluate(f"Material({layer})", _PROBE_SIZE, _PROBE_SIZE, backend="numpy")
+    maps = evaluate(f"Material({layer})", width=_PROBE_SIZE, height=_PROBE_SIZE, backend="numpy")
     try:
         image = shade_view(maps, view, backend="numpy")
     except ValueError:  # a layout without a numpy path
@@ -89,12 +89,25 @@ def slope_changes(view: str) -> dict[float, int]:
     return changes
 
 
+def module_layout_note(view: str) -> str | None:
+    """What the preview module says of layout ``view`` (``LIT_LAYOUT_NOTE`` of
+    :mod:`matloom.render.lit`, without its "lit preview: " lead), or None when it says
+    nothing."""
+    if view != "lit":
+        return None
+    try:
+        from matloom.render.lit import LIT_LAYOUT_NOTE
+    except ImportError:
+        return None
+    note = str(LIT_LAYOUT_NOTE).strip()
+    prefix = f"{view} preview: "
+    return note[len(prefix) :] if note.lower().startswith(prefix) else note
+
+
 def _layout_description(view: str) -> str:
     """The layout in words: the preview module's note (``<VIEW>_LAYOUT_NOTE``) when it has one."""
     if view == "flat":
         return "a head-on plane under one fixed light, with no environment to reflect"
-    from matloom.author.prompts.critic import module_layout_note
-
     return (module_layout_note(view) or f"the {view} layout").rstrip(".")
 
 

@@ -3,10 +3,9 @@
 from matloom.author.scorers.base import (
     ScorerUnavailableError,
     TextImageScorer,
-    get_scorer,
     register_scorer,
-    scorer_names,
 )
+from matloom.author.scorers.lookup import get_scorer, scorer_names
 
 __all__ = [
     "ScorerUnavailableError",

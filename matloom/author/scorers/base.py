@@ -2,7 +2,8 @@
 
 A scorer maps a batch of uint8 RGB images and a text to one score per image (higher = better
 match, 0..100 for the built-ins). Scorers are found by name so the seed sweep can re-create
-them inside worker processes: ``get_scorer(name)`` returns a cached instance per process.
+them inside worker processes: ``get_scorer(name)`` (:mod:`.lookup`) returns a cached
+instance per process.
 
 Names:
 
@@ -17,7 +18,6 @@ Names:
 from __future__ import annotations
 
 import hashlib
-import threading
 from collections.abc import Callable, Sequence
 from typing import Protocol, runtime_checkable
 
@@ -45,41 +45,24 @@ class TextImageScorer(Protocol):
 ScorerFactory = Callable[[str], TextImageScorer]
 _FACTORIES: dict[str, ScorerFactory] = {}
 _PREFIX_FACTORIES: dict[str, ScorerFactory] = {}
-_INSTANCES: dict[str, TextImageScorer] = {}
-_LOCK = threading.Lock()
 
 
 def register_scorer(name: str, factory: ScorerFactory, *, prefix: bool = False) -> None:
     """Register ``factory(name) -> scorer`` for ``name`` (or for every ``name:...`` if prefix)."""
     (_PREFIX_FACTORIES if prefix else _FACTORIES)[name] = factory
-    _INSTANCES.pop(name, None)
 
 
-def scorer_names() -> list[str]:
-    """Registered names (prefix families shown as ``prefix:...``)."""
-    _load_builtin_scorers()
+def factory_for(name: str) -> ScorerFactory | None:
+    """The factory registered for ``name`` (or for its ``prefix:`` family); None if none."""
+    factory = _FACTORIES.get(name)
+    if factory is None and ":" in name:
+        factory = _PREFIX_FACTORIES.get(name.split(":", 1)[0])
+    return factory
+
+
+def registered_names() -> list[str]:
+    """Registered names so far (prefix families shown as ``prefix:...``)."""
     return sorted(_FACTORIES) + sorted(f"{p}:..." for p in _PREFIX_FACTORIES)
-
-
-def get_scorer(name: str) -> TextImageScorer:
-    """The scorer registered as ``name`` (one cached instance per process)."""
-    _load_builtin_scorers()
-    with _LOCK:
-        if name in _INSTANCES:
-            return _INSTANCES[name]
-        factory = _FACTORIES.get(name)
-        if factory is None and ":" in name:
-            factory = _PREFIX_FACTORIES.get(name.split(":", 1)[0])
-        if factory is None:
-            known = ", ".join(scorer_names())
-            raise ScorerUnavailableError(f"unknown scorer {name!r} (known: {known})")
-        instance = factory(name)
-        _INSTANCES[name] = instance
-        return instance
-
-
-def _load_builtin_scorers() -> None:
-    import matloom.author.scorers.openclip  # noqa: F401  (registers mobileclip2, open_clip:)
 
 
 # ----------------------------------------------------------------------------- test scorers

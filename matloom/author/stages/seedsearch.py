@@ -1,9 +1,9 @@
 """Stage III (b): seed search over the distinct {first, selected, last} programs (§8.6).
 
 Each candidate's sweep renders the original and ``variants`` seed variants at ``size`` (256 by
-default) with :func:`matloom.render.sweep.run_sweep` and scores them with the scorer; only noise
-seeds change, equal seeds stay equal, and the original is always in the pool, so the sweep can
-never lose score relative to it. The best over all sweeps wins, ties going to the earliest
+default) with :func:`matloom.engine.schedules.sweep.run_sweep` and scores them with the scorer;
+only noise seeds change, equal seeds stay equal, and the original is always in the pool, so the
+sweep can never lose score relative to it. The best over all sweeps wins, ties going to the earliest
 candidate. Each finished sweep is recorded at once, so a resumed run skips it.
 """
 
@@ -35,11 +35,13 @@ def run_candidate_sweep(
     progress: SweepProgress | None = None,
 ) -> SweepRecord:
     """Sweep one candidate program and summarise the result for the record."""
-    from matloom.render.sweep import run_sweep
+    from matloom.engine.schedules.sweep import run_sweep
+    from matloom.render.preview import ShadeParams
 
     result = run_sweep(
         program,
         variants=variants,
+        shading=ShadeParams.of(),
         size=size,
         scorer=scorer,
         prompt=prompt,

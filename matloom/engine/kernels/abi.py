@@ -11,7 +11,7 @@ its module-level ``from matloom... import ...`` / ``import matloom...`` statemen
 transitively within the package (a package's ``__init__`` only where a name is not a
 submodule). :mod:`matloom.engine.kernels.jit` mixes :func:`file_hash` into numba's freshness
 stamp of every kernel, so a stale cached kernel is recompiled, never used;
-:mod:`matloom.engine.kernels.warmup` puts :func:`kernels_hash` into its readiness stamp.
+:mod:`matloom.runtime.warmup` puts :func:`kernels_hash` into its readiness stamp.
 
 Only text is read (a regular expression over the imports, no parsing, no importing): a few
 milliseconds for the whole package. Importing this module imports neither numba nor anything

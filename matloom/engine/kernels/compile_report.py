@@ -1,10 +1,12 @@
 """Who hears about numba compiling MatLoom's kernels (the CLI shows it on stderr).
 
-A library stays silent: nothing is reported until a front end registers a
-:class:`CompileReporter` with :func:`set_reporter`. :mod:`matloom.engine.kernels.jit` calls
-:func:`install_listener` when it imports numba; the listener forwards numba's ``numba:compile``
-events, which numba raises only for real compilations (never for kernels loaded from its disk
-cache), so a warm cache stays quiet. Only outermost compilations of MatLoom functions are
+A library stays silent: nothing is reported unless the session gives a :class:`CompileReporter`
+(``Session(reporter=...)``, see :mod:`matloom.engine.session`). :mod:`matloom.engine.kernels.jit`
+calls :func:`install_listener` when it imports numba; the listener forwards numba's
+``numba:compile`` events to the reporter of the current session (the one evaluating in this
+thread, else the process's default session: :func:`~matloom.engine.session.current_session`).
+numba raises them only for real compilations (never for kernels loaded from its disk cache),
+so a warm cache stays quiet. Only outermost compilations of MatLoom functions are
 reported: the helpers a kernel calls compile inside it. Importing this module does not import
 numba.
 """
@@ -30,19 +32,8 @@ class CompileReporter(Protocol):
         process evaluates on the numpy path meanwhile."""
 
 
-_reporter: list[CompileReporter | None] = [None]
 _installed = [False]
 _local = threading.local()
-
-
-def set_reporter(reporter: CompileReporter | None) -> CompileReporter | None:
-    """Register ``reporter`` (None: silence); returns the previous one."""
-    previous, _reporter[0] = _reporter[0], reporter
-    return previous
-
-
-def get_reporter() -> CompileReporter | None:
-    return _reporter[0]
 
 
 def _kernel_name(data: dict[str, Any]) -> str | None:
@@ -53,8 +44,16 @@ def _kernel_name(data: dict[str, Any]) -> str | None:
     return f"{module.rsplit('.', 1)[-1]}.{func.__name__}"  # type: ignore[union-attr]
 
 
+def _reporter() -> CompileReporter | None:
+    # (imported here: this module is in every kernel's ABI closure, the session is not)
+    from matloom.engine.session import current_session
+
+    return current_session().reporter
+
+
 def install_listener() -> None:
-    """Forward numba's compile events to the registered reporter (idempotent; imports numba)."""
+    """Forward numba's compile events to the current session's reporter (idempotent; imports
+    numba)."""
     if _installed[0]:
         return
     from numba.core import event
@@ -63,14 +62,14 @@ def install_listener() -> None:
         def on_start(self, ev: Any) -> None:
             stack = _local.__dict__.setdefault("stack", [])
             stack.append(time.perf_counter())
-            reporter, name = _reporter[0], _kernel_name(ev.data)
+            reporter, name = _reporter(), _kernel_name(ev.data)
             if reporter is not None and name is not None and len(stack) == 1:
                 reporter.kernel_compiling(name)
 
         def on_end(self, ev: Any) -> None:
             stack = _local.__dict__.setdefault("stack", [])
             start = stack.pop() if stack else time.perf_counter()
-            reporter, name = _reporter[0], _kernel_name(ev.data)
+            reporter, name = _reporter(), _kernel_name(ev.data)
             if reporter is not None and name is not None and not stack:
                 reporter.kernel_compiled(name, time.perf_counter() - start)
 

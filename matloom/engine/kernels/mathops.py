@@ -1,6 +1,6 @@
 """Element-wise math nodes with the reference's special rules (spec §2.2).
 
-These are the numpy implementations of the element-wise ops (:mod:`matloom.engine.ops`): the
+These are the numpy implementations of the element-wise ops (:mod:`matloom.ops`): the
 evaluators call them only through ``OPS[name].numpy``.
 
 Every function is plain numpy on its inputs, so the result dtype follows numpy promotion of
@@ -23,8 +23,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from matloom.engine.kernels import portable_math
-from matloom.engine.kernels.portable_constants import NAN
+from matloom.ops import portable_math
+from matloom.ops.portable_constants import NAN
 
 ArrayLike = np.ndarray | float
 
@@ -158,7 +158,7 @@ def cos(v: ArrayLike) -> np.ndarray:
 #: Fract's largest value: the largest float64 below 1 (x - floor(x) rounds to 1 for tiny x < 0).
 FRACT_MAX = 1.0 - 2.0**-53
 #: The NaN these functions return for a NaN operand (Atan2) or a missing cell (Hash) is
-#: :data:`~matloom.engine.kernels.portable_constants.NAN`: the CPU's default NaN, the one 0/0 and
+#: :data:`~matloom.ops.portable_constants.NAN`: the CPU's default NaN, the one 0/0 and
 #: inf - inf give (sign bit set), so that every NaN the engine makes is the same and an operation
 #: on two of them gives the same bits whatever their order.
 
@@ -303,7 +303,7 @@ def exp_(v: ArrayLike) -> np.ndarray:
 
 
 # The compositions Clamp, Mix and Smoothstep: the interpreter evaluates them as these ops
-# (engine.ops.fields_math), so that the fused path runs them on existing opcodes; these array
+# (engine.rules.fields_math), so that the fused path runs them on existing opcodes; these array
 # versions are their constant-folding rules and the tests' references.
 _ZERO, _ONE, _TWO, _THREE = np.float64(0.0), np.float64(1.0), np.float64(2.0), np.float64(3.0)
 

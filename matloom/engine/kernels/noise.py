@@ -27,14 +27,19 @@ import numpy as np
 
 from matloom.engine.kernels.opensimplex import (
     CoordLayout,
-    OctaveSchedule,
     coord_layout,
     octave_axes,
-    octave_schedule,
     scale_grid,
     worley_codes,
 )
-from matloom.engine.kernels.periodic import simplex_tiling, simplex_wraps, snap_frequency, wraps
+from matloom.ops.octaves import OctaveSchedule, octave_schedule
+from matloom.ops.periodic import (
+    MAX_PERIOD_CELLS,
+    simplex_octave,
+    simplex_wraps,
+    snap_frequency,
+    wraps,
+)
 
 __all__ = [
     "FbmPlan",
@@ -84,7 +89,7 @@ class FbmPlan:
     fxs: np.ndarray | None = None
     fys: np.ndarray | None = None
     #: Tileable plans (``period`` given): per-octave coordinate maps (O, 4) and sublattices
-    #: (O, 5) of :func:`~matloom.engine.kernels.periodic.simplex_tiling`; the loops' ``tiled``
+    #: (O, 5) of :func:`simplex_tiling`; the loops' ``tiled``
     #: kernel samples the flat float64 grids ``grid_x``, ``grid_y``.
     tile_maps: np.ndarray | None = None
     tile_lattices: np.ndarray | None = None
@@ -133,8 +138,9 @@ def plan_fbm(
     period: tuple[float, float] | None = None,
 ) -> FbmPlan:
     """The :class:`FbmPlan` of an fBm on the broadcast of x and y; with ``period`` (Px, Py)
-    the fBm repeats with those periods (:mod:`matloom.engine.kernels.periodic`), unless an
-    octave has too many cells per period to wrap (the checker's W009): then it is unwrapped."""
+    the fBm repeats with those periods (:mod:`matloom.ops.periodic`), unless an octave has too
+    many cells per period to wrap (:func:`~matloom.ops.periodic.simplex_wraps`, the predicate
+    of fBm's period rule and the checker's W009): then it is unwrapped."""
     sched = octave_schedule(octaves, lacunarity, gain, freq_x, freq_y)
     amps = np.array(sched.amps, dtype=np.float64)
     lay = coord_layout(x, y)
@@ -262,6 +268,24 @@ def _stack(
     return out
 
 
+def simplex_tiling(
+    freqs_x: tuple[float, ...], freqs_y: tuple[float, ...], period: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per-octave (O, 4) coordinate maps and (O, 5) sublattices
+    (:func:`~matloom.ops.periodic.simplex_octave`)."""
+    if not simplex_wraps(freqs_x, freqs_y, period):
+        raise ValueError(
+            f"tileable periods must be finite and > 0, with at most {MAX_PERIOD_CELLS} cells "
+            f"per period in every octave, got {period!r}"
+        )
+    px, py = (float(v) for v in period)
+    rows = [simplex_octave(px, py, fx, fy) for fx, fy in zip(freqs_x, freqs_y, strict=True)]
+    maps = np.array([m for m, _ in rows], dtype=np.float64)
+    lattices = np.array([lat for _, lat in rows], dtype=np.float64)
+    return maps, lattices
+
+
+
 # --- Worley ------------------------------------------------------------------------------------
 
 #: Worley's ``output`` names -> codes: 0 the combination of distances (the reference's Worley),
@@ -345,7 +369,7 @@ def plan_worley(
 ) -> WorleyPlan:
     """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y; with ``period``
     (Px, Py) the frequencies are snapped to whole numbers of cells per period and the cells
-    wrap (:mod:`matloom.engine.kernels.periodic`), unless a period holds too many cells to
+    wrap (:mod:`matloom.ops.periodic`), unless a period holds too many cells to
     wrap (the checker's W009): then the cells are not wrapped."""
     metric, combo, norm = worley_codes(distance, combination)
     if output not in WORLEY_OUTPUTS:

@@ -18,11 +18,8 @@ from typing import Any
 import numpy as np
 
 from matloom.engine.kernels.jit import jit
-from matloom.engine.kernels.opensimplex import (
-    NORM_CONSTANT2,
-    SQUISH_CONSTANT2,
-    STRETCH_CONSTANT2,
-)
+from matloom.engine.kernels.opensimplex import NORM_CONSTANT2
+from matloom.ops.periodic import SQUISH_CONSTANT2, STRETCH_CONSTANT2
 
 #: Points per chunk in ``noise_chunk`` (keeps the per-thread scratch buffers in L1).
 CHUNK = 256

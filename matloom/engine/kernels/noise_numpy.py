@@ -28,8 +28,6 @@ from matloom.engine.kernels.opensimplex import (
     FBM_SCALE,
     GRADIENTS2,
     NORM_CONSTANT2,
-    SQUISH_CONSTANT2,
-    STRETCH_CONSTANT2,
     WORLEY_HASH_CX,
     WORLEY_HASH_CY,
     WORLEY_MIX1,
@@ -40,6 +38,7 @@ from matloom.engine.kernels.opensimplex import (
     scale_grid,
     worley_seed_term,
 )
+from matloom.ops.periodic import SQUISH_CONSTANT2, STRETCH_CONSTANT2
 
 __all__ = ["FBM_LOOPS", "WORLEY_LOOPS", "fbm_tiled", "noise2", "noise2_tiled", "worley_hash"]
 

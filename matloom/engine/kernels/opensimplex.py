@@ -3,7 +3,8 @@
 * The OpenSimplex (2014, Kurt Spencer) 2-D constants and the seed -> permutation rule, exactly as
   in PyPI ``opensimplex==0.4.5.1`` (``internals._init`` / ``_noise2``), which the reference engine
   calls.  The package itself is never imported here: the reference's behaviour is reproduced.
-* The fBm octave schedule (frequencies and amplitudes built by repeated multiplication).
+  The lattice constants (stretch, squish) live with the lattice arithmetic in
+  :mod:`matloom.ops.periodic`; the fBm octave schedule in :mod:`matloom.ops.octaves`.
 * The Worley hash constants, metric/combination codes and ``to_01`` norms.
 * Coordinate-shape helpers that let both backends exploit separable (1 x W, H x 1) axes.
 
@@ -21,8 +22,6 @@ import numpy as np
 
 # --- OpenSimplex 2-D ------------------------------------------------------------------------
 
-STRETCH_CONSTANT2: float = -0.211324865405187  # (1/sqrt(3) - 1) / 2
-SQUISH_CONSTANT2: float = 0.366025403784439  # (sqrt(3) - 1) / 2
 NORM_CONSTANT2: float = 47.0
 #: 8 gradient pairs, flattened; indexed with ``perm[...] & 0x0E`` then ``[i], [i + 1]``.
 GRADIENTS2: np.ndarray = np.array(
@@ -85,49 +84,6 @@ def perms_for_seeds(seeds: list[int] | tuple[int, ...]) -> np.ndarray:
         perm[:, i] = source[rows, r]
         source[rows, r] = source[:, i]
     return perm
-
-
-# --- fBm octave schedule ----------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class OctaveSchedule:
-    """Per-octave frequencies/amplitudes (Python floats) and the amplitude sum ``norm``."""
-
-    freqs_x: tuple[float, ...]
-    freqs_y: tuple[float, ...]
-    amps: tuple[float, ...]
-    norm: float
-
-
-def octave_schedule(
-    octaves: int, lacunarity: float, gain: float, freq_x: float, freq_y: float
-) -> OctaveSchedule:
-    """Build f_k = base * lacunarity^k and amp_k = gain^k by repeated multiplication.
-
-    Repeated multiplication (not ``**``) is what the reference does; it matters for the
-    float32 rounding of the per-octave coordinates.
-    """
-    if int(octaves) < 1:
-        raise ValueError(f"octaves must be >= 1, got {octaves}")
-    # Python floats: a numpy float64 frequency would be a "strong" scalar for numpy 2 and turn
-    # float32 axes * f_k into a float64 product, losing the reference's float32 rounding.
-    lacunarity, gain = float(lacunarity), float(gain)
-    fx, fy, amp = float(freq_x), float(freq_y), 1.0
-    freqs_x: list[float] = []
-    freqs_y: list[float] = []
-    amps: list[float] = []
-    for _ in range(int(octaves)):
-        freqs_x.append(fx)
-        freqs_y.append(fy)
-        amps.append(amp)
-        fx *= lacunarity
-        fy *= lacunarity
-        amp *= gain
-    norm = 0.0
-    for a in amps:
-        norm += a
-    return OctaveSchedule(tuple(freqs_x), tuple(freqs_y), tuple(amps), norm)
 
 
 # --- Worley -----------------------------------------------------------------------------------

@@ -94,7 +94,7 @@ def bricks(
     to its border); ``cell_value`` the Worley cell hash (salt :data:`BRICK_CELL_SALT`) of the
     brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN; with
     ``wrap`` (tileable output: bricks along a course, courses, and the bricks the course shift
-    adds over them, :func:`~matloom.engine.kernels.periodic.course_wrap`) the indices are
+    adds over them, :func:`~matloom.ops.periodic.course_wrap`) the indices are
     wrapped first, as Tile's cells are.
     """
     check_bricks(axis, output, seed)

@@ -13,11 +13,13 @@ exp2 for the powers (relative error about 1e-5), so a sweep preview may differ f
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from matloom.engine.kernels.register_numba import _jit
-from matloom.engine.kernels.relief_numba import _box_row
+from matloom.engine.kernels.relief_numba import _box_row, tap_weights
+from matloom.engine.relief import DEFAULT_AO_RADIUS_TEXELS
 from matloom.vocab.layout import LAYOUT, RELIEF_SOURCE
 
 # Planes of the channels the shading reads (numba freezes them as constants at compile time).
@@ -295,4 +297,59 @@ def relief_shade(planes, spacing, wx, div_x, wy, div_y, depth, light, half, coef
         _ao_row(h, mean, i, wy, div_y, depth, ao)
         _shade_row(
             planes, i, sx, sy, ao, light, half, coefs, has_emissive, has_angle, scratch, bits, out
+        )
+
+
+@dataclass(frozen=True)
+class ShadeInputs:
+    """The constant inputs of :func:`relief_shade` for one grid and one light, by name (in the
+    kernel's argument order); built once per sweep by :meth:`build`, read by every thread."""
+
+    #: float32 (dx, 2 dx, dy, 2 dy): the normals' central differences.
+    spacing: np.ndarray
+    #: AO box taps and divisor along x and along y (the reference's default radius).
+    wx: np.ndarray
+    div_x: np.float32
+    wy: np.ndarray
+    div_y: np.float32
+    #: The AO depth scale (radius x dx).
+    depth: np.float32
+    #: float32 unit light and half vectors.
+    light: np.ndarray
+    half: np.ndarray
+    #: :func:`encode_coefficients`.
+    coefs: np.ndarray
+
+    @classmethod
+    def build(cls, dx: float, dy: float, light: np.ndarray, half: np.ndarray) -> ShadeInputs:
+        """Inputs for texel size (``dx``, ``dy``) and the (float64) light and half vectors."""
+        radius = DEFAULT_AO_RADIUS_TEXELS
+        taps, divisor = tap_weights(radius) or (np.ones(17, np.float32), np.float32(17))
+        return cls(
+            spacing=np.array([dx, 2.0 * dx, dy, 2.0 * dy], dtype=np.float32),
+            wx=taps,
+            div_x=divisor,
+            wy=taps,
+            div_y=divisor,
+            depth=np.float32(radius * dx),
+            light=np.asarray(light).astype(np.float32),
+            half=np.asarray(half).astype(np.float32),
+            coefs=encode_coefficients(),
+        )
+
+    def shade(self, planes: np.ndarray, mean: np.ndarray, out: np.ndarray) -> None:
+        """:func:`relief_shade` of ``planes`` into ``out`` with these inputs (``mean``: scratch)."""
+        relief_shade(
+            planes,
+            self.spacing,
+            self.wx,
+            self.div_x,
+            self.wy,
+            self.div_y,
+            self.depth,
+            self.light,
+            self.half,
+            self.coefs,
+            mean,
+            out,
         )

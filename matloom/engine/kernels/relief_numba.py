@@ -126,7 +126,7 @@ def _split_rows(h: np.ndarray, work: Callable[[int, int], None]) -> None:
         work(0, h.shape[0])
 
 
-def _tap_weights(radius: float) -> tuple[np.ndarray, np.float32] | None:
+def tap_weights(radius: float) -> tuple[np.ndarray, np.float32] | None:
     """(float32 tap weights, float32 divisor) of the reference box, or None past the tap limit."""
     whole, frac = relief._split_radius(radius)
     edge = [frac] if frac > 0 else []
@@ -156,7 +156,7 @@ def ambient_occlusion(
 ) -> np.ndarray:
     """Same as :func:`matloom.engine.relief.ambient_occlusion` (identical float32 results);
     windows wider than the exact tap limit use the numpy implementation."""
-    taps_x, taps_y = _tap_weights(radius_x), _tap_weights(radius_y)
+    taps_x, taps_y = tap_weights(radius_x), tap_weights(radius_y)
     if taps_x is None or taps_y is None:
         return relief.ambient_occlusion(height, dx, radius_x, radius_y, strength)
     h = np.ascontiguousarray(height, dtype=np.float32)

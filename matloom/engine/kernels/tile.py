@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.kernels.periodic import wraps
+from matloom.ops.periodic import wraps
 
 #: The 9 (row, column) offsets of a sample's own cell and its neighbours.
 NEIGHBOURS: tuple[tuple[int, int], ...] = tuple((dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1))
@@ -64,7 +64,7 @@ class TileParams:
         period of rows, and the cells' random numbers taken from the wrapped cell. Unchanged
         (unwrapped, the checker's W009) when a period holds too many cells or rows to wrap or
         the row offset adds up to too many cells over them
-        (:func:`~matloom.engine.kernels.periodic.wraps`)."""
+        (:func:`~matloom.ops.periodic.wraps`)."""
         from dataclasses import replace
 
         px, py = (float(v) for v in period)

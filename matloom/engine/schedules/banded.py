@@ -236,7 +236,7 @@ def _channel_refs(comp: _Compiler, layer: C.RawLayer) -> tuple[list[int], list[i
             elif is_scalar(values[3]):
                 ready(slot, C.emitted_radiance(np.asarray(v), np.asarray(values[3])))
             else:
-                ready(slot, C._colour_to_linear64(np.asarray(v)), K.DECODED)
+                ready(slot, C.colour_to_linear64(np.asarray(v)), K.DECODED)
     return refs, modes
 
 
@@ -351,7 +351,7 @@ def leaf_tuples(prog: FusedProgram) -> tuple[tuple[np.ndarray, ...], tuple[np.nd
 
 
 def allocate_maps(width: int, height: int) -> dict[str, np.ndarray]:
-    """Zeroed output maps like :func:`composite._allocate_maps`, except that the 2-D maps
+    """Zeroed output maps like :func:`composite.allocate_maps`, except that the 2-D maps
     (alpha, the scalars, ior, height) are views of one (K.N_MAP_PLANES, H, W) buffer, the
     kernel's ``planes`` argument (see :func:`planes_of`), and that the height is not pre-set to
     the -inf accumulator start: the kernel writes every height row (the numpy fallback sets its
@@ -421,6 +421,23 @@ def run_kernel(
     parallel_rows(flags.shape[0], flags.shape[1], lambda a, b: K.composite_rows(args, a, b))
 
 
+#: The kernel's ``margin`` for the preview mode (the linear decode table, no exactness flags).
+PREVIEW_MARGIN = -1.0
+#: The interleaved colour outputs of the planar preview mode: never written (see below).
+_NO_COLOURS = (np.zeros((1, 1, 3), np.float32),) * len(K.COLOUR_OUTPUT_PLANES)
+
+
+def composite_preview(prog: FusedProgram, planes: np.ndarray, flags: np.ndarray, cand: int) -> None:
+    """Composite candidate ``cand`` of ``prog`` in the preview mode into ``planes``, a planar
+    (K.N_PLANES, H, W) float32 buffer (the colours too, as planes), on the calling thread (the
+    sweep composites several candidates at once on threads). ``planes`` and ``flags`` (H, W)
+    uint8 may be reused between calls without zeroing them again: a channel no layer writes is
+    never anything but 0 (where a NaN coverage makes the kernel write it, the coverage is NaN
+    too and 0 is written), so the zeros of their first allocation stay."""
+    args = kernel_args(prog, planes, _NO_COLOURS, flags, cand=cand, margin=PREVIEW_MARGIN)
+    K.composite_rows(args, 0, planes.shape[1])
+
+
 def _map_layer(fn: Any, *layers: C.RawLayer) -> C.RawLayer:
     """A RawLayer whose every channel value is ``fn(values of that channel in layers)``."""
     return C.map_channels(fn, *layers)
@@ -467,8 +484,8 @@ def _recomposite(maps: dict[str, np.ndarray], found: list[_Flagged]) -> None:
     rows = np.concatenate([f.rows for f in found])
     cols = np.concatenate([f.cols for f in found])
     layers = [_map_layer(_join, *band_layers) for band_layers in zip(*(f.layers for f in found))]
-    fixed = C._allocate_maps(rows.size, 1)
-    C._composite_band(layers, fixed, slice(0, 1))
+    fixed = C.allocate_maps(rows.size, 1)
+    C.composite_band(layers, fixed, slice(0, 1))
     for name, array in fixed.items():
         maps[name][rows, cols] = array[0]
 
@@ -516,7 +533,7 @@ def composite_program(
             for channel in LAYOUT.maxed:  # the numpy compositing's max accumulator
                 band[channel.field][...] = -np.inf
             with np.errstate(all="ignore"):
-                C._composite_band(layers, band, slice(0, shape[0]))
+                C.composite_band(layers, band, slice(0, shape[0]))
         else:
             flags = np.zeros(shape, np.uint8)
             run_kernel(prog, maps, rows.start, flags)
@@ -547,7 +564,7 @@ def evaluate_fused(
     ``cull=False`` computes every fBm field everywhere (same maps, for comparison)."""
     height, width = y.shape[0], x.shape[1]
     stats = stats if stats is not None else EvalStats()
-    radius_x, radius_y = C._ao_radii(view, width, height, None, ao_radius_units)
+    radius_x, radius_y = C.ao_radii(view, width, height, None, ao_radius_units)
     maps = composite_program(program, x, y, backend, stats, cull, periods=view.periods)
     from matloom.engine.tiling import relief_maps
 

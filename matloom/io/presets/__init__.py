@@ -15,33 +15,42 @@ A registry entry is a :class:`Preset`; add one module and one entry for a new ta
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
+from importlib import import_module
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from matloom.io.presets import engines, gltf, mtlx, usd
-from matloom.io.presets.common import PresetInput
+if TYPE_CHECKING:
+    from matloom.io.presets.common import PresetInput
 
 
 @dataclass(frozen=True)
 class Preset:
+    """One target: its name, a one-line summary and its writer, ``"module:function"`` in this
+    package. The writer's module is imported when the preset is written, so the registry (the
+    CLI's ``--preset`` choices) costs nothing to import."""
+
     name: str
     summary: str
-    write: Callable[[PresetInput, Path], dict[str, Any]]
+    writer: str
+
+    def write(self, source: PresetInput, folder: Path) -> dict[str, Any]:
+        """Write the preset's files for ``source`` into ``folder``; its manifest entry."""
+        module, function = self.writer.split(":")
+        return getattr(import_module(f"{__name__}.{module}"), function)(source, folder)
 
 
 #: Every preset by name (the CLI's ``--preset`` choices, in this order).
 PRESETS: dict[str, Preset] = {
     p.name: p
     for p in (
-        Preset("gltf", "glTF 2.0 material (.gltf + .glb quad), ORM, normal +Y", gltf.write),
-        Preset("mtlx", "MaterialX open_pbr_surface with displacement", mtlx.write),
-        Preset("usd", "USD (.usda) UsdPreviewSurface on a quad", usd.write),
-        Preset("unreal", "Unreal: T_<name>_BC/_N_dx (DirectX)/_ORM/_H (16-bit)", engines.unreal),
-        Preset("unity", "Unity HDRP: mask map + OpenGL normal", engines.unity),
-        Preset("godot", "Godot 4: ORM + OpenGL normal", engines.godot),
+        Preset("gltf", "glTF 2.0 material (.gltf + .glb quad), ORM, normal +Y", "gltf:write"),
+        Preset("mtlx", "MaterialX open_pbr_surface with displacement", "mtlx:write"),
+        Preset("usd", "USD (.usda) UsdPreviewSurface on a quad", "usd:write"),
+        Preset("unreal", "Unreal: T_<name>_BC/_N_dx (DirectX)/_ORM/_H (16-bit)", "engines:unreal"),
+        Preset("unity", "Unity HDRP: mask map + OpenGL normal", "engines:unity"),
+        Preset("godot", "Godot 4: ORM + OpenGL normal", "engines:godot"),
     )
 }
 
-__all__ = ["PRESETS", "Preset", "PresetInput"]
+__all__ = ["PRESETS", "Preset"]

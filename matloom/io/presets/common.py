@@ -23,6 +23,7 @@ from matloom.engine.maps import MaterialMaps
 from matloom.io import png as png_io
 from matloom.io.atomic import atomic_write_bytes
 from matloom.vocab.layout import LAYOUT
+from matloom.vocab.packing import ORM
 
 
 def identifier(name: str) -> str:
@@ -171,7 +172,8 @@ class PresetInput:
 
     @cached_property
     def orm(self) -> np.ndarray:
-        """(H, W, 3): R = AO, G = roughness, B = metallic (glTF, Unreal, Godot packing)."""
+        """(H, W, 3): R = AO, G = roughness, B = metallic (:data:`~matloom.vocab.packing.ORM`,
+        the glTF, Unreal and Godot packing)."""
         m = self.maps
         return np.stack([m.ao, m.roughness, m.metallic], axis=2).astype(np.float32)
 
@@ -353,9 +355,7 @@ def write_orm(src: PresetInput, out: PresetFiles, file: str, bits: int = 8) -> s
         for f in ("ao", "roughness", "metallic"):
             out.values[f] = src.constant(f)
         return None
-    return out.png(
-        "orm", file, src.orm, bits, colour_space=LINEAR, channels="R AO, G roughness, B metallic"
-    )
+    return out.png(ORM.role, file, src.orm, bits, colour_space=LINEAR, channels=ORM.description)
 
 
 def write_height(src: PresetInput, out: PresetFiles, file: str) -> str | None:

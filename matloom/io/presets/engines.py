@@ -18,6 +18,7 @@ from matloom.io.presets.common import (
     write_normal,
     write_orm,
 )
+from matloom.vocab.packing import MASK_MAP
 
 
 def unreal(src: PresetInput, folder: Path) -> dict[str, Any]:
@@ -53,12 +54,12 @@ def unity(src: PresetInput, folder: Path) -> dict[str, Any]:
             [m.metallic, m.ao, np.ones_like(m.ao), 1.0 - np.asarray(m.roughness)], axis=2
         )
         out.png(
-            "maskmap",
+            MASK_MAP.role,
             f"{src.name}_maskmap.png",
             mask,
             src.bits,
             colour_space=LINEAR,
-            channels="R metallic, G AO, B detail mask (1), A smoothness = 1 - roughness",
+            channels=MASK_MAP.description,
         )
     write_height(src, out, f"{src.name}_height.png")
     write_emissive(src, out, f"{src.name}_emissive.png", src.bits)

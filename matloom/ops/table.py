@@ -1,8 +1,9 @@
 """The op table: every registry function's engine rules, one entry each (see :mod:`.op`).
 
 To add an element-wise function: its registry entry (:mod:`matloom.vocab.functions`) and one
-:data:`OPS` entry here (numpy implementation, static rule, bounds rule, opcode or NUMPY). Nothing
-else in the engine, the checker or the sweep names a function.
+:data:`OPS` entry here (numpy implementation, static rule, bounds rule, opcode or NUMPY; its
+period rule when it is not element-wise for tiling, :mod:`.period`). Nothing else in the
+engine, the checker or the sweep names a function.
 """
 
 from __future__ import annotations
@@ -11,8 +12,10 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-import matloom.engine.ops.work as W
-from matloom.engine.ops.op import (
+import matloom.ops.period as P
+import matloom.ops.period_rules as PR
+import matloom.ops.work as W
+from matloom.ops.op import (
     NUMPY,
     Bounds,
     Interval,
@@ -22,11 +25,12 @@ from matloom.engine.ops.op import (
     not_constant,
     unbounded,
 )
-from matloom.engine.ops.table_math import MATH_V2_ENTRIES
+from matloom.ops.table_math import MATH_V2_ENTRIES
+from matloom.vocab import FUNCTIONS
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
-_FIELDS = "matloom.engine.ops.fields:"
-_SUPPORT = "matloom.engine.ops.support:"
+_FIELDS = "matloom.engine.rules.fields:"
+_SUPPORT = "matloom.engine.rules.support:"
 _UNION = Ref(_SUPPORT + "union")
 _MOVED = Ref(_SUPPORT + "transformed")
 
@@ -56,10 +60,10 @@ def _constant(values: list[Any], strict: bool) -> Any:
 
 
 def _portable(name: str, *values: float) -> float:
-    """A function of :mod:`~matloom.engine.kernels.portable_math` on Python numbers: constant
+    """A function of :mod:`~matloom.ops.portable_math` on Python numbers: constant
     folding must give the bits the arrays get, on every CPU (``math.sin`` and ``**`` call the
     C library, which picks its code by CPU)."""
-    from matloom.engine.kernels import portable_math
+    from matloom.ops import portable_math
 
     return portable_math.scalar(getattr(portable_math, name), *values)
 
@@ -176,6 +180,13 @@ def _threshold_block(
 
 
 # ------------------------------------------------------------------ the table
+def _cycle(func: str, param: str) -> float:
+    """The registry's cycle of a parameter (``ParamSpec.cycle``: a full turn of an angle)."""
+    spec = FUNCTIONS[func].param(param)
+    assert spec is not None and isinstance(spec.cycle, float), (func, param)
+    return spec.cycle
+
+
 def _math(
     name: str,
     numpy: str,
@@ -190,6 +201,7 @@ def _math(
 def _field(
     name: str,
     rule: str,
+    period: P.Period,
     coords: Callable[..., Any] | None = None,
     support: Callable[..., Any] | None = None,
     arrays: int = 1,
@@ -206,11 +218,13 @@ def _field(
         support=support,
         arrays=arrays,
         work=work,
+        period=period,
     )
 
 
-def _coordinate_field(name: str, rule: str) -> Op:
-    return Op(name, Kind.FIELD, Ref(_FIELDS + rule), _coordinate, unbounded, NUMPY)
+def _coordinate_field(name: str, rule: str, axis: tuple[float, float]) -> Op:
+    period = P.axis(*axis)
+    return Op(name, Kind.FIELD, Ref(_FIELDS + rule), _coordinate, unbounded, NUMPY, period=period)
 
 
 def _geometry(name: str, rule: str, work: float = 1) -> Op:
@@ -220,8 +234,8 @@ def _geometry(name: str, rule: str, work: float = 1) -> Op:
 
 _ENTRIES: tuple[Op, ...] = (
     # coordinates and constants
-    _coordinate_field("X", "x"),
-    _coordinate_field("Y", "y"),
+    _coordinate_field("X", "x", (1.0, 0.0)),
+    _coordinate_field("Y", "y", (0.0, 1.0)),
     Op("Constant", Kind.FIELD, Ref(_FIELDS + "constant"), _constant, unbounded, NUMPY),
     # element-wise math: numpy implementation, static rule, bounds rule, opcode or NUMPY
     _math("Add", _MATHOPS + "add", _binary(lambda a, b: a + b), _add_bounds, "add", support=_UNION),
@@ -268,8 +282,17 @@ _ENTRIES: tuple[Op, ...] = (
         _sqrt_bounds,
         "sqrt",
     ),
-    _math("Floor", _MATHOPS + "floor", _unary(math.floor), _monotone(math.floor), "floor"),
-    _math("Ceil", _MATHOPS + "ceil", _unary(math.ceil), _monotone(math.ceil), "ceil"),
+    _math(
+        "Floor",
+        _MATHOPS + "floor",
+        _unary(math.floor),
+        _monotone(math.floor),
+        "floor",
+        period=P.STEP,
+    ),
+    _math(
+        "Ceil", _MATHOPS + "ceil", _unary(math.ceil), _monotone(math.ceil), "ceil", period=P.STEP
+    ),
     _math(
         "Sin",
         _MATHOPS + "sin",
@@ -277,6 +300,7 @@ _ENTRIES: tuple[Op, ...] = (
         _periodic_bounds,
         NUMPY,
         work=W.TRANSCENDENTAL,
+        period=P.wrap(),
     ),
     _math(
         "Cos",
@@ -285,6 +309,7 @@ _ENTRIES: tuple[Op, ...] = (
         _periodic_bounds,
         NUMPY,
         work=W.TRANSCENDENTAL,
+        period=P.wrap(),
     ),
     _math("Log", _MATHOPS + "log", _log, unbounded, NUMPY, work=W.TRANSCENDENTAL),
     _math(
@@ -298,24 +323,38 @@ _ENTRIES: tuple[Op, ...] = (
         check=Ref(_FIELDS + "check_threshold"),
         work=W.THRESHOLD,
     ),
-    # primitive fields (backend kernels)
-    _field("fBm", "fbm", work=W.fbm),
-    _field("Worley", "worley", arrays=3, work=W.worley),
-    _field("Bricks", "bricks", arrays=2, work=W.BRICKS),
-    _field("Weave", "weave", arrays=5, work=W.weave),
-    _field("Fill", "fill", support=Ref(_SUPPORT + "fill"), work=W.SHAPE),
-    _field("Stroke", "stroke", support=Ref(_SUPPORT + "stroke"), work=W.SHAPE),
+    # primitive fields (backend kernels); their own periods: lattices, cells, shape images
+    _field("fBm", "fbm", P.own(PR.fbm), work=W.fbm),
+    _field("Worley", "worley", P.own(PR.worley), arrays=3, work=W.worley),
+    _field("Bricks", "bricks", P.own(PR.bricks), arrays=2, work=W.BRICKS),
+    _field("Weave", "weave", P.own(PR.weave), arrays=5, work=W.weave),
+    _field("Fill", "fill", P.own(), support=Ref(_SUPPORT + "fill"), work=W.SHAPE),
+    _field("Stroke", "stroke", P.own(), support=Ref(_SUPPORT + "stroke"), work=W.SHAPE),
     # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
-    _field("Translate", "transformed", coords=lambda x, y, a, b: (x - a, y - b), support=_MOVED),
-    _field("Scale", "transformed", coords=lambda x, y, a, b: (x / a, y / b), support=_MOVED),
+    _field(
+        "Translate",
+        "transformed",
+        P.transform(P.translated, warp_keeps=True),
+        coords=lambda x, y, a, b: (x - a, y - b),
+        support=_MOVED,
+    ),
+    _field(
+        "Scale",
+        "transformed",
+        P.transform(P.scaled("sx", "sy")),
+        coords=lambda x, y, a, b: (x / a, y / b),
+        support=_MOVED,
+    ),
     _field(
         "Rotate",
         "transformed",
+        P.transform(P.rotated("degrees", _cycle("Rotate", "degrees"))),
         coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y),
         support=_MOVED,
     ),
-    # instancing: the operand in 9 neighbouring instance frames (the registry's instances)
-    _field("Tile", "tile", arrays=6, work=W.tile_work(9)),
+    # instancing: the operand in 9 neighbouring instance frames (the registry's instances),
+    # which repeat with the instances; its own period: the cells
+    _field("Tile", "tile", P.own(PR.tile), arrays=6, work=W.tile_work(9)),
     # geometry (arguments of Fill/Stroke; not fields)
     _geometry("Rect", "rect"),
     _geometry("Ellipse", "ellipse"),
@@ -330,6 +369,4 @@ OPS: dict[str, Op] = {op.name: op for op in (*_ENTRIES, *MATH_V2_ENTRIES)}
 
 def operator_ops() -> dict[str, Op]:
     """The ops of the binary operators (``"+"`` -> Add, ...), from the registry."""
-    from matloom.vocab import FUNCTIONS
-
     return {spec.operator: OPS[name] for name, spec in FUNCTIONS.items() if spec.operator}

@@ -46,7 +46,7 @@ def bricks(ev: Any, call: A.Call, c: Any) -> Any:
     if not uses_seed(call):
         return ev.backend.bricks(c[0], c[1], **{**params, "seed": None})
     kernel = ev.backend.bricks
-    period = ev.periods_of(c, "Bricks")
+    period = ev.periods_of(c, call.func)
     wrap = None if period is None else brick_wrap(params, period)
     if wrap is not None:  # tileable cell values: the numpy kernel wraps them (both backends)
         from matloom.engine.kernels import patterns
@@ -56,9 +56,9 @@ def bricks(ev: Any, call: A.Call, c: Any) -> Any:
 
 
 def brick_wrap(params: dict[str, Any], period: tuple[float, float]) -> tuple[int, int, int] | None:
-    """Bricks' :func:`~matloom.engine.kernels.periodic.course_wrap` in a frame of periods
-    ``period``: courses are rows (axis "row") or columns."""
-    from matloom.engine.kernels.periodic import course_wrap
+    """Bricks' :func:`~matloom.ops.periodic.course_wrap` in a frame of periods ``period``:
+    courses are rows (axis "row") or columns."""
+    from matloom.ops.periodic import course_wrap
 
     bw, bh, offset = (float(params[k]) for k in ("brick_width", "brick_height", "offset"))
     if params["axis"] == "row":
@@ -103,7 +103,7 @@ def wrapped_shape(ev: Any, call: A.Call, c: Any, coverage: Callable[[Any, Any], 
     period = ev.periods_of(c, call.func)
     if period is None:
         return coverage(c[0], c[1])
-    from matloom.engine.kernels.periodic import image_shifts
+    from matloom.ops.periodic import image_shifts
 
     box, extent = ev.motif_support(call), _extent(c)
     shifts = None if box is None or extent is None else image_shifts(box, period, extent)
@@ -135,14 +135,14 @@ def tile(ev: Any, call: A.Call, c: Any) -> Any:
     """Tile: the maximum over the 9 neighbouring instances of the motif evaluated in each
     instance's frame, dropped instances giving 0 (see :mod:`matloom.engine.kernels.tile`).
 
-    Where the motif's support is known (:mod:`matloom.engine.ops.support`: it is exactly 0
+    Where the motif's support is known (:mod:`matloom.engine.rules.support`: it is exactly 0
     outside a box), each instance evaluates the motif only at the samples whose local
     coordinates fall in the box, and every other instance contributes its exact 0: the same
     values as evaluating all 9 everywhere, for about the cost of the motif's own area."""
     from matloom.engine.kernels.tile import NEIGHBOURS, TileParams
 
     params = TileParams.of({**ev.params(call), "seed": ev.seed_of(call)})
-    period = ev.periods_of(c, "Tile")
+    period = ev.periods_of(c, call.func)
     if period is not None:
         params = params.tiled(period)
     motif = call.arg("expr")

@@ -1,4 +1,8 @@
-"""Periodic lattices for tileable noise (shared by every backend; pure Python/numpy).
+"""Periodic lattices: the arithmetic that makes a lattice repeat with the View's periods.
+
+Pure Python, shared by the op table's period rules (:mod:`matloom.ops.period`: what the checker
+reports), the noise plans (:mod:`matloom.engine.kernels.noise`), Tile's and Bricks' cell wraps
+and the shapes' images, so that the checker and the engine decide alike.
 
 **fBm** (OpenSimplex 2014) samples a triangular lattice: the vertex with stretched indices
 (i, j) sits at ``(i + (i + j) SQUISH, j + (i + j) SQUISH)``. No lattice vector is parallel to
@@ -12,7 +16,8 @@ by a lattice vector, and the vertex hash takes the vertex's index modulo the sub
 ``L1``, ``L2`` span (its Hermite normal form ``(p, q), (0, r)``: index ``i' r + j'`` of the
 canonical representative, its low 16 bits replacing the 8 + 8 bits of the unbounded noise), so
 the field repeats exactly. The reductions use float64 ``floor((n + 0.5) / p)``, exact for every
-index below 2**51, so numpy and numba compute the same integers.
+index below 2**51, so numpy and numba compute the same integers
+(:func:`matloom.engine.kernels.noise.simplex_tiling` stacks the octaves' maps).
 
 **Worley** and the cell values use a square lattice: the frequency is snapped so that each
 period holds a whole number of cells, and cell indices are wrapped modulo those counts.
@@ -26,18 +31,21 @@ from __future__ import annotations
 import itertools
 import math
 
-import numpy as np
-
-from matloom.engine.kernels.opensimplex import SQUISH_CONSTANT2, STRETCH_CONSTANT2
+#: OpenSimplex 2-D lattice constants (opensimplex 0.4.5.1's): index -> real space and back.
+STRETCH_CONSTANT2: float = -0.211324865405187  # (1/sqrt(3) - 1) / 2
+SQUISH_CONSTANT2: float = 0.366025403784439  # (sqrt(3) - 1) / 2
 
 __all__ = [
     "MAX_PERIOD_CELLS",
+    "SQUISH_CONSTANT2",
+    "STRETCH_CONSTANT2",
     "cell_counts",
+    "course_wrap",
     "image_shifts",
     "simplex_octave",
-    "simplex_tiling",
     "simplex_wraps",
     "snap_frequency",
+    "whole",
     "wraps",
 ]
 
@@ -133,22 +141,6 @@ def simplex_wraps(
     if not (px > 0 and py > 0 and math.isfinite(px) and math.isfinite(py)):
         return False
     return all(wraps(fx * px) and wraps(fy * py) for fx, fy in zip(freqs_x, freqs_y, strict=True))
-
-
-def simplex_tiling(
-    freqs_x: tuple[float, ...], freqs_y: tuple[float, ...], period: tuple[float, float]
-) -> tuple[np.ndarray, np.ndarray]:
-    """Per-octave (O, 4) coordinate maps and (O, 5) sublattices (:func:`simplex_octave`)."""
-    if not simplex_wraps(freqs_x, freqs_y, period):
-        raise ValueError(
-            f"tileable periods must be finite and > 0, with at most {MAX_PERIOD_CELLS} cells "
-            f"per period in every octave, got {period!r}"
-        )
-    px, py = (float(v) for v in period)
-    rows = [simplex_octave(px, py, fx, fy) for fx, fy in zip(freqs_x, freqs_y, strict=True)]
-    maps = np.array([m for m, _ in rows], dtype=np.float64)
-    lattices = np.array([lat for _, lat in rows], dtype=np.float64)
-    return maps, lattices
 
 
 def cell_counts(freq_x: float, freq_y: float, period: tuple[float, float]) -> tuple[int, int]:

@@ -21,7 +21,7 @@ The algorithms are fdlibm's (FreeBSD msun), as :mod:`.mathops` already does for 
 Every function takes float64 arrays and returns float64; :mod:`.mathops` rounds to the dtype
 numpy would return (float32 stays float32). NaN operands propagate; a NaN made here (log of a
 negative number, sin of inf, a negative base to a non-integer power) is
-:data:`~matloom.engine.kernels.portable_constants.NAN`.
+:data:`~matloom.ops.portable_constants.NAN`.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from matloom.engine.kernels.portable_constants import (
+from matloom.ops.portable_constants import (
     C1,
     C2,
     C3,

@@ -1,5 +1,5 @@
-"""The background kernel compiler of :mod:`matloom.engine.kernels.warmup` (run as
-``python -m matloom.engine.kernels.warmup_steps DIR``): the warm-up steps and their runner.
+"""The background kernel compiler of :mod:`matloom.runtime.warmup` (run as
+``python -m matloom.runtime.warmup_steps DIR``): the warm-up steps and their runner.
 
 Each step evaluates a small program on the numba backend, so the kernels are compiled for exactly
 the argument types real renders pass; together the steps cover every evaluation kernel (fBm and
@@ -90,7 +90,7 @@ def run_steps(
     """Compile (or load) every kernel of :data:`STEPS` in this process (with the helper process
     when ``helper`` and there are two or more cores); returns seconds. ``progress(done, total,
     label)`` is called before each step and at the end."""
-    import matloom
+    from matloom.engine.evaluate import evaluate
     from matloom.render.preview import shade
 
     start = time.perf_counter()
@@ -106,7 +106,7 @@ def run_steps(
             if program is None:
                 shade(maps, backend="numba")
             else:
-                maps = matloom.evaluate(program, STEP_SIZE, STEP_SIZE, backend="numba")
+                maps = evaluate(program, STEP_SIZE, STEP_SIZE, backend="numba")
     finally:
         if helping is not None:
             helping.kill()
@@ -118,7 +118,7 @@ def run_steps(
 def _start_helper() -> subprocess.Popen[bytes] | None:
     try:
         return subprocess.Popen(  # noqa: S603 - our own module, same interpreter
-            [sys.executable, "-m", "matloom.engine.kernels.warmup_steps", "--primitives"],
+            [sys.executable, "-m", "matloom.runtime.warmup_steps", "--primitives"],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
@@ -131,19 +131,19 @@ def compile_primitives() -> None:
     """The helper: the primitive kernels of the later steps, evaluated unfused."""
     from dataclasses import replace
 
-    import matloom
     from matloom.engine.backends import get_backend
+    from matloom.engine.evaluate import evaluate
 
     unfused = replace(get_backend("numba"), fused=False)
     for _, program in STEPS[_HELPED_FROM:]:
         if program is not None:
-            matloom.evaluate(program, STEP_SIZE, STEP_SIZE, backend=unfused)
+            evaluate(program, STEP_SIZE, STEP_SIZE, backend=unfused)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the steps into the cache directory ``argv[0]``, then write the stamp (or the error)
-    and release the lock (see :mod:`matloom.engine.kernels.warmup`)."""
-    from matloom.engine.kernels import warmup
+    and release the lock (see :mod:`matloom.runtime.warmup`)."""
+    from matloom.runtime import warmup
 
     args = sys.argv[1:] if argv is None else argv
     if args[:1] == ["--primitives"]:  # the helper (as nice as its parent)

@@ -5,7 +5,7 @@ exactly 0 at every point; ``None`` means "anywhere" (unknown). Only ops whose ze
 have a rule: coverage of shapes (0 past the edge's reach), sums, differences, minima and maxima
 of two supported fields (0 where both are), products with a supported factor and a finite
 constant or another supported factor, and constant transforms of a supported field. Tile uses it
-to evaluate its motif only where an instance can show (:func:`matloom.engine.ops.fields.tile`).
+to evaluate its motif only where an instance can show (:func:`matloom.engine.rules.fields.tile`).
 """
 
 from __future__ import annotations

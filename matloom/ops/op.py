@@ -1,6 +1,6 @@
 """What one function of the language means to the engine: the :class:`Op` record.
 
-An op states every rule once (see :mod:`matloom.engine.ops.table` for the entries):
+An op states every rule once (see :mod:`matloom.ops.table` for the entries):
 
 * ``numpy``: how it is computed. For an element-wise op, the array function
   ``numpy(*operands, **params)`` (operands: the function's expression parameters in registry
@@ -14,9 +14,12 @@ An op states every rule once (see :mod:`matloom.engine.ops.table` for the entrie
 * ``fast``: the fast path: the name of the register-machine opcode that computes it
   (:mod:`matloom.engine.kernels.register_ops`), or :data:`NUMPY` (computed with numpy; the result
   is a leaf of the compiled program).
+* ``period``: how it keeps, wraps, scales or breaks the View's periods of a tileable output
+  (:mod:`matloom.ops.period`), read by the checker's tileable analysis and the interpreter.
 
 Importing this module (and the table) imports neither numpy nor any kernel: implementations are
-:class:`Ref` s resolved on first use, so :mod:`matloom.lang.static` can read the static rules.
+:class:`Ref` s resolved on first use (the engine's rules in :mod:`matloom.engine.rules` and
+kernels), so :mod:`matloom.lang` can read the static, work and period rules.
 """
 
 from __future__ import annotations
@@ -26,6 +29,8 @@ import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+from matloom.ops.period import KEEP, Period
 
 Interval = tuple[float, float]
 Bounds = Interval | None
@@ -91,12 +96,14 @@ class Op:
     #: memory estimate of ``matloom.engine.limits`` counts this many per evaluation).
     arrays: int = 1
     #: Where the field can be non-zero: ``support(context, node, operands)`` -> a box or None
-    #: (see :mod:`matloom.engine.ops.support`); None: anywhere (no rule).
+    #: (see :mod:`matloom.engine.rules.support`); None: anywhere (no rule).
     support: Callable[..., Any] | None = None
     #: Work of one evaluation in node evaluations (the cost model's unit, see
-    #: :mod:`matloom.engine.ops.work`): a number, or a rule ``work(param)`` over the call's
+    #: :mod:`matloom.ops.work`): a number, or a rule ``work(param)`` over the call's
     #: static parameters that bounds every loop the op's kernels run.
     work: float | Callable[[Callable[[str], Any]], float] = 1
+    #: How the op keeps, wraps, scales or breaks the View's periods (tileable output).
+    period: Period = KEEP
 
     @property
     def materialised(self) -> bool:

@@ -1,5 +1,5 @@
 """Op entries of the language-2 math functions (see :mod:`matloom.vocab.functions_math`);
-:data:`matloom.engine.ops.table.OPS` includes them.
+:data:`matloom.ops.table.OPS` includes them.
 
 * **Atan2, Fract, Mod, Exp** are element-wise ops with their own opcodes (``atan2``, ``fract``,
   ``mod``, ``exp``). They compute in float64 and return float64 (``dtype="float64"``, like
@@ -7,7 +7,7 @@
   operations the register machine repeats (:mod:`matloom.engine.kernels.mathops_numba`). Mod
   divides like Div: 0 where the divisor is exactly 0, counted as a division by zero.
 * **Clamp, Mix, Smoothstep** take three field operands; a register-machine row has two. They
-  are field rules (:mod:`matloom.engine.ops.fields_math`) that compose Min, Max, Add, Sub, Mul
+  are field rules (:mod:`matloom.engine.rules.fields_math`) that compose Min, Max, Add, Sub, Mul
   and Div, so the fused path runs them on those opcodes and culling reads those ops' bounds;
   the bounds rules here state the same intervals for the call as a whole. Their dtype is the
   composed ops' (numpy promotion of the operands).
@@ -28,11 +28,12 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-import matloom.engine.ops.work as W
-from matloom.engine.ops.op import NUMPY, Bounds, Interval, Kind, Op, Ref
+import matloom.ops.period as P
+import matloom.ops.work as W
+from matloom.ops.op import NUMPY, Bounds, Interval, Kind, Op, Ref
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
-_RULES = "matloom.engine.ops.fields_math:"
+_RULES = "matloom.engine.rules.fields_math:"
 #: Interval endpoints beyond this magnitude are not analysed (products and sums may overflow).
 _LARGE = 1e300
 
@@ -53,13 +54,14 @@ def _folded(function: str, arity: int, defaults: tuple[float, ...] = ()) -> Call
     return rule
 
 
+_HASH_VALUE = Ref("matloom.engine.kernels.hashing:hash_value")
+
+
 def _hash_static(values: list[Any], strict: bool) -> float | None:
     """Hash(x, y, seed) of three written constants (two are ambiguous: y or the seed)."""
     if len(values) != 3:
         return None
-    from matloom.engine.kernels.hashing import hash_value
-
-    return hash_value(float(values[0]), float(values[1]), int(round(values[2])))
+    return float(_HASH_VALUE(float(values[0]), float(values[1]), int(round(values[2]))))
 
 
 # ------------------------------------------------------------------ bounds (interval) rules
@@ -120,7 +122,12 @@ def _hash_bounds(x: Interval, y: Interval = (0.0, 0.0), **params: Any) -> Bounds
 
 # ------------------------------------------------------------------ the entries
 def _elementwise(
-    name: str, function: str, arity: int, bounds: Callable[..., Bounds], work: float = 1
+    name: str,
+    function: str,
+    arity: int,
+    bounds: Callable[..., Bounds],
+    work: float = 1,
+    period: P.Period = P.KEEP,
 ) -> Op:
     static = _folded(_MATHOPS + function, arity)
     fast = name.lower()  # the opcode (kernels.register_ops)
@@ -135,6 +142,7 @@ def _elementwise(
         divisor=divisor,
         dtype="float64",
         work=work,
+        period=period,
     )
 
 
@@ -145,14 +153,26 @@ def _composed(
     bounds: Callable[..., Bounds],
     arrays: int,
     work: float = 1,
+    period: P.Period = P.KEEP,
 ) -> Op:
-    return Op(name, Kind.FIELD, Ref(_RULES + rule), static, bounds, NUMPY, arrays=arrays, work=work)
+    return Op(
+        name,
+        Kind.FIELD,
+        Ref(_RULES + rule),
+        static,
+        bounds,
+        NUMPY,
+        arrays=arrays,
+        work=work,
+        period=period,
+    )
 
 
 MATH_V2_ENTRIES: tuple[Op, ...] = (
     _elementwise("Atan2", "atan2", 2, _atan2_bounds, W.TRANSCENDENTAL),
-    _elementwise("Fract", "fract", 1, _fract_bounds),
-    _elementwise("Mod", "mod", 2, _mod_bounds),
+    # Fract and Mod repeat every cycle of their argument (ParamSpec.cycle: 1, and Mod's m)
+    _elementwise("Fract", "fract", 1, _fract_bounds, period=P.wrap()),
+    _elementwise("Mod", "mod", 2, _mod_bounds, period=P.wrap()),
     _elementwise("Exp", "exp_", 1, _exp_bounds, W.TRANSCENDENTAL),
     _composed("Clamp", "clamp", _folded(_MATHOPS + "clamp", 3, (0.0, 1.0)), _clamp_bounds, 3),
     _composed("Mix", "mix", _folded(_MATHOPS + "mix", 3), _mix_bounds, 4),
@@ -164,5 +184,14 @@ MATH_V2_ENTRIES: tuple[Op, ...] = (
         9,
         W.SMOOTHSTEP,
     ),
-    _composed("Hash", "hash_cells", _hash_static, _hash_bounds, 3, W.HASH),
+    # Hash: the cells of its operands (the engine wraps them modulo the cells per period)
+    _composed(
+        "Hash",
+        "hash_cells",
+        _hash_static,
+        _hash_bounds,
+        3,
+        W.HASH,
+        period=P.wrap(unit="cells", framed=True),
+    ),
 )

@@ -3,9 +3,10 @@
 numba compiles each kernel on its first call and caches the machine code on disk (the numba
 cache: ``$NUMBA_CACHE_DIR``, else ``__pycache__`` next to the kernels, else the user's cache).
 Compiling everything the evaluation path uses takes about 20 s of CPU on the 2-core machines we
-measure on, loading it from the cache well under a second. So the CLI (``matloom.cli.progress``,
-``backends.set_cold_start``) evaluates a request on the numpy/C path -- bit-identical maps --
-while :func:`ensure_background` has a detached process (:mod:`warmup_steps`) compile every kernel
+measure on, loading it from the cache well under a second. So the CLI's session
+(:mod:`matloom.cli.progress`, with :class:`matloom.runtime.cold_start.BackgroundCompile` as its
+cold start) evaluates a request on the numpy/C path -- bit-identical maps -- while
+:func:`ensure_background` has a detached process (:mod:`warmup_steps`) compile every kernel
 once; that process writes a stamp into the cache directory when it is done, and from then on
 the numba path is used.
 
@@ -14,7 +15,8 @@ Python, the CPU, the kernel sources -- the ABI hash of :mod:`abi`, which also ke
 kernel -- and numba's code-generation settings): an upgrade or an edited kernel makes the
 kernels cold again. A lock file holds the background compiler's pid, so
 that concurrent commands start one compiler only, and one that died is replaced. Nothing here
-imports numba.
+imports numba. Whether a background compiler may run at all (``$MATLOOM_BACKGROUND_COMPILE``)
+is decided once per session (:func:`matloom.runtime.cold_start.background_compile`).
 """
 
 from __future__ import annotations
@@ -32,16 +34,19 @@ from importlib.util import find_spec
 from pathlib import Path
 
 from matloom.engine.kernels import abi
-from matloom.engine.kernels.warmup_steps import STEPS
+from matloom.runtime.warmup_steps import STEPS
 
 STAMP_NAME = "matloom-kernels.json"
 LOCK_NAME = "matloom-kernels.lock"
 STATUS_NAME = "matloom-kernels.status.json"
-#: Set to "0" to turn the background compiler off (the CLI then compiles in the foreground).
-BACKGROUND_ENV = "MATLOOM_BACKGROUND_COMPILE"
+#: The module the background compiler runs (its helper runs it with ``--primitives``).
+STEPS_MODULE = "matloom.runtime.warmup_steps"
 #: Environment variables that change numba's generated code (part of the stamp key).
 _CODEGEN_ENV = ("MATLOOM_NUMBA_WIDE_VECTORS", "NUMBA_CPU_FEATURES", "NUMBA_CPU_NAME", "NUMBA_OPT")
-_KERNELS = Path(__file__).resolve().parent
+#: The numba kernels' directory (their ``__pycache__`` is numba's first cache candidate) and the
+#: directory holding ``matloom``.
+_KERNELS = abi.KERNELS
+_PACKAGE_ROOT = abi.PACKAGE_ROOT
 
 #: Seconds a lock without a pid yet counts as held.
 _STARTING_GRACE_S = 60.0
@@ -175,14 +180,13 @@ def _lock_pid(directory: Path) -> int | None:
 
 
 def ensure_background(directory: Path | None = None) -> WarmupState:
-    """Start the background compiler unless the kernels are ready, it runs already, it failed
-    before for this key, or it is switched off ($MATLOOM_BACKGROUND_COMPILE=0, or not POSIX)."""
+    """Start the background compiler unless the kernels are ready, it runs already, or it
+    failed before for this key (whether one should run at all is decided by the caller:
+    :func:`matloom.runtime.cold_start.background_compile`)."""
     directory = directory or cache_dir()
     current = state(directory)
     if current.ready or current.running or current.error or directory is None:
         return current
-    if os.environ.get(BACKGROUND_ENV, "1") == "0" or os.name != "posix":
-        return current  # (the pid checks here are POSIX-only: elsewhere compile in front)
     lock = directory / LOCK_NAME
     if lock.exists():  # state() found no live compiler behind it: it died, take over
         lock.unlink(missing_ok=True)
@@ -205,14 +209,14 @@ def ensure_background(directory: Path | None = None) -> WarmupState:
 
 
 def _spawn(directory: Path) -> subprocess.Popen[bytes]:
-    """``python -m matloom.engine.kernels.warmup_steps DIR``, detached, output discarded."""
-    package_root = str(_KERNELS.parents[2])
+    """``python -m matloom.runtime.warmup_steps DIR``, detached, output discarded."""
+    package_root = str(_PACKAGE_ROOT)
     env = dict(
         os.environ,
         PYTHONPATH=os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")])),
     )
     return subprocess.Popen(  # noqa: S603 - our own module, same interpreter
-        [sys.executable, "-m", "matloom.engine.kernels.warmup_steps", str(directory)],
+        [sys.executable, "-m", STEPS_MODULE, str(directory)],
         stdin=subprocess.DEVNULL,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,

@@ -1,5 +1,5 @@
 """Field rules of the language-2 functions that are not one element-wise op (see
-:mod:`matloom.engine.ops.table_math`).
+:mod:`matloom.ops.table_math`).
 
 * **Clamp, Mix, Smoothstep** have three field operands, one more than a register-machine row
   holds. Their rules evaluate the operands and compose the element-wise ops Min, Max, Add,
@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from matloom.engine.ops import OPS
+from matloom.ops import OPS
 from matloom.lang import ast as A
 
 _CONSTANTS = {v: np.float64(v) for v in (0.0, 1.0, 2.0, 3.0)}
@@ -93,7 +93,7 @@ def hash_cells(ev: Any, call: A.Call, c: Any) -> Any:
         raise ValueError("Hash has no seed; canonicalise the program first")
     x = _concrete(ev, _operand(ev, call, "x", c))
     y = _concrete(ev, _operand(ev, call, "y", c, 0.0))
-    period = ev.periods_of(c, "Hash") if getattr(ev, "periods", None) else None
+    period = ev.periods_of(c, call.func) if getattr(ev, "periods", None) else None
     if period is not None:
         x, y = _wrap_hash(ev, call, period, x, y)
     batch = getattr(ev, "batch_seeds", None)
@@ -114,7 +114,8 @@ def hash_wrap(call: A.Call, defines: Any, period: tuple[float, float]) -> tuple[
     :mod:`matloom.lang.affine`); operands without coordinates need no wrap."""
     from math import gcd
 
-    from matloom.lang.affine import coord_coeffs, whole
+    from matloom.lang.affine import coord_coeffs
+    from matloom.ops.period import whole
 
     out = []
     for name in ("x", "y"):
