@@ -18,6 +18,7 @@ from matloom.author.records import RecordStore
 
 if TYPE_CHECKING:
     from matloom.engine.maps import MaterialMaps
+    from matloom.engine.session import Session
     from matloom.runtime.job import RenderJob
 
 #: The batch group of the final material (the group ``matloom render`` writes).
@@ -40,12 +41,12 @@ def export_job(program: str, size: int, *, name: str = "material", prompt: str =
     )
 
 
-def evaluate_for_export(program: str, size: int) -> MaterialMaps:
+def evaluate_for_export(program: str, size: int, *, session: Session | None = None) -> MaterialMaps:
     """``program``'s maps at ``size`` x ``size``, as the export evaluates them (the preview's
-    shading counted in the memory budget)."""
+    shading counted in the memory budget), in ``session`` (default: the process's)."""
     from matloom.runtime.run import evaluate_job
 
-    return evaluate_job(export_job(program, size))
+    return evaluate_job(export_job(program, size), session)
 
 
 def material_name(text: str) -> str:
@@ -70,12 +71,14 @@ def export_final(
     maps: MaterialMaps | None = None,
     *,
     name: str = "material",
+    session: Session | None = None,
 ) -> dict[str, str]:
     """Install the final ``program`` (evaluated at ``size``, unless its ``maps`` at that size
     are given) into the run folder; return the written files by role, relative to the folder
     (``program``, ``preview``, ``manifest`` and one per map). ``name`` is the material's name
     (``name`` in material.json, the prefix of engine export files). ``material.mat`` is
-    written with the run's secrets redacted (material.json hashes the program itself)."""
+    written with the run's secrets redacted (material.json hashes the program itself). The
+    engine work runs in ``session`` (default: the process's)."""
     from dataclasses import replace
 
     from matloom.runtime.run import run_render
@@ -86,7 +89,7 @@ def export_final(
         raise RuntimeError("the run folder is not open (RecordStore.attach)")
     job = export_job(program, size, name=name, prompt=store.record.prompt)
     job = replace(job, program_file_text=store.redactor().text(program + "\n"))
-    result = run_render(job, FolderSink(out, group=EXPORT_GROUP), maps=maps)
+    result = run_render(job, FolderSink(out, group=EXPORT_GROUP), session, maps=maps)
     return result.files
 
 

@@ -367,7 +367,12 @@ class Run:
         self._evaluated.clear()
         record.material_name = record.material_name or material_name(record.prompt)
         final.files = export_final(
-            self.store, final.program, self.config.export_size, maps, name=record.material_name
+            self.store,
+            final.program,
+            self.config.export_size,
+            maps,
+            name=record.material_name,
+            session=self.renderer.session,
         )
         record.final = final
         record.durations.export = time.perf_counter() - start
@@ -408,8 +413,9 @@ class Run:
         from matloom.author.finalize import evaluate_for_export
 
         self._evaluated.clear()
-        with self.renderer.session.lock:
-            maps = evaluate_for_export(program, self.config.export_size)
+        maps = evaluate_for_export(
+            program, self.config.export_size, session=self.renderer.session
+        )  # (under the session's lock)
         self._evaluated[program] = maps
         return nonfinite_texels(maps)
 

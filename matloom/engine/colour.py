@@ -40,10 +40,21 @@ def _power(base: np.ndarray, exponent: float) -> np.ndarray:
     power = np.asarray(exponent, dtype=base.dtype)
     if base.dtype != np.float32 or base.ndim == 0:
         return np.asarray(pow_(base, power))
+    flat = np.ascontiguousarray(base).reshape(-1)
+    out = np.empty(flat.shape, dtype=np.float32)
     with np.errstate(all="ignore"):
-        fast = np.power(base.astype(np.float64), power.astype(np.float64))
-        fast[base == 0.0] = np.nan  # (the sign of a zero result: the portable power decides)
-        return float32_of(fast, lambda at: np.asarray(pow_(base[at], power)))
+        for start in range(0, flat.size, _POWER_BLOCK):  # temporaries stay in the CPU cache
+            part = flat[start : start + _POWER_BLOCK]
+            fast = np.power(part.astype(np.float64), power.astype(np.float64))
+            fast[part == 0.0] = np.nan  # (the sign of a zero result: the portable power's)
+            out[start : start + _POWER_BLOCK] = float32_of(
+                fast, lambda at, part=part: np.asarray(pow_(part[at], power))
+            )
+    return out.reshape(base.shape)
+
+
+#: Elements per block of the float32 :func:`_power`.
+_POWER_BLOCK = 1 << 16
 
 
 def srgb_to_linear(values: ArrayLike) -> np.ndarray:

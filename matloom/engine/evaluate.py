@@ -13,7 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from matloom.engine.backends import Backend
+from matloom.engine.backends import Backend, session_backend
 from matloom.engine.grid import sample_axes
 from matloom.engine.interpret import (
     Coords,
@@ -103,7 +103,7 @@ def evaluate(
     program = prepare(program_or_text, program_seed, session=s)
     check_size(width, height, limits=limits)
     s.evaluations += 1
-    be = backend if isinstance(backend, Backend) else s.choose_backend(backend, width * height)
+    be = backend if isinstance(backend, Backend) else session_backend(s, backend, width * height)
     check_request(program, width, height, fused=be.fused, usage=usage, limits=limits)
     if not program.layers:
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")

@@ -23,12 +23,13 @@ import numpy as np
 
 from matloom.engine.backends import Backend
 from matloom.engine.composite import RawLayer
-from matloom.engine.kernels import mathops, shapes
+from matloom.engine.kernels import shapes
 from matloom.engine.kernels.mathops import count_zero
-from matloom.ops import OPS, Kind, Op, operator_ops
 from matloom.lang import ast as A
 from matloom.lang.cost import FrameTable, field_params, transform_values
 from matloom.lang.static import param_value
+from matloom.ops import OPS, Kind, Op, operator_ops
+from matloom.ops.transform import Transform
 from matloom.vocab import CONSTANTS, FUNCTIONS
 from matloom.vocab.spec import Kind as ParamKind
 
@@ -251,7 +252,7 @@ class Evaluator:
         if warped:
             return self.warp(call, c, warped)
         a, b = transform_values(call)
-        new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
+        new = _transform(call.func).coords(c[0], c[1], a, b)
         return Frame(*new, self.frame_table.child(self._frame_id(c), call.func, (a, b)))
 
     def warp(self, call: A.Call, c: Coords, warped: tuple[str, ...]) -> Coords:
@@ -267,10 +268,11 @@ class Evaluator:
                 values.append(np.asarray(self.concrete(self.eval(call.arg(p.name), c))))
             else:
                 values.append(param_value(call, p.name))
-        a, b = warp_values(call.func, values)
+        rule = _transform(call.func)
+        a, b = rule.warp(values)
         a, b = (np.asarray(v).astype(dtype) if np.ndim(v) else v for v in (a, b))
         with np.errstate(all="ignore"):
-            new = OPS[call.func].coords(c[0], c[1], a, b)  # type: ignore[misc]
+            new = rule.coords(c[0], c[1], a, b)
         frame = self.new_frame(*new)
         # a warp whose period rule keeps the periods (Translate's periodic offsets): its frame
         # has the periods of ``c``
@@ -327,14 +329,12 @@ def _axis_aligned(affine: tuple[float, ...]) -> bool:
     return abs(b) <= 1e-12 * abs(a) and abs(d) <= 1e-12 * abs(e)
 
 
-def warp_values(func: str, values: list[Any]) -> tuple[Any, Any]:
-    """:func:`~matloom.lang.cost.transform_values` of a domain warp, from the field parameters'
-    values (arrays or floats, registry order): Rotate's (cos, sin) of numpy's radians, with the
-    portable cos and sin (the same bits on every CPU)."""
-    if func != "Rotate":
-        return values[0], values[1]
-    rad = np.radians(values[0])
-    return mathops.cos(rad), mathops.sin(rad)
+def _transform(func: str) -> Transform:
+    """The transform rules of ``func`` (``Op.transform``)."""
+    rule = OPS[func].transform
+    if rule is None:
+        raise ValueError(f"{func}(...) is not a coordinate transform")
+    return rule
 
 
 def layer_fields(ev: Evaluator, layer: A.Layer) -> RawLayer:

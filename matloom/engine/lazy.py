@@ -25,9 +25,9 @@ import numpy as np
 from matloom.engine.interpret import Coords, Evaluator, Field
 from matloom.engine.kernels.mathops import count_zero
 from matloom.engine.kernels.register_ops import REGISTER_OPS
+from matloom.lang import ast as A
 from matloom.ops import OPS, Op
 from matloom.ops.octaves import octave_schedule
-from matloom.lang import ast as A
 
 #: dtypes the fused kernel can hold exactly in its float64 registers.
 FUSABLE_DTYPES = (np.dtype(np.float32), np.dtype(np.float64))

@@ -39,7 +39,6 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 if TYPE_CHECKING:
-    from matloom.engine.backends import Backend
     from matloom.engine.kernels.compile_report import CompileReporter
 
 T = TypeVar("T")
@@ -86,7 +85,8 @@ class Session:
     lock: threading.RLock = field(default_factory=threading.RLock, repr=False)
     #: Evaluations run in this session (``auto``'s warm-process rule reads it).
     evaluations: int = 0
-    #: Whether this session picked numba for some evaluation (its shading follows).
+    #: Whether this session picked numba (where installed) for some evaluation (its shading
+    #: follows).
     numba_used: bool = False
     #: Whether the cold start reported the kernels usable (asked until it does).
     kernels_ready: bool = False
@@ -111,49 +111,43 @@ class Session:
 
     # --- backend policy -------------------------------------------------------------------
 
-    def get_backend(self, name: str = "auto") -> Backend:
-        """The backend ``name`` with this session's settings (``auto``: this session's
-        :attr:`backend`, else numba where installed, else numpy); no ``auto`` weighing."""
-        from matloom.engine.backends import get_backend
-
-        if name == "auto":
-            name = self.backend
-        return get_backend(name, pure_numpy=self.pure_numpy)
-
-    def choose_backend(self, name: str = "auto", texels: int = 0) -> Backend:
-        """The backend for an evaluation of ``texels`` texels. A name other than ``auto`` (or
-        a session whose :attr:`backend` is not ``auto``) is that backend. ``auto`` is numba
-        where installed when numba is loaded in the process already, or this session has run
-        more than :data:`AUTO_NUMBA_AFTER_CALLS` evaluations, or the request has at least
-        :data:`AUTO_NUMBA_MIN_TEXELS` texels -- and :meth:`numba_kernels_usable`; else numpy."""
+    def choose_backend(self, name: str = "auto", texels: int = 0) -> str:
+        """The backend name to load for an evaluation of ``texels`` texels (the backend itself:
+        :func:`matloom.engine.backends.session_backend`). A name other than ``auto`` (or a
+        session whose :attr:`backend` is not ``auto``) is kept. ``auto`` weighs numba's
+        start-up: ``auto`` again (numba where installed, else numpy) when numba is loaded in
+        the process already, or this session has run more than
+        :data:`AUTO_NUMBA_AFTER_CALLS` evaluations, or the request has at least
+        :data:`AUTO_NUMBA_MIN_TEXELS` texels -- and :meth:`numba_kernels_usable`; else
+        ``numpy``."""
         if name == "auto":
             name = self.backend
         if name != "auto":
-            return self.get_backend(name)
+            return name
         warm = numba_loaded() or self.evaluations > AUTO_NUMBA_AFTER_CALLS
         if (warm or texels >= AUTO_NUMBA_MIN_TEXELS) and self.numba_kernels_usable():
-            backend = self.get_backend("auto")
-            self.numba_used = self.numba_used or backend.name == "numba"
-            return backend
-        return self.get_backend("numpy")
+            self.numba_used = True
+            return "auto"
+        return "numpy"
 
     def choose_shader(self, name: str = "auto", texels: int = 0) -> str:
-        """The preview shader (``numba`` or ``numpy``; the same images but for one level on
-        rare texels) for an image of ``texels`` texels: a name other than ``auto`` is kept;
-        ``auto`` is this session's :attr:`backend` when it names one, else numba only where
-        its start-up is paid or worth it: numba is loaded in the process (or this session
-        evaluated on it) and its kernels are usable, or the image has at least
-        :data:`AUTO_NUMBA_MIN_TEXELS` texels and numba is installed. So a short command (one
-        small render, a preview, a check) never imports numba to shade. The caller falls
-        back to numpy where numba is not installed."""
+        """The preview shader (``numba`` or ``numpy``: the same images but for one level on
+        rare texels) for an image of ``texels`` texels. A name other than ``auto`` is kept;
+        ``auto`` is this session's :attr:`backend` when it names one, else numba where its
+        start-up is paid or worth it: numba is loaded in the process, or this session
+        evaluated on it, or the image has at least :data:`AUTO_NUMBA_MIN_TEXELS` texels. So a
+        short command (one small render, a preview, a check) never imports numba to shade.
+
+        Unlike :meth:`choose_backend` this does not look at the cold start: a command makes
+        the same preview whether the kernels were compiled before it or not (at a size where
+        the evaluation stays on numpy either way, so does the shading; above it both shade on
+        numba). The caller falls back to numpy where numba is not installed."""
         if name == "auto":
             name = self.backend
         if name != "auto":
             return name
         warm = self.numba_used or numba_loaded()
-        if (warm or texels >= AUTO_NUMBA_MIN_TEXELS) and self.numba_kernels_usable():
-            return "numba"
-        return "numpy"
+        return "numba" if warm or texels >= AUTO_NUMBA_MIN_TEXELS else "numpy"
 
     def numba_kernels_usable(self) -> bool:
         """False while ``auto`` should stay on numpy: the :attr:`cold_start` reports the

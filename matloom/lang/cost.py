@@ -22,14 +22,17 @@ from dataclasses import dataclass
 from typing import Any
 
 from matloom.lang import ast as A
-from matloom.lang.static import is_static, param_value, static_number
+from matloom.lang.static import COORDINATES, is_static, param_value, static_number
+from matloom.ops import OPS
+from matloom.ops.transform import Transform
 from matloom.vocab import FUNCTIONS, Kind
 from matloom.vocab.spec import Returns
 
 MAX_EXPANDED_NODES = 200_000
 """Most expression-node evaluations one program may need (E071), whatever the image size."""
 
-TRANSFORMS = ("Translate", "Scale", "Rotate")
+#: The coordinate transforms (ops with transform rules: Translate, Scale, Rotate).
+TRANSFORMS = tuple(name for name, op in OPS.items() if op.transform is not None)
 
 #: x' = a x + b y + c, y' = d x + e y + f (the sampling grid's x, y): (a, b, c, d, e, f).
 Affine = tuple[float, float, float, float, float, float]
@@ -39,18 +42,11 @@ KEY_BITS = 40
 
 
 def transform_values(call: A.Call) -> tuple[float, float]:
-    """The two numbers a transform applies: (dx, dy) of Translate, (sx, sy) of Scale, (cos, sin)
-    of Rotate's angle. The evaluator maps (x, y) to (x - dx, y - dy), (x / sx, y / sy) and
+    """The two numbers a transform applies (its op's ``transform.values``,
+    :mod:`matloom.ops.transform`): (dx, dy) of Translate, (sx, sy) of Scale, (cos, sin) of
+    Rotate's angle. The evaluator maps (x, y) to (x - dx, y - dy), (x / sx, y / sy) and
     (cos x + sin y, -sin x + cos y)."""
-    if call.func == "Translate":
-        return param_value(call, "dx"), param_value(call, "dy")
-    if call.func == "Scale":
-        return param_value(call, "sx"), param_value(call, "sy")
-    # the portable cos and sin: the C library's pick their last bit by CPU (FMA or not)
-    from matloom.ops import portable_math as pm
-
-    rad = math.radians(param_value(call, "degrees"))
-    return pm.scalar(pm.cos, rad), pm.scalar(pm.sin, rad)
+    return _rule(call.func).values(lambda name: param_value(call, name))
 
 
 def field_params(call: A.Call) -> tuple[str, ...]:
@@ -68,19 +64,18 @@ def field_params(call: A.Call) -> tuple[str, ...]:
     )
 
 
-def _matrix(func: str, u: float, v: float) -> Affine:
-    if func == "Translate":
-        return (1.0, 0.0, -u, 0.0, 1.0, -v)
-    if func == "Scale":
-        return (1.0 / u, 0.0, 0.0, 0.0, 1.0 / v, 0.0)
-    return (u, v, 0.0, -v, u, 0.0)
+def _rule(func: str) -> Transform:
+    rule = OPS[func].transform
+    if rule is None:
+        raise ValueError(f"{func}(...) is not a coordinate transform")
+    return rule
 
 
 def compose(frame: Affine, func: str, values: tuple[float, float]) -> Affine | None:
     """The frame reached by applying transform ``func`` with ``values`` in ``frame`` (float64
     arithmetic); None when it is not finite (or a scale is 0): such a frame equals no other."""
     try:
-        t0, t1, t2, t3, t4, t5 = _matrix(func, float(values[0]), float(values[1]))
+        t0, t1, t2, t3, t4, t5 = _rule(func).matrix(float(values[0]), float(values[1]))
     except (ValueError, OverflowError, ZeroDivisionError, TypeError):
         return None
     a, b, c, d, e, f = frame
@@ -203,8 +198,6 @@ def op_work(call: A.Call) -> int:
     """Node evaluations one evaluation of ``call`` counts by itself: its op's ``work``
     (:mod:`matloom.ops.work`: a number, or a rule over the call's static parameters
     that bounds every loop its kernels run), at least 1."""
-    from matloom.ops import OPS
-
     op = OPS.get(call.func)
     work = 1 if op is None else op.work
     try:
@@ -237,7 +230,8 @@ def _transform_values(node: A.Call) -> tuple[float, float] | None:
 #: warp parameters, instances, extra nodes) or ("field", extra nodes, field children, arrays
 #: it may allocate); extra nodes: the node's work beyond 1 (:func:`call_work`).
 _Info = tuple[Any, ...]
-_SHAPED = ("Fill", "Stroke")
+#: The functions that draw a shape (Fill, Stroke): a parameter of kind SHAPE.
+_SHAPED = tuple(n for n, s in FUNCTIONS.items() if any(p.kind is Kind.SHAPE for p in s.params))
 #: Functions whose value is a scalar when their field operands are (as numpy gives it).
 _SCALAR_MATH = frozenset(
     ("Constant", "Abs", "Sqrt", "Floor", "Ceil", "Sin", "Cos", "Log", "Min", "Max")
@@ -273,7 +267,7 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
         extra = op_work(node) - 1
         return ("transform", node.func, None, node.arg("expr"), (), spec.instances, extra)
     extra = call_work(node) - 1 if isinstance(node, A.Call) else 0
-    axis = isinstance(node, A.Call) and node.func in ("X", "Y")
+    axis = isinstance(node, A.Call) and node.func in COORDINATES
     if axis or _constant(node, constants):
         return ("field", extra, _field_children(node), 0)
     return ("field", extra, _field_children(node), _arrays(node))
@@ -281,8 +275,6 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
 
 def _arrays(node: A.Node) -> int:
     """Field-sized arrays one evaluation of ``node`` allocates (the op table's ``arrays``)."""
-    from matloom.ops import OPS
-
     op = OPS.get(node.func) if isinstance(node, A.Call) else None
     return op.arrays if op is not None else 1
 
@@ -420,8 +412,8 @@ def over_limit(program: A.Program, cost: Cost, limit: int) -> tuple[str, str, A.
     """(message, hint, call to point at) for a program counting more than ``limit`` node
     evaluations: the call whose own work is a large share of it (a loop its parameters make
     long), else the Define evaluated in the most coordinate frames."""
-    from matloom.ops.work import HINTS
     from matloom.lang.printer import format_expr
+    from matloom.ops.work import HINTS
 
     heavy = costliest_call(program)
     if heavy is not None and heavy.work * _DOMINANT_SHARE >= limit:

@@ -10,12 +10,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from matloom.ops import OPS, operator_ops
 from matloom.lang import ast as A
+from matloom.ops import OPS, Repeats, operator_ops
 from matloom.vocab import CONSTANTS, FUNCTIONS
 
 #: The binary operators' ops ("+" -> Add, ...); each op's static rule is its folding rule.
 _OPERATORS = operator_ops()
+#: The coordinates X(), Y(): the ops whose period rule is an axis.
+COORDINATES = frozenset(name for name, op in OPS.items() if op.period.repeats is Repeats.AXIS)
 
 
 def is_static(node: A.Node) -> bool:
@@ -24,7 +26,7 @@ def is_static(node: A.Node) -> bool:
 
 
 def uses_coordinates(node: A.Node) -> bool:
-    return any(isinstance(n, A.Call) and n.func in ("X", "Y") for n in A.walk(node))
+    return any(isinstance(n, A.Call) and n.func in COORDINATES for n in A.walk(node))
 
 
 def static_number(node: A.Node) -> float | int | None:

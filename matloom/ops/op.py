@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from matloom.ops.period import KEEP, Period
+from matloom.ops.transform import Transform
 
 Interval = tuple[float, float]
 Bounds = Interval | None
@@ -90,8 +91,8 @@ class Op:
     block: Callable[..., list[float]] | None = None
     #: Raise on invalid static params before the op is deferred to the fast path.
     check: Callable[..., None] | None = None
-    #: For a coordinate transform: (x, y, a, b) -> new (x, y), a and b from lang.cost.
-    coords: Callable[..., tuple[Any, Any]] | None = None
+    #: For a coordinate transform: its coordinates, values, frame matrix (:mod:`.transform`).
+    transform: Transform | None = None
     #: Field-sized arrays one evaluation of the op allocates, its intermediates included (the
     #: memory estimate of ``matloom.engine.limits`` counts this many per evaluation).
     arrays: int = 1

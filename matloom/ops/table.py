@@ -14,6 +14,7 @@ from typing import Any
 
 import matloom.ops.period as P
 import matloom.ops.period_rules as PR
+import matloom.ops.transform as T
 import matloom.ops.work as W
 from matloom.ops.op import (
     NUMPY,
@@ -202,7 +203,7 @@ def _field(
     name: str,
     rule: str,
     period: P.Period,
-    coords: Callable[..., Any] | None = None,
+    transform: T.Transform | None = None,
     support: Callable[..., Any] | None = None,
     arrays: int = 1,
     work: float | Callable[..., float] = 1,
@@ -214,7 +215,7 @@ def _field(
         not_constant,
         unbounded,
         NUMPY,
-        coords=coords,
+        transform=transform,
         support=support,
         arrays=arrays,
         work=work,
@@ -330,26 +331,46 @@ _ENTRIES: tuple[Op, ...] = (
     _field("Weave", "weave", P.own(PR.weave), arrays=5, work=W.weave),
     _field("Fill", "fill", P.own(), support=Ref(_SUPPORT + "fill"), work=W.SHAPE),
     _field("Stroke", "stroke", P.own(), support=Ref(_SUPPORT + "stroke"), work=W.SHAPE),
-    # coordinate transforms of the operand (a, b from matloom.lang.cost.transform_values)
+    # coordinate transforms of the operand (values, coordinates, frame matrix, warp values,
+    # the way back; see matloom.ops.transform) and what they do to the View's periods
     _field(
         "Translate",
         "transformed",
         P.transform(P.translated, warp_keeps=True),
-        coords=lambda x, y, a, b: (x - a, y - b),
+        T.Transform(
+            values=T.params("dx", "dy"),
+            coords=lambda x, y, a, b: (x - a, y - b),
+            matrix=lambda u, v: (1.0, 0.0, -u, 0.0, 1.0, -v),
+            warp=T.pair,
+            back=lambda u, v, a, b: (u + a, v + b),  # evaluated at p - d: p = q + d
+        ),
         support=_MOVED,
     ),
     _field(
         "Scale",
         "transformed",
         P.transform(P.scaled("sx", "sy")),
-        coords=lambda x, y, a, b: (x / a, y / b),
+        T.Transform(
+            values=T.params("sx", "sy"),
+            coords=lambda x, y, a, b: (x / a, y / b),
+            matrix=lambda u, v: (1.0 / u, 0.0, 0.0, 0.0, 1.0 / v, 0.0),
+            warp=T.pair,
+            back=lambda u, v, a, b: (u * a, v * b),  # at p / s: p = q * s
+        ),
         support=_MOVED,
     ),
     _field(
         "Rotate",
         "transformed",
         P.transform(P.rotated("degrees", _cycle("Rotate", "degrees"))),
-        coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y),
+        T.Transform(
+            values=T.turn("degrees"),  # (cos, sin)
+            coords=lambda x, y, a, b: (a * x + b * y, -b * x + a * y),
+            matrix=lambda u, v: (u, v, 0.0, -v, u, 0.0),
+            warp=Ref(_FIELDS + "turned"),
+            # at (a x + b y, -b x + a y): p = (a u - b v, b u + a v)
+            back=lambda u, v, a, b: (a * u - b * v, b * u + a * v),
+        ),
         support=_MOVED,
     ),
     # instancing: the operand in 9 neighbouring instance frames (the registry's instances),

@@ -327,13 +327,13 @@ def pick_shader(
     """The shader to use among ``names`` (``numba`` counts only when ``numba_ok()``): ``auto``
     -> the session's choice for an image of ``texels`` texels
     (:meth:`~matloom.engine.session.Session.choose_shader`: numpy for a short command, numba
-    where numba is loaded, or the image is large, and its kernels are usable), numpy where
-    numba is not installed; an explicit name must be available (ValueError otherwise). Shared
-    by every preview layout. ``session`` defaults to the process's default session.
+    where numba is loaded or the image is large), numpy where numba is not installed; an
+    explicit name must be available (ValueError otherwise). Shared by every preview layout.
+    ``session`` defaults to the process's default session.
 
     The numpy and numba shaders may differ by one level on rare texels (see the module
-    docstring), so ``auto``'s preview of a short command (numpy) and of a warm process (numba)
-    may differ there.
+    docstring), so ``auto``'s preview of a small image in a fresh process (numpy) and in one
+    that has loaded numba may differ there; a cold and a warm start of one command do not.
     """
     if backend == "auto":
         from matloom.engine.session import default_session

@@ -58,9 +58,9 @@ class RenderJob:
 
     ``program`` is an AST or a text. An AST is recorded in canonical form; a text is recorded
     as it is, unless the job changes it (omitted seeds made explicit from ``program_seed``,
-    ``tileable`` turned on), and then in canonical form. It may be None only when
-    :func:`~matloom.runtime.run.run_render` is given the maps (nothing is parsed then, and no
-    ``material.mat`` is written).
+    ``tileable`` turned on), and then in canonical form. When
+    :func:`~matloom.runtime.run.run_render` is given the maps, the program is only recorded
+    (never parsed or changed) and may be None (no ``material.mat`` then).
     """
 
     program: A.Program | str | None

@@ -6,9 +6,9 @@ Compiling everything the evaluation path uses takes about 20 s of CPU on the 2-c
 measure on, loading it from the cache well under a second. So the CLI's session
 (:mod:`matloom.cli.progress`, with :class:`matloom.runtime.cold_start.BackgroundCompile` as its
 cold start) evaluates a request on the numpy/C path -- bit-identical maps -- while
-:func:`ensure_background` has a detached process (:mod:`warmup_steps`) compile every kernel
-once; that process writes a stamp into the cache directory when it is done, and from then on
-the numba path is used.
+:func:`ensure_background` has a detached process (:func:`main`, running the steps of
+:mod:`warmup_steps`) compile every kernel once; that process writes a stamp into the cache
+directory when it is done, and from then on the numba path is used.
 
 The stamp holds a key of everything the cached code depends on (the numba and llvmlite installs,
 Python, the CPU, the kernel sources -- the ABI hash of :mod:`abi`, which also keys each cached
@@ -39,8 +39,8 @@ from matloom.runtime.warmup_steps import STEPS
 STAMP_NAME = "matloom-kernels.json"
 LOCK_NAME = "matloom-kernels.lock"
 STATUS_NAME = "matloom-kernels.status.json"
-#: The module the background compiler runs (its helper runs it with ``--primitives``).
-STEPS_MODULE = "matloom.runtime.warmup_steps"
+#: The module the background compiler runs (:func:`main`).
+COMPILER_MODULE = "matloom.runtime.warmup"
 #: Environment variables that change numba's generated code (part of the stamp key).
 _CODEGEN_ENV = ("MATLOOM_NUMBA_WIDE_VECTORS", "NUMBA_CPU_FEATURES", "NUMBA_CPU_NAME", "NUMBA_OPT")
 #: The numba kernels' directory (their ``__pycache__`` is numba's first cache candidate) and the
@@ -209,14 +209,14 @@ def ensure_background(directory: Path | None = None) -> WarmupState:
 
 
 def _spawn(directory: Path) -> subprocess.Popen[bytes]:
-    """``python -m matloom.runtime.warmup_steps DIR``, detached, output discarded."""
+    """``python -m matloom.runtime.warmup DIR`` (:func:`main`), detached, output discarded."""
     package_root = str(_PACKAGE_ROOT)
     env = dict(
         os.environ,
         PYTHONPATH=os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")])),
     )
     return subprocess.Popen(  # noqa: S603 - our own module, same interpreter
-        [sys.executable, "-m", STEPS_MODULE, str(directory)],
+        [sys.executable, "-m", COMPILER_MODULE, str(directory)],
         stdin=subprocess.DEVNULL,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
@@ -283,3 +283,37 @@ def wait(
         time.sleep(poll)
         current = state(directory)
     return current
+
+
+def main(argv: list[str] | None = None) -> int:
+    """The background compiler (``python -m matloom.runtime.warmup DIR``): run the steps of
+    :mod:`warmup_steps` into the cache directory ``DIR``, then write the stamp (or the error)
+    and release the lock."""
+    from matloom.runtime.warmup_steps import run_steps
+
+    args = sys.argv[1:] if argv is None else argv
+    os.nice(5)  # the foreground work comes first
+    directory = Path(args[0]) if args else cache_dir()
+    if directory is None:
+        return 1
+    key = stamp_key()
+    status = directory / STATUS_NAME
+
+    def report(done: int, total: int, label: str) -> None:
+        write_json(status, {"done": done, "total": total, "step": label})
+
+    try:
+        seconds = run_steps(report)
+        write_json(directory / STAMP_NAME, {"key": key, "seconds": round(seconds, 2)})
+        return 0
+    except Exception as exc:  # noqa: BLE001 - recorded, so that the CLI stops waiting for us
+        error = f"{type(exc).__name__}: {exc}"
+        write_json(directory / STAMP_NAME, {"key": key, "error": error})
+        return 1
+    finally:
+        status.unlink(missing_ok=True)
+        (directory / LOCK_NAME).unlink(missing_ok=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

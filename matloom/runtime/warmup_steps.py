@@ -1,5 +1,6 @@
-"""The background kernel compiler of :mod:`matloom.runtime.warmup` (run as
-``python -m matloom.runtime.warmup_steps DIR``): the warm-up steps and their runner.
+"""The steps of the background kernel compiler of :mod:`matloom.runtime.warmup` (which runs
+them as ``python -m matloom.runtime.warmup DIR``) and their runner; run as ``python -m
+matloom.runtime.warmup_steps --primitives``, the helper process of :func:`run_steps`.
 
 Each step evaluates a small program on the numba backend, so the kernels are compiled for exactly
 the argument types real renders pass; together the steps cover every evaluation kernel (fBm and
@@ -17,7 +18,6 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
-from pathlib import Path
 
 _TILE = """View(0, 0, 2, 2)
 Define(tileMask, Bricks(brick_width=0.48, brick_height=0.48, offset=0, mortar=0.02, feather=0.008))
@@ -140,37 +140,7 @@ def compile_primitives() -> None:
             evaluate(program, STEP_SIZE, STEP_SIZE, backend=unfused)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Run the steps into the cache directory ``argv[0]``, then write the stamp (or the error)
-    and release the lock (see :mod:`matloom.runtime.warmup`)."""
-    from matloom.runtime import warmup
-
-    args = sys.argv[1:] if argv is None else argv
-    if args[:1] == ["--primitives"]:  # the helper (as nice as its parent)
-        compile_primitives()
-        return 0
-    os.nice(5)  # the foreground work comes first
-    directory = Path(args[0]) if args else warmup.cache_dir()
-    if directory is None:
-        return 1
-    key = warmup.stamp_key()
-    status = directory / warmup.STATUS_NAME
-
-    def report(done: int, total: int, label: str) -> None:
-        warmup.write_json(status, {"done": done, "total": total, "step": label})
-
-    try:
-        seconds = run_steps(report)
-        warmup.write_json(directory / warmup.STAMP_NAME, {"key": key, "seconds": round(seconds, 2)})
-        return 0
-    except Exception as exc:  # noqa: BLE001 - recorded, so that the CLI stops waiting for us
-        error = f"{type(exc).__name__}: {exc}"
-        warmup.write_json(directory / warmup.STAMP_NAME, {"key": key, "error": error})
-        return 1
-    finally:
-        status.unlink(missing_ok=True)
-        (directory / warmup.LOCK_NAME).unlink(missing_ok=True)
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+if __name__ == "__main__":  # the helper (as nice as its parent): ``--primitives``
+    if sys.argv[1:] != ["--primitives"]:
+        sys.exit("usage: python -m matloom.runtime.warmup_steps --primitives")
+    compile_primitives()

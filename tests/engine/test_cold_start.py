@@ -99,8 +99,10 @@ def test_cold_start_evaluates_on_numpy_while_the_kernels_compile(
     assert rec.events == []
     cli = Session(reporter=rec, cold_start=BackgroundCompile())
     assert cli.choose_backend("auto", big).name == "numpy"
-    assert cli.choose_shader("auto", big) == "numpy"
-    assert rec.events == [("background", "1/6"), ("background", "1/6")]
+    assert rec.events == [("background", "1/6")]
+    # the preview's shader does not follow the cold start: a cold and a warm run of one
+    # command write the same preview (the shaders may differ by one level on rare texels)
+    assert cli.choose_shader("auto", big) == library.choose_shader("auto", big) == "numba"
     assert cli.choose_backend("numba", big).name == "numba"  # asked for: no fallback
     assert cli.choose_shader("numba", big) == "numba"
     states[0] = warmup.WarmupState(ready=True)

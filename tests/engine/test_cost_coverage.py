@@ -29,9 +29,9 @@ import pytest
 
 from matloom.engine.backends import get_backend
 from matloom.engine.evaluate import Evaluator, prepare
-from matloom.ops import OPS
 from matloom.lang.api import analyse
 from matloom.lang.cost import expanded_cost
+from matloom.ops import OPS
 from matloom.vocab import FUNCTIONS, Kind
 from matloom.vocab.spec import FunctionSpec, ParamSpec, Returns
 

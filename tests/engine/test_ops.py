@@ -11,8 +11,8 @@ import pytest
 import matloom
 from matloom.engine import interpret
 from matloom.engine.kernels.register_ops import REGISTER_OPS
-from matloom.ops import NUMPY, OPS, Kind, Op, Ref, operator_ops, unbounded
 from matloom.lang.static import static_number
+from matloom.ops import NUMPY, OPS, Kind, Op, Ref, Repeats, operator_ops, unbounded
 from matloom.vocab import FUNCTIONS
 from matloom.vocab.spec import FunctionSpec, ParamSpec, Returns
 from matloom.vocab.spec import Kind as ParamKind
@@ -39,7 +39,10 @@ def test_every_op_states_every_rule(name: str) -> None:
     returns = FUNCTIONS[name].returns
     assert (op.kind is Kind.GEOMETRY) == (returns is not Returns.FIELD)
     if name in ("Translate", "Scale", "Rotate"):
-        assert op.coords is not None
+        assert op.transform is not None
+        if isinstance(op.transform.warp, Ref):
+            op.transform.warp.resolve()
+    assert (op.transform is not None) == (op.period.repeats is Repeats.FRAME)
 
 
 def test_operators_are_ops() -> None:

@@ -14,9 +14,9 @@ import pytest
 
 import matloom
 from matloom.engine.kernels import mathops
+from matloom.lang.static import static_number
 from matloom.ops import portable_constants as K
 from matloom.ops import portable_math as pm
-from matloom.lang.static import static_number
 
 #: fdlibm's bit patterns (FreeBSD msun e_rem_pio2.c, k_sin.c, k_cos.c, e_pow.c).
 FDLIBM_BITS = {

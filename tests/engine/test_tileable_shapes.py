@@ -15,9 +15,9 @@ from matloom.engine.backends import available_backends, get_backend
 from matloom.engine.evaluate import prepare
 from matloom.engine.grid import sample_axes
 from matloom.engine.interpret import Evaluator
-from matloom.ops.periodic import image_shifts
 from matloom.engine.maps import View
 from matloom.engine.tiling import seam_ratio, seam_ratios
+from matloom.ops.periodic import image_shifts
 
 BACKENDS = [b for b in ("numpy", "numba") if b in available_backends()]
 

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 Kernel = Callable[..., Any]
 if TYPE_CHECKING:
     from matloom.engine.kernels.noise import FbmLoops, WorleyLoops
+    from matloom.engine.session import Session
 
 
 @dataclass(frozen=True)
@@ -139,8 +140,7 @@ def available_backends() -> list[str]:
 def get_backend(name: str = "auto", *, pure_numpy: bool = False) -> Backend:
     """The backend ``name`` (``auto``: numba if installed, else numpy); ``pure_numpy``: the
     numpy backend's fBm on the pure-numpy loops, never the C extension's (the same numbers).
-    The backend a request should use is the session's choice
-    (:meth:`matloom.engine.session.Session.choose_backend`)."""
+    The backend a request should use is the session's choice (:func:`session_backend`)."""
     if name == "auto":
         try:
             return _FACTORIES["numba"]()
@@ -149,3 +149,10 @@ def get_backend(name: str = "auto", *, pure_numpy: bool = False) -> Backend:
     if name not in _FACTORIES:
         raise ValueError(f"unknown backend {name!r}; available: {', '.join(_FACTORIES)}")
     return _numpy_backend(pure_numpy) if name == "numpy" else _FACTORIES[name]()
+
+
+def session_backend(session: Session, name: str = "auto", texels: int = 0) -> Backend:
+    """The backend ``session`` picks for a request of ``texels`` texels (``name``: ``auto``,
+    ``numpy`` or ``numba``; see :meth:`~matloom.engine.session.Session.choose_backend`), with
+    the session's settings (its ``pure_numpy``)."""
+    return get_backend(session.choose_backend(name, texels), pure_numpy=session.pure_numpy)

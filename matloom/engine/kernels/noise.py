@@ -285,7 +285,6 @@ def simplex_tiling(
     return maps, lattices
 
 
-
 # --- Worley ------------------------------------------------------------------------------------
 
 #: Worley's ``output`` names -> codes: 0 the combination of distances (the reference's Worley),

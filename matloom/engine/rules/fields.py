@@ -179,6 +179,15 @@ def transformed(ev: Any, call: A.Call, c: Any) -> Any:
     return ev.eval(call.arg("expr"), ev.transform(call, c))
 
 
+def turned(values: list[Any]) -> tuple[Any, Any]:
+    """A rotation warp's (cos, sin) from its angle's values in degrees (arrays or floats):
+    numpy's radians, then the portable cos and sin (the same bits on every CPU)."""
+    from matloom.engine.kernels import mathops
+
+    rad = np.radians(values[0])
+    return mathops.cos(rad), mathops.sin(rad)
+
+
 def threshold(value: Any, **params: Any) -> np.ndarray:
     """Threshold's numpy implementation (grid-path rules of ``kernels.threshold``)."""
     return _threshold.threshold(np.asarray(value), **params)

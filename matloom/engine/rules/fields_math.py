@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from matloom.ops import OPS
 from matloom.lang import ast as A
+from matloom.ops import OPS
 
 _CONSTANTS = {v: np.float64(v) for v in (0.0, 1.0, 2.0, 3.0)}
 

@@ -106,21 +106,19 @@ def quotient(ctx: Context, call: A.Node, operands: list[A.Node]) -> Box | None:
 
 
 def transformed(ctx: Context, call: A.Call, operands: list[A.Node]) -> Box | None:
-    """A constant transform: the operand's box mapped back to this frame."""
+    """A constant transform: the operand's box mapped back to this frame (the transform's
+    ``back`` rule, :mod:`matloom.ops.transform`)."""
     from matloom.lang.cost import field_params, transform_values
+    from matloom.ops import OPS
 
     inner = ctx.box(call.arg("expr"))  # type: ignore[arg-type]
-    if inner is None or field_params(call):
+    rule = OPS[call.func].transform
+    if inner is None or rule is None or field_params(call):
         return None
     a, b = transform_values(call)
     x0, y0, x1, y1 = inner
     corners = [(x0, y0), (x0, y1), (x1, y0), (x1, y1)]
-    if call.func == "Translate":  # evaluated at p - d: p = q + d
-        mapped = [(u + a, v + b) for u, v in corners]
-    elif call.func == "Scale":  # at p / s: p = q * s
-        mapped = [(u * a, v * b) for u, v in corners]
-    else:  # Rotate: at (a x + b y, -b x + a y): p = (a u - b v, b u + a v)
-        mapped = [(a * u - b * v, b * u + a * v) for u, v in corners]
+    mapped = [rule.back(u, v, a, b) for u, v in corners]
     xs = [p[0] for p in mapped]
     ys = [p[1] for p in mapped]
     return _finite(_grow((min(xs), min(ys), max(xs), max(ys)), 0.0))
