@@ -55,7 +55,7 @@ def install_noise_clock(clock: list[float]) -> None:
         fbm_seed_batch=wrap(base.fbm_seed_batch),
         worley_seed_batch=wrap(base.worley_seed_batch),
     )
-    backends.get_backend = lambda name="auto": timed if name in ("numba", "auto") else base
+    backends.get_backend = lambda name="auto", **_: timed if name in ("numba", "auto") else base
 
 
 def main() -> None:

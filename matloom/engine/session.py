@@ -49,8 +49,9 @@ PURE_NUMPY_ENV = "MATLOOM_PURE_NUMPY"
 BACKENDS = ("auto", "numpy", "numba")
 
 #: ``auto`` picks numba for requests of at least this many texels (numba's start-up cost is
-#: then small next to what it saves) ...
-AUTO_NUMBA_MIN_TEXELS = 512 * 512
+#: then small next to what it saves: a whole ``matloom render`` of the tile program breaks even
+#: near 724 x 724 on the 2-core machines; at 512 x 512 numpy takes 0.72 s, numba 1.05 s) ...
+AUTO_NUMBA_MIN_TEXELS = 768 * 768
 #: ... and for every request once this many evaluations ran in the session, or numba is loaded
 #: in the process already (its import is paid).
 AUTO_NUMBA_AFTER_CALLS = 2
@@ -138,10 +139,12 @@ class Session:
         evaluated on it, or the image has at least :data:`AUTO_NUMBA_MIN_TEXELS` texels. So a
         short command (one small render, a preview, a check) never imports numba to shade.
 
-        Unlike :meth:`choose_backend` this does not look at the cold start: a command makes
-        the same preview whether the kernels were compiled before it or not (at a size where
-        the evaluation stays on numpy either way, so does the shading; above it both shade on
-        numba). The caller falls back to numpy where numba is not installed."""
+        Unlike :meth:`choose_backend` this does not look at the cold start, so a render or
+        preview command writes the same image whether the kernels were compiled before it or
+        not (below the size the evaluation and the shading stay on numpy either way; above it
+        both runs shade on numba). A session that evaluates several times (``generate``)
+        shades on numba once it has evaluated on it, which a cold start delays. The caller
+        falls back to numpy where numba is not installed."""
         if name == "auto":
             name = self.backend
         if name != "auto":
@@ -193,7 +196,7 @@ class Session:
 def numba_loaded() -> bool:
     """Whether numba is imported in this process (a process fact, not session state: its
     import cost is paid once for every session)."""
-    return "numba" in sys.modules
+    return sys.modules.get("numba") is not None
 
 
 _DEFAULT: list[Session | None] = [None]

@@ -10,7 +10,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from matloom.engine.backends import Backend, available_backends, get_backend, noise_kernels
+from matloom.engine.backends import (
+    Backend,
+    available_backends,
+    get_backend,
+    noise_kernels,
+    session_backend,
+)
 from matloom.engine.kernels import noise, noise_c, noise_numpy
 from matloom.engine.session import Session
 
@@ -47,12 +53,12 @@ def test_numpy_backend_runs_the_c_loops_where_built(monkeypatch: pytest.MonkeyPa
     """MATLOOM_PURE_NUMPY=1 is read when a session is made: that session's numpy backend runs
     the pure-numpy loops."""
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    loops = Session.from_env().get_backend("numpy").fbm_loops
+    loops = session_backend(Session.from_env(), "numpy").fbm_loops
     assert loops is not None and loops is get_backend("numpy").fbm_loops
     assert loops().name == ("c" if noise_c.available() else "numpy")
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
     assert loops().name == ("c" if noise_c.available() else "numpy")  # a made session keeps it
-    pure = Session.from_env().get_backend("numpy").fbm_loops
+    pure = session_backend(Session.from_env(), "numpy").fbm_loops
     assert pure is not None and pure() is noise_numpy.FBM_LOOPS
     assert get_backend("numpy", pure_numpy=True).fbm_loops is pure
 

@@ -281,19 +281,19 @@ def test_numpy_backend_chooses_c_unless_pure_numpy(monkeypatch: pytest.MonkeyPat
     monkeypatch.setattr(noise_c, "FBM_LOOPS", replace(real, separable=spy))
     x, y = axes(23, 17, np.float32)
     monkeypatch.delenv("MATLOOM_PURE_NUMPY", raising=False)
-    numpy_backend = Session.from_env().get_backend("numpy")
+    numpy_backend = backends.session_backend(Session.from_env(), "numpy")
     assert numpy_backend.fbm_loops is not None and numpy_backend.fbm_loops().name == "c"
     with_c = numpy_backend.fbm(x, y, **BASE)
     assert calls == [1]
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "1")
-    pure_backend = Session.from_env().get_backend("numpy")
+    pure_backend = backends.session_backend(Session.from_env(), "numpy")
     assert pure_backend.fbm_loops is not None and pure_backend.fbm_loops().name == "numpy"
     pure = pure_backend.fbm(x, y, **BASE)
     assert calls == [1]
     assert_bit_identical(with_c, pure)
     monkeypatch.setenv("MATLOOM_PURE_NUMPY", "0")
     kw = {k: v for k, v in BASE.items() if k != "seed"}
-    Session.from_env().get_backend("numpy").fbm_seed_batch(x, y, seeds=[1, 2], **kw)
+    backends.session_backend(Session.from_env(), "numpy").fbm_seed_batch(x, y, seeds=[1, 2], **kw)
     assert calls == [1, 1, 1]
 
 

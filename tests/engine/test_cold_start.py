@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from matloom.cli.progress import COMPILING, KernelProgress
+from matloom.engine.backends import session_backend
 from matloom.engine.session import Session, running, use_session
 from matloom.runtime import warmup
 from matloom.runtime.cold_start import BACKGROUND_ENV, BackgroundCompile, background_compile
@@ -95,21 +96,21 @@ def test_cold_start_evaluates_on_numpy_while_the_kernels_compile(
     big = 1024 * 1024
     rec = _Recorder()
     library = Session(reporter=rec)  # the library's default: numba compiles on first use
-    assert library.choose_backend("auto", big).name == "numba"
+    assert session_backend(library, "auto", big).name == "numba"
     assert rec.events == []
     cli = Session(reporter=rec, cold_start=BackgroundCompile())
-    assert cli.choose_backend("auto", big).name == "numpy"
+    assert session_backend(cli, "auto", big).name == "numpy"
     assert rec.events == [("background", "1/6")]
     # the preview's shader does not follow the cold start: a cold and a warm run of one
     # command write the same preview (the shaders may differ by one level on rare texels)
     assert cli.choose_shader("auto", big) == library.choose_shader("auto", big) == "numba"
-    assert cli.choose_backend("numba", big).name == "numba"  # asked for: no fallback
+    assert session_backend(cli, "numba", big).name == "numba"  # asked for: no fallback
     assert cli.choose_shader("numba", big) == "numba"
     states[0] = warmup.WarmupState(ready=True)
-    assert cli.choose_backend("auto", big).name == "numba"
+    assert session_backend(cli, "auto", big).name == "numba"
     assert cli.kernels_ready
     states[0] = warmup.WarmupState(False, running=True)  # asked until ready, not after
-    assert cli.choose_backend("auto", big).name == "numba"
+    assert session_backend(cli, "auto", big).name == "numba"
 
 
 def test_compile_events_of_matloom_kernels_reach_the_reporter(recorder: _Recorder) -> None:
@@ -159,7 +160,8 @@ def test_kernel_progress_lines(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def _render(out: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
-    cmd = [sys.executable, "-m", "matloom", "render", str(TILE), "--size", "512", "-o", str(out)]
+    # (a size at which ``auto`` wants numba: smaller ones stay on numpy, cold or warm)
+    cmd = [sys.executable, "-m", "matloom", "render", str(TILE), "--size", "1024", "-o", str(out)]
     return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600, check=False)
 
 

@@ -18,7 +18,7 @@ pytest.importorskip("numba")
 
 import matloom  # noqa: E402
 from matloom.engine import relief  # noqa: E402
-from matloom.engine.backends import get_backend  # noqa: E402
+from matloom.engine.backends import get_backend, session_backend  # noqa: E402
 from matloom.engine.evaluate import evaluate  # noqa: E402
 from matloom.engine.kernels import composite_numba, relief_numba  # noqa: E402
 from matloom.engine.maps import ARRAY_FIELDS, NEWER_FIELDS  # noqa: E402
@@ -208,8 +208,8 @@ def test_auto_backend_is_numba_for_large_requests() -> None:
     from matloom.engine.session import Session
 
     session = Session()
-    assert session.choose_backend("auto", 4096 * 4096).name == get_backend("auto").name
-    assert session.choose_backend("numpy", 4096 * 4096).name == "numpy"
+    assert session_backend(session, "auto", 4096 * 4096).name == get_backend("auto").name
+    assert session_backend(session, "numpy", 4096 * 4096).name == "numpy"
 
 
 # --------------------------------------------------------------------------------------------

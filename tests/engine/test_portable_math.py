@@ -1,4 +1,4 @@
-"""The portable transcendental functions (engine.ops.portable_math): fdlibm's constants,
+"""The portable transcendental functions (matloom.ops.portable_math): fdlibm's constants,
 accuracy against exact arithmetic, C99/numpy special values, dtypes, and constant folding
 that gives the bits the arrays get."""
 

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from matloom.engine import session as session_module
+from matloom.engine.backends import session_backend
 from matloom.engine.evaluate import evaluate, prepare
 from matloom.engine.session import (
     AUTO_NUMBA_AFTER_CALLS,
@@ -42,12 +43,12 @@ def _numba_installed() -> bool:
 
 
 def test_explicit_policy() -> None:
-    assert Session(backend="numpy").choose_backend("auto", BIG).name == "numpy"
+    assert session_backend(Session(backend="numpy"), "auto", BIG).name == "numpy"
     assert Session(backend="numpy").choose_shader("auto", BIG) == "numpy"
-    assert Session().choose_backend("numpy", BIG).name == "numpy"  # a name is kept
+    assert session_backend(Session(), "numpy", BIG).name == "numpy"  # a name is kept
     assert Session(backend="numpy").choose_shader("numba", SMALL) == "numba"
     if _numba_installed():
-        assert Session(backend="numba").choose_backend("auto", SMALL).name == "numba"
+        assert session_backend(Session(backend="numba"), "auto", SMALL).name == "numba"
         assert Session(backend="numba").choose_shader("auto", SMALL) == "numba"
     with pytest.raises(ValueError, match="unknown backend"):
         Session(backend="gpu")
@@ -57,17 +58,17 @@ def test_auto_is_numpy_for_a_short_command(cold_process: None) -> None:
     """One small image: numpy for evaluating and shading (numba's start-up would dominate);
     a large one, or a session that has evaluated a few times, goes to numba."""
     session = Session()
-    assert session.choose_backend("auto", SMALL).name == "numpy"
+    assert session_backend(session, "auto", SMALL).name == "numpy"
     assert session.choose_shader("auto", SMALL) == "numpy"
     assert not session.numba_used
     if not _numba_installed():
         return
     assert session.choose_shader("auto", BIG) == "numba"
-    assert session.choose_backend("auto", BIG).name == "numba"
+    assert session_backend(session, "auto", BIG).name == "numba"
     assert session.numba_used  # ... and small shading follows: its start-up is paid
     assert session.choose_shader("auto", SMALL) == "numba"
     warm = Session(evaluations=AUTO_NUMBA_AFTER_CALLS + 1)
-    assert warm.choose_backend("auto", SMALL).name == "numba"
+    assert session_backend(warm, "auto", SMALL).name == "numba"
 
 
 def test_environment_is_read_once_when_the_session_is_made(
@@ -84,7 +85,7 @@ def test_environment_is_read_once_when_the_session_is_made(
     assert Session.from_env({"MATLOOM_BACKEND": "numba"}).backend == "numba"
     assert Session.from_env({"MATLOOM_BACKEND": "numba"}, backend="numpy").backend == "numpy"
     assert Session().backend == "auto"  # Session() reads nothing
-    pure = Session.from_env({"MATLOOM_PURE_NUMPY": "1"}).get_backend("numpy")
+    pure = session_backend(Session.from_env({"MATLOOM_PURE_NUMPY": "1"}), "numpy")
     assert pure.fbm_loops is not None and pure.fbm_loops().name == "numpy"
 
 
@@ -100,8 +101,8 @@ def test_two_sessions_are_independent(cold_process: None) -> None:
     assert prepare(PROGRAM, session=a) == prepare(PROGRAM, session=b)
     # a warm session goes to numba for small images, a fresh one does not
     if _numba_installed():
-        assert Session(evaluations=3).choose_backend("auto", SMALL).name == "numba"
-    assert Session().choose_backend("auto", SMALL).name == "numpy"
+        assert session_backend(Session(evaluations=3), "auto", SMALL).name == "numba"
+    assert session_backend(Session(), "auto", SMALL).name == "numpy"
 
 
 def test_default_session() -> None:
