@@ -106,8 +106,19 @@ def linear_to_srgb(values: ArrayLike) -> np.ndarray:
     Computed element-wise in the input's float dtype (float64 for non-float input); values are
     not clipped here (the PNG quantiser clips). NaN stays NaN.
     """
-    linear = _float_array(values)
+    return _encode(_float_array(values), _power)
+
+
+def fast_linear_to_srgb(linear: np.ndarray) -> np.ndarray:
+    """:func:`linear_to_srgb` of a float64 array with numpy's own ``power``: fast, but its last
+    bit depends on the CPU. Only where a certainty test hides that bit (the flat preview's
+    quantisation, :func:`matloom.render.preview.shade`)."""
+    return _encode(linear, np.power)
+
+
+def _encode(linear: np.ndarray, power: Callable[[np.ndarray, float], np.ndarray]) -> np.ndarray:
+    """The sRGB encode curve of ``linear`` with the given ``power(base, exponent)``."""
     with np.errstate(invalid="ignore"):  # negative inputs: NaN in the discarded branch
-        encoded = np.asarray(1.055 * _power(linear, 1 / 2.4) - 0.055)
+        encoded = np.asarray(1.055 * power(linear, 1 / 2.4) - 0.055)
     np.copyto(encoded, linear * 12.92, where=linear <= SRGB_ENCODE_THRESHOLD)
     return encoded

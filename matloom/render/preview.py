@@ -48,7 +48,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from matloom.engine.colour import linear_to_srgb
+from matloom.engine.colour import fast_linear_to_srgb, linear_to_srgb
 from matloom.engine.maps import ARRAY_FIELDS, MaterialMaps
 from matloom.vocab.layout import LAYOUT
 
@@ -251,7 +251,44 @@ _KERNEL_CHANNELS: tuple[str, ...] = (
 
 
 def _shade_numpy(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarray) -> np.ndarray:
-    """Whole-array float64 path, the reference's formulas in the reference's order."""
+    """Whole-array float64 path, the reference's formulas in the reference's order.
+
+    The sRGB encodes take numpy's fast ``power`` (its last bit depends on the CPU); a texel
+    whose value lies within :data:`_LEVEL_MARGIN` of a quantisation boundary, where that bit
+    could move it by a level, is shaded again with the portable power, so the image is the
+    same on every CPU and equal to the all-portable shading."""
+    with np.errstate(all="ignore"):
+        scaled = _scaled_levels(_shade_values(m, direction, half, fast_linear_to_srgb))
+        levels = np.floor(scaled)
+        frac = scaled - levels
+        near = ((frac < _LEVEL_MARGIN) | (frac > 1.0 - _LEVEL_MARGIN)).any(axis=-1)
+        if near.any():
+            subset = {name: values[near] for name, values in m.items()}
+            exact = _shade_values(subset, direction, half, linear_to_srgb)
+            levels[near] = np.floor(_scaled_levels(exact))
+        levels[np.isnan(levels)] = 0.0
+    return levels.astype(np.uint8)
+
+
+#: Distance from a quantisation boundary (in levels) within which :func:`_shade_numpy`
+#: recomputes a texel with the portable power: far above the few-ulp difference of numpy's
+#: ``power`` from it, carried through the shading (< 1e-11 levels).
+_LEVEL_MARGIN = 1e-7
+
+
+def _scaled_levels(out: np.ndarray) -> np.ndarray:
+    """255 x clip(out, 0, 1) + 0.5: the value the 8-bit quantisation floors."""
+    return 255.0 * np.clip(out, 0.0, 1.0) + 0.5
+
+
+def _shade_values(
+    m: dict[str, np.ndarray],
+    direction: np.ndarray,
+    half: np.ndarray,
+    encode: Callable[[np.ndarray], np.ndarray],
+) -> np.ndarray:
+    """The shaded float64 RGB before quantisation (any leading shape: an image or the texels
+    of a mask), with ``encode`` as the sRGB encode."""
     with np.errstate(all="ignore"):
         clipped = {name: np.clip(m[name].astype(np.float64), 0.0, 1.0) for name in _UNIT_CHANNELS}
         eta = np.clip(m["ior"].astype(np.float64), 1.0, 3.0)
@@ -271,7 +308,7 @@ def _shade_numpy(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarr
         angle = m[_ANISOTROPY_ANGLE]
         if angle.any():
             shininess *= anisotropy_direction_factor(angle, clipped[_ANISOTROPY], half)
-        albedo = linear_to_srgb(m["basecolor_linear"].astype(np.float64))
+        albedo = encode(m["basecolor_linear"].astype(np.float64))
         f0_dielectric = ((1.0 - eta) / (1.0 + eta)) ** 2 * (1.0 - metal)
         f0 = f0_dielectric[..., None] + albedo * metal[..., None]
         specular = f0 * (n_dot_h**shininess)[..., None]
@@ -282,12 +319,9 @@ def _shade_numpy(m: dict[str, np.ndarray], direction: np.ndarray, half: np.ndarr
         shaded = 0.2 * albedo + diffuse + specular
         emissive = m["emissive_linear"].astype(np.float64)
         if emissive.any():
-            shaded += linear_to_srgb(emissive / (1.0 + emissive))
+            shaded += encode(emissive / (1.0 + emissive))
         material = shaded * (1.0 - trans)[..., None] + 0.5 * trans[..., None]
-        out = material * cover[..., None] + 0.5 * (1.0 - cover)[..., None]
-        levels = np.floor(255.0 * np.clip(out, 0.0, 1.0) + 0.5)
-        levels[np.isnan(levels)] = 0.0
-    return levels.astype(np.uint8)
+        return material * cover[..., None] + 0.5 * (1.0 - cover)[..., None]
 
 
 #: Channels the reference clamps to [0, 1] before shading: coverage and the [0, 1] scalars.
