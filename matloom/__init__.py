@@ -30,6 +30,32 @@ def evaluate(
     return _evaluate(program_or_text, width=width, height=height, **kwargs)
 
 
+def params(program_or_text: Any) -> list[Any]:
+    """The exposed parameters of a program (or its text): a list of
+    :class:`~matloom.lang.params.Param` (address, value, kind, range, unit, label, affects)."""
+    from matloom.lang.params import list_params
+
+    return list_params(program_or_text)
+
+
+def set_params(program_or_text: Any, values: dict[str, Any]) -> tuple[str, list[str]]:
+    """Set parameters by address (see :func:`params`): the new program text and the warnings
+    (values clamped into range). Raises ValueError for an unknown address or a wrong value."""
+    from matloom.lang.params import set_params as _set_params
+
+    return _set_params(program_or_text, values)
+
+
+def edit(program_or_text: Any, request: str, model: Any = None, **kwargs: Any) -> Any:
+    """Edit a program by words ("wider grout", "blue glaze"): offline rules, or ``model`` (a
+    chat model of :mod:`matloom.author.llm`). Returns an ``EditResult``: ``.program`` (the new
+    text) and ``.report`` (the edit, the changed parameters and the computed locality).
+    Raises ``EditRefused`` (a ValueError listing the parameters) for a request it cannot map."""
+    from matloom.author.edit import edit as _edit
+
+    return _edit(program_or_text, request, model, **kwargs)
+
+
 def preview(program_or_text: Any, size: int = 256, **kwargs: Any) -> Any:
     """Head-on shaded preview (uint8 RGB array) of a program, as the critic and scorer see it."""
     from matloom.render.api import preview as _preview
@@ -44,8 +70,11 @@ __all__ = [
     "__version__",
     "analyse",
     "check",
+    "edit",
     "evaluate",
     "format",
+    "params",
     "parse",
     "preview",
+    "set_params",
 ]

@@ -138,6 +138,7 @@ def fmt_cmd(file: str, inline: bool, check_only: bool, write: bool, seed: int | 
 )
 def seeds_cmd(file: str, variants: int, seed: int, program_seed: int, out_dir: str | None) -> None:
     """Print (or write) the original program and K seed variants of FILE."""
+    from matloom.lang.constants import plain_numbers
     from matloom.lang.printer import format_program
     from matloom.lang.seeds import canonicalize_seeds, seed_variants
 
@@ -145,7 +146,8 @@ def seeds_cmd(file: str, variants: int, seed: int, program_seed: int, out_dir: s
     if program is None or any(d.is_error for d in diags):
         click.echo(format_diagnostics([d for d in diags if d.is_error], file), err=True)
         sys.exit(2)
-    text = format_program(canonicalize_seeds(program, program_seed))
+    # reference text: named static values (a named seed too) written as plain numbers
+    text = format_program(plain_numbers(canonicalize_seeds(program, program_seed)))
     texts = seed_variants(text, variants, seed)
     if len(texts) == 1:
         click.echo("no noise seeds in this program: only the original is produced", err=True)

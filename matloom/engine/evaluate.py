@@ -36,6 +36,7 @@ from matloom.engine.schedules.dense import evaluate_dense
 from matloom.engine.session import Session, default_session, running
 from matloom.lang import ast as A
 from matloom.lang.api import parse
+from matloom.lang.constants import resolve_static
 from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 
 __all__ = [
@@ -53,7 +54,8 @@ __all__ = [
 def prepare(
     program_or_text: A.Program | str, program_seed: int = 0, *, session: Session | None = None
 ) -> A.Program:
-    """Parse (if text) and make omitted seeds explicit so evaluation is deterministic. Texts
+    """Parse (if text) and make omitted seeds explicit so evaluation is deterministic (named
+    static values written out, :func:`~matloom.lang.constants.resolve_static`). Texts
     are parsed once per ``session`` (default: :func:`default_session`): its ``parsed`` and
     ``prepared`` caches hold the (immutable, so shareable) programs."""
     if not isinstance(program_or_text, str):
@@ -68,9 +70,11 @@ def prepare(
 
 
 def _with_seeds(program: A.Program, program_seed: int) -> A.Program:
+    """Omitted seeds made explicit and named static values (``Bricks(mortar=grout)``) written
+    out (:mod:`matloom.lang.constants`), as the interpreter reads them."""
     if has_seedless_noise(program):
-        return canonicalize_seeds(program, program_seed)
-    return program
+        program = canonicalize_seeds(program, program_seed)
+    return resolve_static(program)
 
 
 def evaluate(

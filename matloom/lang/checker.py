@@ -7,6 +7,7 @@ import sys
 
 from matloom.lang import ast as A
 from matloom.lang.codes import Code
+from matloom.lang.constants import Constants, constant_defines, resolve_static, substitute
 from matloom.lang.cost import MAX_EXPANDED_NODES, expanded_cost, over_limit
 from matloom.lang.diagnostics import Diagnostic, Reporter, Span, hint_for
 from matloom.lang.lexer import as_float
@@ -35,10 +36,12 @@ class Checker(Reporter):
         self.src = source
         self.diags: list[Diagnostic] = []
         self.nodes = 0
+        self.consts: Constants = {}  # the program's constant Defines (named static values)
 
     # ---------------------------------------------------------------- program level
     def check(self, program: A.Program) -> list[Diagnostic]:
         self._check_view(program)
+        self.consts = constant_defines(program)
         for d in program.defines:
             self.field(d.expr, f"Define '{d.name}'", in_define=True)
         for i, layer in enumerate(program.layers):
@@ -62,7 +65,8 @@ class Checker(Reporter):
         if program.tileable and not any(d.is_error for d in self.diags):
             from matloom.lang.tileable import tileable_warnings
 
-            self.diags.extend(tileable_warnings(program, self.src))
+            resolved = resolve_static(program, self.consts)
+            self.diags.extend(tileable_warnings(resolved, self.src))
         return self.diags
 
     def _check_inlined_depth(self, program: A.Program) -> None:
@@ -96,6 +100,8 @@ class Checker(Reporter):
         Checked only when nothing else is wrong (the count then stops at the limit)."""
         if any(d.is_error for d in self.diags):
             return
+        # named static values (Bricks(mortar=grout)) as the engine reads them
+        program = resolve_static(program, self.consts)
         cost = expanded_cost(program, MAX_EXPANDED_NODES)
         if cost.over:
             message, hint, call = over_limit(program, cost, MAX_EXPANDED_NODES)
@@ -369,14 +375,23 @@ class Checker(Reporter):
         if p.field and static_number(v) is None:  # a field parameter: checked like an operand
             self.expr(v)
             return
+        named = "" if p.field else _named(v, self.consts)
+        if named:  # constant Defines named in a static parameter: their value (named values)
+            v = substitute(v, self.consts)
         raw = static_number(v)
         if raw is None:
+            fields = [n.name for n in A.walk(v) if isinstance(n, A.Ref)]
+            what = f"; Define '{fields[0]}' is a field" if fields else ", not a field expression"
             self.diag(
                 Code.NOT_A_NUMBER,
-                f"{func}: {p.name} must be a number, not a field expression",
+                f"{func}: {p.name} must be a number{what}",
                 span,
                 expected="a constant such as 0.5",
-                hint="only numbers (and constant arithmetic) are allowed here",
+                hint=(
+                    "a Define named here must be a constant (no noise, pattern, X() or Y())"
+                    if fields
+                    else "only numbers (and constant arithmetic) are allowed here"
+                ),
             )
             self.expr(v)
             return
@@ -395,7 +410,7 @@ class Checker(Reporter):
         if isinstance(value, float) and not math.isfinite(value):
             self.diag(
                 Code.OUT_OF_RANGE,
-                f"{func}: {p.name} must be finite, got {value}",
+                f"{func}: {p.name} must be finite, got {value}{named}",
                 span,
                 expected="a finite number",
             )
@@ -403,7 +418,7 @@ class Checker(Reporter):
         if p.kind is Kind.INT and not float(value).is_integer():
             self.diag(
                 Code.NOT_AN_INTEGER,
-                f"{func}: {p.name} must be an integer, got {value}",
+                f"{func}: {p.name} must be an integer, got {value}{named}",
                 span,
                 expected="a whole number",
             )
@@ -411,15 +426,24 @@ class Checker(Reporter):
         problem = p.check_value(value)
         if problem is not None:
             code = Code.ZERO_NOT_ALLOWED if p.nonzero and value == 0 else Code.OUT_OF_RANGE
-            self.diag(code, f"{func}: {problem}", span, expected=p.constraint_text())
+            self.diag(code, f"{func}: {problem}{named}", span, expected=p.constraint_text())
             return
         if p.name == "octaves" and value > MAX_OCTAVES:
             self.diag(
                 Code.SIZE_LIMIT,
-                f"{func}: octaves={int(value)} exceeds the limit of {MAX_OCTAVES}",
+                f"{func}: octaves={int(value)}{named} exceeds the limit of {MAX_OCTAVES}",
                 span,
                 expected=f"octaves <= {MAX_OCTAVES}",
             )
+
+
+def _named(v: A.Node, consts: Constants) -> str:
+    """`` (from Define 'grout')`` when ``v`` names constant Defines, else ``""``."""
+    names = list(dict.fromkeys(n.name for n in A.walk(v) if isinstance(n, A.Ref)))
+    names = [n for n in names if n in consts]
+    if not names:
+        return ""
+    return f" (from Define{'s' if len(names) > 1 else ''} {', '.join(repr(n) for n in names)})"
 
 
 def _static_alpha(layer: A.Layer) -> float | None:

@@ -208,7 +208,8 @@ class Code(enum.Enum):
         "E045",
         _E,
         "a numeric parameter given a string, a bool or a field expression",
-        "write a constant (constant arithmetic is fine); only marked parameters take fields",
+        "write a constant (constant arithmetic and Defines of constants are fine); only "
+        "marked parameters take fields",
     )
     OUT_OF_RANGE = CodeInfo(
         "E050",

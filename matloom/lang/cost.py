@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from matloom.lang import ast as A
+from matloom.lang.constants import resolve_static
 from matloom.lang.static import COORDINATES, is_static, param_value, static_number
 from matloom.ops import OPS
 from matloom.ops.transform import Transform
@@ -350,7 +351,9 @@ def expanded_cost(
     ``cap``). It walks the layer expressions in evaluation order, entering a Define's body the
     first time the Define is referenced in each distinct frame, as the evaluator's memo does.
     ``batched``: ids of nodes (e.g. the seed-dependent ones of a sweep) whose array visits are
-    also counted apart."""
+    also counted apart. Named static values are read as the evaluator reads them
+    (:func:`~matloom.lang.constants.resolve_static`)."""
+    program = resolve_static(program)
     roots = _roots(program)
     walk = _Walk(program)
     walk.batched = batched
@@ -392,7 +395,7 @@ def costliest_call(program: A.Program) -> Costliest | None:
     """The field call with the largest :func:`call_work` (the first such in evaluation order),
     or None when the program has no call."""
     best: Costliest | None = None
-    for owner, expr in A.program_expressions(program):
+    for owner, expr in A.program_expressions(resolve_static(program)):
         for node in A.walk(expr):
             spec = FUNCTIONS.get(node.func) if isinstance(node, A.Call) else None
             if spec is None or spec.returns is not Returns.FIELD:

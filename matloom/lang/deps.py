@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from matloom.lang import ast as A
+from matloom.lang.constants import resolve_static
 from matloom.lang.seeds import uses_seed
 from matloom.vocab.layout import LAYOUT
 
@@ -69,7 +70,9 @@ def define_params(program: A.Program) -> dict[str, frozenset[ParamRef]]:
 
 
 def channel_dependencies(program: A.Program) -> dict[str, frozenset[ParamRef]]:
-    """Output map name -> the parameters it transitively depends on."""
+    """Output map name -> the parameters it transitively depends on (a named static value,
+    ``Bricks(mortar=grout)``, through the Define's literals; a named seed counts as a seed)."""
+    program = resolve_static(program)
     defs = define_params(program)
     per: dict[str, set[ParamRef]] = {name: set() for name in OUTPUTS}
     for i, layer in enumerate(program.layers):

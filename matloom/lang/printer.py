@@ -7,6 +7,7 @@ byte-identically.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from matloom.lang import ast as A
 from matloom.lang.lexer import as_float
@@ -94,8 +95,21 @@ def _arg_text(call: A.Call, p: ParamSpec) -> str:
     return _static_text(node, p)
 
 
+@dataclass(frozen=True)
+class _Named:
+    """A static value written with Define names (``mortar=grout``): printed as written."""
+
+    text: str
+
+
+def _num_text(v: object) -> str:
+    """A static value as printed: a number, or the expression that names Defines."""
+    return v.text if isinstance(v, _Named) else fmt_num(v)  # type: ignore[arg-type]
+
+
 def _value(call: A.Call, name: str) -> object:
-    """Effective value of a static parameter (the default when not written)."""
+    """Effective value of a static parameter (the default when not written; a :class:`_Named`
+    when it names Defines, whose values the printer does not know)."""
     spec = FUNCTIONS[call.func]
     p = spec.param(name)
     assert p is not None
@@ -107,6 +121,8 @@ def _value(call: A.Call, name: str) -> object:
     if isinstance(node, A.Lit):
         return node.value
     v = _static_number(node)
+    if v is None and any(isinstance(n, A.Ref) for n in A.walk(node)):
+        return _Named(format_expr(node))
     if p.kind is Kind.BOOL and v is not None:
         return bool(v)
     return v
@@ -134,12 +150,12 @@ def _format_call(call: A.Call) -> str:  # noqa: C901 - one branch per print styl
             parts.append(f'mode="{_value(call, "mode")}"')
         feather = _value(call, "feather")
         if feather not in (None, 0):
-            parts.append(f"feather={fmt_num(feather)}")  # type: ignore[arg-type]
+            parts.append(f"feather={_num_text(feather)}")
         return f"{name}({', '.join(parts)})"
     if name == "Log":
         base = _value(call, "base")
         x = format_expr(call.arg("expr")) if call.arg("expr") is not None else ""
-        return f"Log({x})" if base == math.e or base is None else f"Log({x}, {fmt_num(base)})"  # type: ignore[arg-type]
+        return f"Log({x})" if base == math.e or base is None else f"Log({x}, {_num_text(base)})"
     if name == "Rect":
         parts = [_arg_text(call, p) for p in spec.params[:4]]
         r, w, h = _value(call, "radius"), _value(call, "width"), _value(call, "height")
@@ -147,6 +163,8 @@ def _format_call(call: A.Call) -> str:  # noqa: C901 - one branch per print styl
             r = min(float(r), min(float(w), float(h)) / 2)
             if r != 0:
                 parts.append(fmt_num(r))
+        elif any(isinstance(v, _Named) for v in (r, w, h)) and r not in (0, None):
+            parts.append(_num_text(r))  # named sizes: the radius as written
         return f"Rect({', '.join(parts)})"
     parts = [_arg_text(call, p) for p in spec.params]
     parts += [format_expr(e) for e in call.extra]
@@ -200,8 +218,8 @@ def _weave_freq(call: A.Call, p: ParamSpec) -> list[str]:
     fx = base if fx is None else fx
     fy = base if fy is None else fy
     if fx == fy:
-        return [] if fx == p.default else [f"base_freq={fmt_num(fx)}"]  # type: ignore[arg-type]
-    return [f"base_freq_x={fmt_num(fx)}", f"base_freq_y={fmt_num(fy)}"]  # type: ignore[arg-type]
+        return [] if fx == p.default else [f"base_freq={_num_text(fx)}"]
+    return [f"base_freq_x={_num_text(fx)}", f"base_freq_y={_num_text(fy)}"]
 
 
 def _format_threshold(call: A.Call) -> str:
@@ -210,12 +228,12 @@ def _format_threshold(call: A.Call) -> str:
         at, to = _value(call, f"{side}_at"), _value(call, f"{side}_to")
         if at is None:
             continue  # without its cut-off a side's target has no effect (the reference drops it)
-        parts.append(f"{side}_at={fmt_num(at)}")  # type: ignore[arg-type]
+        parts.append(f"{side}_at={_num_text(at)}")
         if to is not None and to != at:
-            parts.append(f"{side}_to={fmt_num(to)}")  # type: ignore[arg-type]
+            parts.append(f"{side}_to={_num_text(to)}")
     w = _value(call, "transition_width")
     if w not in (None, 0):
-        parts.append(f"transition_width={fmt_num(w)}")  # type: ignore[arg-type]
+        parts.append(f"transition_width={_num_text(w)}")
     return f"Threshold({', '.join(parts)})"
 
 

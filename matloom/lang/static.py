@@ -2,7 +2,8 @@
 
 The reference evaluates an expression given where a number is expected once at the origin. We do
 the same for constant math (and X()/Y(), which are 0 there, with a warning from the checker);
-fields such as noise or Define references in a numeric slot are rejected by the checker.
+fields such as noise in a numeric slot are rejected by the checker. A Define of a constant there
+is its value: :mod:`matloom.lang.constants` writes it out before these functions see it.
 """
 
 from __future__ import annotations

@@ -30,6 +30,7 @@ from dataclasses import replace
 from matloom.lang import ast as A
 from matloom.lang.affine import coord_coeffs, period_of, periodic_wrap, wrapper_cycles
 from matloom.lang.codes import Code
+from matloom.lang.constants import resolve_static
 from matloom.lang.diagnostics import Diagnostic, Span, caret_excerpt
 from matloom.lang.static import is_static, param_value
 from matloom.ops import Period, Repeats
@@ -47,7 +48,9 @@ def make_tileable(program: A.Program) -> A.Program:
 
 def tileable_warnings(program: A.Program, source: str = "") -> list[Diagnostic]:
     """W009/W010 for ``program`` rendered tileable (whatever its View says); none for a View
-    without finite, non-zero periods (the checker's E061)."""
+    without finite, non-zero periods (the checker's E061). Named static values are read as
+    the evaluator reads them (:func:`~matloom.lang.constants.resolve_static`)."""
+    program = resolve_static(program)
     x1, y1, x2, y2 = program.view_tuple
     periods = (abs(x2 - x1), abs(y2 - y1))
     if not valid(periods):

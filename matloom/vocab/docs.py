@@ -85,6 +85,28 @@ def render_language_reference() -> str:
         "Define the expression and pass the Define's name: `Define(swirl, X() * 20)` then "
         "`Rotate(f, swirl)`.",
         "",
+        "A numeric parameter also takes a named value: a Define of a constant (`Define(grout, "
+        "0.02)` then `Bricks(mortar=grout)`), constant arithmetic of such Defines "
+        "(`base_freq=(scale * 8)`) and chains of them. The checker reads the value (a range "
+        "error names the Define), the maps are bit for bit those of the program with the "
+        "number written in, `matloom fmt` keeps the names, and `matloom fmt --inline` and "
+        "seed variants write plain numbers. A Define that is a field (noise, a pattern, "
+        "`X()`, `Y()`) is still error E045 there. One edit then changes every use:",
+        "",
+        "```python",
+        "import numpy as np",
+        "import matloom",
+        "",
+        'named = """Define(grout, 0.03)',
+        "Define(scale, 2)",
+        "Material(Layer().basecolor(Bricks(mortar=grout), 0.5, 0.5)",
+        '  .height((Bricks(mortar=grout) * 0.02) + fBm(base_freq=(scale * 8), seed=1) * 0.001))"""',
+        'literal = named.replace("mortar=grout", "mortar=0.03").replace("(scale * 8)", "16")',
+        'assert "mortar=grout" in matloom.format(named)  # the canonical text keeps the names',
+        "a, b = matloom.evaluate(named, 64, 64), matloom.evaluate(literal, 64, 64)",
+        "assert np.array_equal(a.height, b.height) and np.array_equal(a.alpha, b.alpha)",
+        "```",
+        "",
         "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
         "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.",
         "",
