@@ -79,8 +79,23 @@ def _json_value(v: Value) -> Any:
 
 _JOINT_WORDS = frozenset({"grout", "mortar", "joint", "joints", "gap", "gaps", "seam", "seams"})
 _JOINT_PARAM_WORDS = ("mortar", "grout", "gap", "joint", "seam", "line_width", "gutter")
-_WIDER = frozenset({"wider", "wide", "thicker", "broader", "bigger", "larger", "more"})
-_NARROWER = frozenset({"narrower", "narrow", "thinner", "thin", "smaller", "finer", "tighter"})
+_WIDER = frozenset(
+    {
+        "wider",
+        "wide",
+        "widen",
+        "thicker",
+        "thicken",
+        "broader",
+        "broaden",
+        "bigger",
+        "larger",
+        "more",
+    }
+)
+_NARROWER = frozenset(
+    {"narrower", "narrow", "thinner", "thin", "smaller", "finer", "tighter", "tighten"}
+)
 _MORE = frozenset({"more", "heavier", "increase", "stronger", "extra", "lots"})
 _LESS = frozenset({"less", "fewer", "lighter", "reduce", "weaker", "remove", "no"})
 #: condition word -> the stems of its overlay's names and labels

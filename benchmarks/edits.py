@@ -1,0 +1,190 @@
+"""Benchmark of edits by words (`matloom edit`): applied, locality, refusals, and a blind-judge
+packet for "did it do what was asked".
+
+Runs every request of ``benchmarks/data/edit_requests.json`` (held out: committed before any
+result was looked at) over its program, offline (the rules) or with an OpenAI-compatible model
+(``--base-url`` and ``--model``; e.g. ``../shared/tools/bridge_openai.py`` with a strong model
+answering), and prints per request and in total:
+
+* applied: the edit produced a program that checks clean (refusals are counted apart);
+* locality: the largest fraction of texels changed in a map outside the intended channels
+  (goal <= 1 % on every edit) and the leaks;
+* refused: which requests the offline rules refused, and why.
+
+``--pack DIR`` also writes, for the applied edits, a blind-judge packet: one image per edit
+(before | after previews) under a shuffled opaque id, ``requests.json`` (id -> request text, all
+a judge sees) and ``key.json`` (id -> request id). ``collect DIR ANSWERS...`` folds judges'
+answers (JSON objects id -> "yes"/"no") into the share of yes per judge and overall.
+
+    PYTHONPATH=. .venv/bin/python benchmarks/edits.py run [--json OUT] [--pack DIR]
+    PYTHONPATH=. .venv/bin/python benchmarks/edits.py run --base-url URL --model NAME
+    PYTHONPATH=. .venv/bin/python benchmarks/edits.py collect DIR answers_*.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import random
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+REQUESTS = ROOT / "benchmarks" / "data" / "edit_requests.json"
+PREVIEW = 192
+
+
+def _program(ref: str) -> str:
+    if ref.startswith("library:"):
+        from matloom.library import load_library
+
+        return load_library().entry(ref.split(":", 1)[1]).program
+    return (ROOT / ref).read_text(encoding="utf-8")
+
+
+def _model(base_url: str | None, name: str | None):  # noqa: ANN202 - a ChatModel or None
+    if not base_url or not name:
+        return None
+    from matloom.author.config import ModelSettings
+    from matloom.author.llm.providers import get_model
+
+    return get_model(ModelSettings(model=name, base_url=base_url, max_retries=2))
+
+
+def _side_by_side(before: str, after: str) -> np.ndarray:
+    from matloom.render.api import preview
+
+    a, b = preview(before, PREVIEW), preview(after, PREVIEW)
+    gap = np.full((a.shape[0], 8, 3), 255, np.uint8)
+    return np.concatenate([a, gap, b], axis=1)
+
+
+def run(args: argparse.Namespace) -> None:
+    from matloom.author.edit.api import edit
+    from matloom.author.edit.rules import EditRefused
+    from matloom.lang.api import check
+
+    data = json.loads(REQUESTS.read_text(encoding="utf-8"))
+    model = _model(args.base_url, args.model)
+    rows = []
+    for item in data["requests"]:
+        text = _program(data["programs"][item["program"]])
+        row = {"id": item["id"], "program": item["program"], "request": item["request"]}
+        t0 = time.perf_counter()
+        try:
+            result = edit(text, item["request"], model=model)
+        except EditRefused as err:
+            row.update(status="refused", why=err.reason)
+        except Exception as err:  # noqa: BLE001 - a benchmark records every failure
+            row.update(status="failed", why=f"{type(err).__name__}: {err}")
+        else:
+            errors = [d for d in check(result.program) if d.is_error]
+            loc = result.report.locality
+            allowed = loc.allowed
+            outside = [c.fraction for n, c in loc.maps.items() if n not in allowed]
+            row.update(
+                status="applied" if not errors else "invalid",
+                changed=[c.to_json()["address"] for c in result.report.changes],
+                intended=list(loc.intended),
+                maps_changed=list(loc.changed),
+                outside_max=max(outside, default=0.0),
+                leaks=list(loc.leaks),
+                program_after=result.program,
+                program_before=text,
+            )
+        row["seconds"] = round(time.perf_counter() - t0, 3)
+        rows.append(row)
+        print(
+            f"{row['id']} {row['status']:8s} {row['program'][:24]:24s} {row['request'][:40]:40s} "
+            + (
+                f"outside {row['outside_max']:.4f} leaks {','.join(row['leaks']) or '-'}"
+                if "outside_max" in row
+                else row.get("why", "")[:70]
+            )
+        )
+    _summary(rows, "model" if model else "offline")
+    if args.json:
+        slim = [{k: v for k, v in r.items() if not k.startswith("program_")} for r in rows]
+        Path(args.json).write_text(json.dumps(slim, indent=1) + "\n", encoding="utf-8")
+    if args.pack:
+        _pack(Path(args.pack), [r for r in rows if r["status"] == "applied"], args.seed)
+
+
+def _summary(rows: list[dict], mode: str) -> None:
+    n = len(rows)
+    by = {s: [r for r in rows if r["status"] == s] for s in ("applied", "invalid", "refused")}
+    failed = [r for r in rows if r["status"] == "failed"]
+    accepted = n - len(by["refused"])
+    outside = [r["outside_max"] for r in by["applied"]]
+    print(f"\n{mode}: {n} requests over {len({r['program'] for r in rows})} programs")
+    print(
+        f"applied (checks clean) {len(by['applied'])} of {accepted} accepted "
+        f"({100 * len(by['applied']) / max(accepted, 1):.0f} %); invalid {len(by['invalid'])}; "
+        f"failed {len(failed)}; refused {len(by['refused'])}"
+    )
+    if outside:
+        over = sum(1 for v in outside if v > 0.01)
+        print(
+            f"locality: outside the intended maps, max {max(outside) * 100:.2f} % of texels, "
+            f"median {statistics.median(outside) * 100:.2f} %; edits over 1 %: {over}"
+        )
+    for r in by["refused"] + failed:
+        print(f"  {r['status']} {r['id']} {r['request']!r}: {r['why'][:110]}")
+
+
+def _pack(folder: Path, rows: list[dict], seed: int) -> None:
+    from PIL import Image
+
+    folder.mkdir(parents=True, exist_ok=True)
+    ids = [f"x{k:03d}" for k in random.Random(seed).sample(range(1000), len(rows))]
+    requests, key = {}, {}
+    for opaque, row in zip(ids, rows, strict=True):
+        Image.fromarray(_side_by_side(row["program_before"], row["program_after"])).save(
+            folder / f"{opaque}.png"
+        )
+        requests[opaque] = row["request"]
+        key[opaque] = row["id"]
+    order = sorted(requests)
+    (folder / "requests.json").write_text(
+        json.dumps({k: requests[k] for k in order}, indent=1) + "\n", encoding="utf-8"
+    )
+    (folder / "key.json").write_text(json.dumps(key, indent=1) + "\n", encoding="utf-8")
+    print(f"judge packet: {len(rows)} images in {folder} (requests.json for judges, key.json)")
+
+
+def collect(args: argparse.Namespace) -> None:
+    folder = Path(args.folder)
+    key = json.loads((folder / "key.json").read_text(encoding="utf-8"))
+    total_yes = total = 0
+    for path in args.answers:
+        answers = json.loads(Path(path).read_text(encoding="utf-8"))
+        yes = sum(1 for k in key if str(answers.get(k, "")).lower().startswith("y"))
+        total_yes, total = total_yes + yes, total + len(key)
+        no = sorted(key[k] for k in key if not str(answers.get(k, "")).lower().startswith("y"))
+        print(
+            f"{Path(path).name}: yes {yes} of {len(key)} ({100 * yes / len(key):.0f} %); no: {no}"
+        )
+    print(f"overall: yes {100 * total_yes / max(total, 1):.1f} %")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--base-url", default=None)
+    r.add_argument("--model", default=None)
+    r.add_argument("--json", default=None, help="write the rows as JSON")
+    r.add_argument("--pack", default=None, help="write a blind-judge packet into this folder")
+    r.add_argument("--seed", type=int, default=0, help="shuffle seed of the packet ids")
+    c = sub.add_parser("collect")
+    c.add_argument("folder")
+    c.add_argument("answers", nargs="+")
+    args = parser.parse_args()
+    (run if args.cmd == "run" else collect)(args)
+
+
+if __name__ == "__main__":
+    main()
