@@ -12,7 +12,7 @@ answering), and prints per request and in total:
 * refused: which requests the offline rules refused, and why.
 
 ``--pack DIR`` also writes, for the applied edits, a blind-judge packet: one image per edit
-(before | after previews) under a shuffled opaque id, ``requests.json`` (id -> request text, all
+(before | after; the flat preview above, the lit studio below) under a shuffled opaque id, ``requests.json`` (id -> request text, all
 a judge sees) and ``key.json`` (id -> request id). ``collect DIR ANSWERS...`` folds judges'
 answers (JSON objects id -> "yes"/"no") into the share of yes per judge and overall.
 
@@ -55,11 +55,16 @@ def _model(base_url: str | None, name: str | None):  # noqa: ANN202 - a ChatMode
 
 
 def _side_by_side(before: str, after: str) -> np.ndarray:
+    """Before (left) and after (right); the flat preview above, the lit studio below (it shows
+    gloss and relief, which the flat preview barely does)."""
     from matloom.render.api import preview
 
-    a, b = preview(before, PREVIEW), preview(after, PREVIEW)
+    a, b = preview(before, PREVIEW, layout="both"), preview(after, PREVIEW, layout="both")
+    w = a.shape[1] // 2
     gap = np.full((a.shape[0], 8, 3), 255, np.uint8)
-    return np.concatenate([a, gap, b], axis=1)
+    flat = np.concatenate([a[:, :w], gap, b[:, :w]], axis=1)
+    lit = np.concatenate([a[:, w:], gap, b[:, w:]], axis=1)
+    return np.concatenate([flat, np.full((8, flat.shape[1], 3), 255, np.uint8), lit], axis=0)
 
 
 def run(args: argparse.Namespace) -> None:
@@ -107,8 +112,8 @@ def run(args: argparse.Namespace) -> None:
         )
     _summary(rows, "model" if model else "offline")
     if args.json:
-        slim = [{k: v for k, v in r.items() if not k.startswith("program_")} for r in rows]
-        Path(args.json).write_text(json.dumps(slim, indent=1) + "\n", encoding="utf-8")
+        kept = [{k: v for k, v in r.items() if k != "program_before"} for r in rows]
+        Path(args.json).write_text(json.dumps(kept, indent=1) + "\n", encoding="utf-8")
     if args.pack:
         _pack(Path(args.pack), [r for r in rows if r["status"] == "applied"], args.seed)
 

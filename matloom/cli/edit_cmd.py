@@ -72,15 +72,21 @@ def _model(params: dict[str, Any], given: set[str]) -> Any:
 
 
 def _previews(before: str, after: str) -> bytes:
+    """before_after.png: before (left) and after (right), the flat preview above and the lit
+    studio (gloss and relief show there) below."""
     import numpy as np
 
     from matloom.io.png import encode_png
     from matloom.render.api import preview
 
-    a = preview(before, PREVIEW_SIZE)
-    b = preview(after, PREVIEW_SIZE)
+    a = preview(before, PREVIEW_SIZE, layout="both")
+    b = preview(after, PREVIEW_SIZE, layout="both")
+    w = a.shape[1] // 2
     gap = np.full((a.shape[0], _GAP, 3), 255, np.uint8)
-    return encode_png(np.concatenate([a, gap, b], axis=1))
+    flat = np.concatenate([a[:, :w], gap, b[:, :w]], axis=1)
+    lit = np.concatenate([a[:, w:], gap, b[:, w:]], axis=1)
+    bar = np.full((_GAP, flat.shape[1], 3), 255, np.uint8)
+    return encode_png(np.concatenate([flat, bar, lit], axis=0))
 
 
 def _write_outputs(out: Path, before: str, after: str, record: dict[str, Any]) -> Path:

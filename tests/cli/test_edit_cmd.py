@@ -47,7 +47,8 @@ def test_edit_writes_program_report_diff_and_previews(tmp_path: Path) -> None:
     assert "-Define(tileMask, Bricks(brick_width=0.5" in diff and "mortar=0.032" in diff
     png = (folder / "before_after.png").read_bytes()
     assert png.startswith(b"\x89PNG")
-    assert int.from_bytes(png[16:20], "big") == 2 * 256 + 4  # two previews side by side
+    assert int.from_bytes(png[16:20], "big") == 2 * 256 + 4  # before | after
+    assert int.from_bytes(png[20:24], "big") == 2 * 256 + 4  # flat above, lit below
 
 
 def test_edits_chain_and_undo_restores(tmp_path: Path) -> None:
