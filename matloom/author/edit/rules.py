@@ -24,8 +24,10 @@ changed: never a silent no-op. So does a rule whose parameters are already at th
 from __future__ import annotations
 
 import re
+import tomllib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from importlib.resources import files
 from typing import Any
 
 from matloom.lang import ast as A
@@ -77,83 +79,32 @@ def _json_value(v: Value) -> Any:
 
 # ---- words ---------------------------------------------------------------------------------
 
-_JOINT_WORDS = frozenset({"grout", "mortar", "joint", "joints", "gap", "gaps", "seam", "seams"})
-_JOINT_PARAM_WORDS = ("mortar", "grout", "gap", "joint", "seam", "line_width", "gutter")
-_WIDER = frozenset(
-    {
-        "wider",
-        "wide",
-        "widen",
-        "thicker",
-        "thicken",
-        "broader",
-        "broaden",
-        "bigger",
-        "larger",
-        "more",
-    }
-)
-_NARROWER = frozenset(
-    {"narrower", "narrow", "thinner", "thin", "smaller", "finer", "tighter", "tighten"}
-)
-_MORE = frozenset({"more", "heavier", "increase", "stronger", "extra", "lots"})
-_LESS = frozenset({"less", "fewer", "lighter", "reduce", "weaker", "remove", "no"})
+_W = tomllib.loads(files("matloom.author.edit").joinpath("words.toml").read_text("utf-8"))
+_JOINT_WORDS = frozenset(_W["words"]["joint"])
+_JOINT_PARAM_WORDS = tuple(_W["words"]["joint_params"])
+_WIDER = frozenset(_W["words"]["wider"])
+_NARROWER = frozenset(_W["words"]["narrower"])
+_MORE = frozenset(_W["words"]["more"])
+_LESS = frozenset(_W["words"]["less"])
 #: condition word -> the stems of its overlay's names and labels
-_CONDITIONS: dict[str, tuple[str, ...]] = {
-    "rust": ("rust",),
-    "rusty": ("rust",),
-    "moss": ("moss",),
-    "mossy": ("moss",),
-    "wear": ("wear", "worn"),
-    "worn": ("wear", "worn"),
-    "weathering": ("weather",),
-    "weathered": ("weather",),
-    "dirt": ("dirt", "grime", "dust"),
-    "dirty": ("dirt", "grime", "dust"),
-    "grime": ("grime", "dirt"),
-    "dust": ("dust",),
-    "dusty": ("dust",),
-    "scratches": ("scratch",),
-    "scratched": ("scratch",),
-    "stains": ("stain",),
-    "cracks": ("crack",),
-}
-_ROUGHER = {"rougher": 0.4, "matte": 0.6, "matt": 0.6, "duller": 0.3, "satin": 0.3}
-_GLOSSIER = {
-    "glossier": 0.5,
-    "glossy": 0.5,
-    "shinier": 0.35,
-    "shiny": 0.35,
-    "polished": 0.35,
-    "smoother": 0.6,
-    "sleeker": 0.5,
-}
-_HIGHER = frozenset({"higher", "more", "increase", "raise"})
-_LOWER = frozenset({"lower", "less", "reduce", "decrease"})
+_CONDITIONS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _W["conditions"].items()}
+_ROUGHER: dict[str, float] = dict(_W["rougher"])
+_GLOSSIER: dict[str, float] = dict(_W["glossier"])
+_HIGHER = frozenset(_W["words"]["higher"])
+_LOWER = frozenset(_W["words"]["lower"])
 #: comparative tone words -> (lightness, saturation) multipliers
 _COMPARATIVE: dict[str, tuple[float, float]] = {
-    "darker": (0.7, 1.0),
-    "lighter": (1.3, 0.9),
-    "paler": (1.4, 0.7),
-    "brighter": (1.15, 1.2),
-    "warmer": (1.0, 1.0),
-    "cooler": (1.0, 1.0),
-    "duller": (0.9, 0.7),
-    "richer": (0.85, 1.25),
-    "deeper": (0.75, 1.15),
+    k: (float(v[0]), float(v[1])) for k, v in _W["comparative"].items()
 }
-_BIGGER = frozenset({"bigger", "larger", "big", "large", "huge", "coarser", "chunkier"})
-_SMALLER = frozenset({"smaller", "small", "tiny", "finer", "little"})
-_DENSER = frozenset({"denser", "dense", "tighter", "busier"})
-_SPARSER = frozenset({"sparser", "sparse", "fewer", "looser"})
-_SIZE_FACTOR = 1.5
-_JOINT_FACTOR = 1.6
-_AMOUNT_STEP = 0.25
+_BIGGER = frozenset(_W["words"]["bigger"])
+_SMALLER = frozenset(_W["words"]["smaller"])
+_DENSER = frozenset(_W["words"]["denser"])
+_SPARSER = frozenset(_W["words"]["sparser"])
+_SIZE_FACTOR = float(_W["factors"]["size"])
+_JOINT_FACTOR = float(_W["factors"]["joint"])
+_AMOUNT_STEP = float(_W["factors"]["amount_step"])
 #: words that carry no noun
-_FILLER = frozenset(
-    "a an the make it its it's more less much bit slightly very please and to of with be "
-    "give me change set turn into colour color some little so too".split()
-)
+_FILLER = frozenset(_W["words"]["filler"])
 
 
 def tokens(request: str) -> list[str]:
