@@ -223,13 +223,14 @@ def edit_cmd(
     if history.current != text:  # a starting point, or a hand edit since the last version
         history.add(text, None, source=str(path))
     record = result.report.to_json()
-    history.add(result.program, request, mode=record["mode"], changed=record["changed"])
-    atomic_write_bytes(target, result.program.encode("utf-8"))
+    program = result.program.rstrip("\n") + "\n"  # a program file ends with one newline
+    history.add(program, request, mode=record["mode"], changed=record["changed"])
+    atomic_write_bytes(target, program.encode("utf-8"))
     history.save()
     record["program"] = str(target)
     record["history"] = str(history.path)
     record["version"] = len(history.versions) - 1
-    folder = _write_outputs(target, text, result.program, record)
+    folder = _write_outputs(target, text, program, record)
     if as_json:
         click.echo(json.dumps(record, indent=2))
     report = result.report

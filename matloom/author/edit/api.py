@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from matloom.author.edit.core import EditResult, edit_offline
@@ -29,11 +28,7 @@ def edit(
     :mod:`matloom.author.llm`) through the model, else by the offline rules."""
     text = program if isinstance(program, str) else format_program(program, comments=True)
     if model is None:
-        result = edit_offline(text, request, size=size, session=session)
-    else:
-        result = edit_with_model(
-            text, request, model, repair_turns=repair_turns, size=size, session=session
-        )
-    if text.endswith("\n") and not result.program.endswith("\n"):  # a file keeps its last line
-        result = replace(result, program=result.program + "\n")
-    return result
+        return edit_offline(text, request, size=size, session=session)
+    return edit_with_model(
+        text, request, model, repair_turns=repair_turns, size=size, session=session
+    )

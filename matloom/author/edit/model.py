@@ -12,7 +12,6 @@ cannot be applied raises :class:`~matloom.author.edit.core.EditError`.
 from __future__ import annotations
 
 import json
-import re
 from typing import TYPE_CHECKING, Any
 
 from matloom.author.edit.core import (
@@ -26,6 +25,7 @@ from matloom.author.edit.core import (
     verify,
 )
 from matloom.author.llm.base import ChatMessage, ModelError, complete_within
+from matloom.author.stages.critique_parse import first_json_object
 from matloom.lang.deps import OUTPUTS
 from matloom.lang.diagnostics import ProgramError
 from matloom.runtime.locality import LOCALITY_SIZE
@@ -79,9 +79,10 @@ def prompt(text: str, request: str) -> str:
 
 
 def read_answer(reply: str) -> dict[str, Any]:
-    """The JSON object of a reply (bare, or in a ```json fence); ValueError if none."""
-    fenced = re.search(r"```(?:json)?\s*(\{.*?\})\s*```", reply, re.DOTALL)
-    raw = fenced.group(1) if fenced else reply[reply.find("{") : reply.rfind("}") + 1]
+    """The first JSON object of a reply (bare, or in a ```json fence; found as the critic's
+    answers are, :func:`~matloom.author.stages.critique_parse.first_json_object`); ValueError
+    if none."""
+    raw = first_json_object(reply) or ""
     try:
         data = json.loads(raw)
     except json.JSONDecodeError as err:
