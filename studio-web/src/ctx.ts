@@ -1,0 +1,35 @@
+// What every part of the page is given when it mounts.
+import type { Api } from "./api";
+import type { Store } from "./store";
+
+export interface HistoryApi {
+  /** Record the current text as a version (called on commit points: drag end, pause in typing). */
+  commit(label?: string): void;
+  undo(): void;
+  redo(): void;
+  canUndo(): boolean;
+  canRedo(): boolean;
+  versions(): { text: string; label: string; time: number }[];
+  permalink(): Promise<string>;
+}
+
+export interface Ctx {
+  api: Api;
+  store: Store;
+  history: HistoryApi;
+  /** Session facts from GET /api/session. */
+  session: {
+    version: string;
+    root: string;
+    files: string[];
+    opened: string | null;
+    text: string;
+    model: boolean;
+    blender: boolean;
+    presets: string[];
+    limits: Record<string, number>;
+  };
+}
+
+/** Each part exports one of these. */
+export type Mount = (el: HTMLElement, ctx: Ctx) => void;
