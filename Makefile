@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
+.PHONY: demo studio test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -16,7 +16,11 @@ $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 demo: $(VENV)/.installed-fast,llm
 	$(VENV)/bin/matloom demo -o $(DEMO_OUT)
 
-test: $(VENV)/.installed-fast,llm,test tools
+# The studio in the browser, on a copy of the demo material in ./matloom-studio/.
+studio: $(VENV)/.installed-fast,llm,studio
+	$(VENV)/bin/matloom studio
+
+test: $(VENV)/.installed-fast,llm,test,studio tools
 	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender"
 
 # The Khronos glTF validator (npm) for the glTF preset tests, in a project-local folder. If npm

@@ -12,11 +12,13 @@ answering), and prints per request and in total:
 * refused: which requests the offline rules refused, and why.
 
 ``--pack DIR`` also writes, for the applied edits, a blind-judge packet: one image per edit
-(before | after; the flat preview above, the lit studio below) under a shuffled opaque id, ``requests.json`` (id -> request text, all
-a judge sees) and ``key.json`` (id -> request id). ``collect DIR ANSWERS...`` folds judges'
+(before | after; the flat preview above, the lit studio below; an edit that makes the program
+tileable shows both sides repeated 2 x 2, one that sets the physical size has each side's width
+written under it) under a shuffled opaque id, ``requests.json`` (id -> request text, all a judge
+sees) and ``key.json`` (id -> request id). ``collect DIR ANSWERS...`` folds judges'
 answers (JSON objects id -> "yes"/"no") into the share of yes per judge and overall.
 
-    PYTHONPATH=. .venv/bin/python benchmarks/edits.py run [--json OUT] [--pack DIR]
+    PYTHONPATH=. .venv/bin/python benchmarks/edits.py run [--requests FILE] [--json OUT] [--pack DIR]
     PYTHONPATH=. .venv/bin/python benchmarks/edits.py run --base-url URL --model NAME
     PYTHONPATH=. .venv/bin/python benchmarks/edits.py collect DIR answers_*.json
 """
@@ -54,17 +56,49 @@ def _model(base_url: str | None, name: str | None):  # noqa: ANN202 - a ChatMode
     return get_model(ModelSettings(model=name, base_url=base_url, max_retries=2))
 
 
+def _view(text: str):  # noqa: ANN202 - the program's ViewDecl or None
+    from matloom.lang.api import parse
+
+    return parse(text).view
+
+
+def _width_caption(view) -> str:  # noqa: ANN001 - a ViewDecl or None
+    if view is None or view.unit_m is None:
+        return "physical size: not set"
+    return f"{abs(view.x2 - view.x1) * view.unit_m:.3g} m wide"
+
+
 def _side_by_side(before: str, after: str) -> np.ndarray:
     """Before (left) and after (right); the flat preview above, the lit studio below (it shows
-    gloss and relief, which the flat preview barely does)."""
+    gloss and relief, which the flat preview barely does). What a View edit changes shows too:
+    an edit that makes the program tileable shows both sides repeated 2 x 2 (seams show where
+    they are), one that sets the physical size has each side's width written under it."""
     from matloom.render.api import preview
 
-    a, b = preview(before, PREVIEW, layout="both"), preview(after, PREVIEW, layout="both")
+    va, vb = _view(before), _view(after)
+    tiled = bool(vb is not None and vb.tileable and not (va is not None and va.tileable))
+    tile = 2 if tiled else 1
+    size = PREVIEW // tile
+    a = preview(before, size, layout="both", tile=tile)
+    b = preview(after, size, layout="both", tile=tile)
     w = a.shape[1] // 2
     gap = np.full((a.shape[0], 8, 3), 255, np.uint8)
     flat = np.concatenate([a[:, :w], gap, b[:, :w]], axis=1)
     lit = np.concatenate([a[:, w:], gap, b[:, w:]], axis=1)
-    return np.concatenate([flat, np.full((8, flat.shape[1], 3), 255, np.uint8), lit], axis=0)
+    out = np.concatenate([flat, np.full((8, flat.shape[1], 3), 255, np.uint8), lit], axis=0)
+    if (va.unit_m if va else None) != (vb.unit_m if vb else None):
+        out = _captioned(out, _width_caption(va), _width_caption(vb), w + 8)
+    return out
+
+
+def _captioned(image: np.ndarray, left: str, right: str, offset: int) -> np.ndarray:
+    from PIL import Image, ImageDraw
+
+    strip = Image.new("RGB", (image.shape[1], 18), (255, 255, 255))
+    draw = ImageDraw.Draw(strip)
+    draw.text((4, 3), left, fill=(0, 0, 0))
+    draw.text((offset + 4, 3), right, fill=(0, 0, 0))
+    return np.concatenate([image, np.asarray(strip)], axis=0)
 
 
 def run(args: argparse.Namespace) -> None:
@@ -72,7 +106,7 @@ def run(args: argparse.Namespace) -> None:
     from matloom.author.edit.rules import EditRefused
     from matloom.lang.api import check
 
-    data = json.loads(REQUESTS.read_text(encoding="utf-8"))
+    data = json.loads(Path(args.requests).read_text(encoding="utf-8"))
     model = _model(args.base_url, args.model)
     rows = []
     for item in data["requests"]:
@@ -113,6 +147,7 @@ def run(args: argparse.Namespace) -> None:
     _summary(rows, "model" if model else "offline")
     if args.json:
         kept = [{k: v for k, v in r.items() if k != "program_before"} for r in rows]
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         Path(args.json).write_text(json.dumps(kept, indent=1) + "\n", encoding="utf-8")
     if args.pack:
         _pack(Path(args.pack), [r for r in rows if r["status"] == "applied"], args.seed)
@@ -179,6 +214,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run")
+    r.add_argument(
+        "--requests",
+        default=str(REQUESTS),
+        help="the request set (default: the v1 development set, benchmarks/data/edit_requests.json)",
+    )
     r.add_argument("--base-url", default=None)
     r.add_argument("--model", default=None)
     r.add_argument("--json", default=None, help="write the rows as JSON")

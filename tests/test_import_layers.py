@@ -60,6 +60,7 @@ SAME_LEVEL: frozenset[tuple[str, str]] = frozenset(
         ("matloom.render", "matloom.io"),
         ("matloom.author", "matloom.library"),
         ("matloom.author", "matloom.blender"),
+        ("matloom.cli", "matloom.studio"),  # `matloom studio` starts the studio's server
     }
 )
 #: Module edges still closing a cycle, to be removed (adding to this set is not a fix):

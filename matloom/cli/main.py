@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "scorer": "matloom.cli.generate_cmd:scorer_cmd",
     "blender": "matloom.cli.blender_cmd:blender_cmd",
     "library": "matloom.cli.library_cmd:library_cmd",
+    "studio": "matloom.cli.studio_cmd:studio_cmd",
 }
 
 
@@ -40,6 +41,8 @@ EXTRAS: dict[str, str] = {
     "torch": "clip",
     "torchvision": "clip",
     "open_clip": "clip",
+    "starlette": "studio",
+    "uvicorn": "studio",
 }
 
 

@@ -31,6 +31,10 @@ export interface MapsHeader {
   tileable: boolean;
   seam: Record<string, number> | null;
   maps: MapInfo[];
+  /** The emission map is an sRGB texture times this strength (0 when nothing glows). */
+  emissive_scale?: number;
+  /** Height min and max in coordinate units. */
+  height_range?: [number, number];
 }
 
 /** Decoded maps: u8 maps as Uint8Array, f32 maps as Float32Array, row 0 = top. */
@@ -49,6 +53,10 @@ export interface EvaluateRequest {
   hidden?: number[];
   solo?: number | null;
   channels?: string[];
+  /** Which pass this is (the server may also tell by size). */
+  pass?: "preview" | "full";
+  /** Also render the lit preview. */
+  lit?: boolean;
 }
 
 export function decodeMaps(buf: ArrayBuffer): Maps {

@@ -11,6 +11,8 @@ export interface HistoryApi {
   canRedo(): boolean;
   versions(): { text: string; label: string; time: number }[];
   permalink(): Promise<string>;
+  /** Called after every change of the steps or the version list; returns the unsubscribe. */
+  onChange(fn: () => void): () => void;
 }
 
 export interface Ctx {

@@ -125,3 +125,71 @@ def test_cli_edit_with_model(tmp_path: Path) -> None:
     out = tmp_path / "tiles.edited.mat"
     assert "(30 + (glazeRipple * 6))" in out.read_text()
     assert src.read_text() == TILES  # the input is never overwritten
+
+
+BRICK = (Path(__file__).resolve().parents[2] / "matloom/examples/weathered_brick.mat").read_text()
+
+
+def _seeds(text: str) -> dict[str, object]:
+    from matloom.author.edit.apply import all_params, parse_program
+
+    return {p.address: p.value for p in all_params(parse_program(text)) if p.kind == "seed"}
+
+
+def test_answer_may_add_lines_with_new_seeds() -> None:
+    added = json.dumps(
+        {
+            "add": [
+                "Define(mossN, fBm(octaves=4, base_freq=3, to_01=True, seed=4242))",
+                "Define(moss, Threshold(((mossN - 0.55) * 8), below_at=0, above_at=1))",
+                "Layer(moss).basecolor(70, 100, 40).roughness(0.95)",
+            ],
+            "channels": ["basecolor", "roughness", "metallic", "height"],
+            "note": "moss in clumps",
+        }
+    )
+    with ChatServer(Replies(added)) as server:
+        result = edit(BRICK, "add moss", _model(server), size=32)
+    assert result.report.ok and result.report.turns == 0
+    assert "Layer(moss)" in result.program and "seed=4242" in result.program
+    old, new = _seeds(BRICK), _seeds(result.program)
+    assert all(new[a] == v for a, v in old.items()) and len(new) == len(old) + 1
+    assert {c.label for c in result.report.changes} >= {"added Define", "added layer"}
+
+
+def test_answer_may_name_a_library_overlay() -> None:
+    answer = json.dumps({"overlay": [{"name": "mossy", "amount": 0.6}], "note": "moss"})
+    unknown = json.dumps({"overlay": [{"name": "lichenous"}]})
+    with ChatServer(Replies(unknown, answer)) as server:
+        result = edit(BRICK, "add moss", _model(server), size=32)
+        requests = list(server.requests)
+    assert "no library overlay 'lichenous'" in text_of(requests[1]["messages"][-1])
+    assert "mossy" in text_of(requests[0]["messages"][1])  # the prompt lists the overlays
+    assert result.report.ok and result.report.turns == 1
+    assert "Define(cover, 0.6)" in result.program
+    assert "basecolor" in result.report.plan["channels"]  # the overlay's channels are added
+
+
+def test_answer_too_small_to_see_is_sent_back() -> None:
+    tiny = json.dumps({"assign": {"layer:2.roughness.base": 0.045}, "channels": ["roughness"]})
+    visible = json.dumps({"assign": {"layer:2.roughness.base": 0.5}, "channels": ["roughness"]})
+    with ChatServer(Replies(tiny, visible)) as server:
+        result = edit(TILES, "rougher glaze", _model(server), repair_turns=2, size=32)
+        requests = list(server.requests)
+    assert len(requests) == 2
+    assert "too small to see" in text_of(requests[1]["messages"][-1])
+    assert result.report.turns == 1 and "(0.5 + (glazeGrain * 0.05))" in result.program
+    # after the last turn a small change is kept rather than nothing
+    with ChatServer(Replies(tiny)) as server:
+        kept = edit(TILES, "rougher glaze", _model(server), repair_turns=0, size=32)
+    assert "(0.045 + (glazeGrain * 0.05))" in kept.program
+
+
+def test_prompt_lists_layers_labels_and_affects() -> None:
+    from matloom.author.edit.model import SYSTEM, prompt
+
+    text = prompt(TILES, "wider grout")
+    assert "<layers>\nlayer:1: coverage everywhere; writes basecolor, roughness, height" in text
+    assert "layer:2: coverage tileMask;" in text
+    assert "define:tileMask.Bricks.mortar = 0.02 (size units" in text and "affects " in text
+    assert "CLEARLY VISIBLE" in SYSTEM and '"overlay"' in SYSTEM and '"add"' in SYSTEM

@@ -1,5 +1,6 @@
 """Offline edits: a table of requests over library entries and examples, with the parameter
-changes each must make (or its refusal), all checked clean and local."""
+changes each must make (or its refusal), all checked clean and local. The other categories
+(overlays added, lines rewritten, escalation) are in test_edit_categories.py."""
 
 from __future__ import annotations
 
@@ -17,6 +18,12 @@ def _file(rel: str) -> str:
     return (ROOT / rel).read_text(encoding="utf-8")
 
 
+def _entry(name: str) -> str:
+    from matloom.library import load_library
+
+    return load_library().entry(name).program
+
+
 PROGRAMS = {
     "black": lambda: _file("examples/black_ceramic_tiles.mat"),
     "weathered": lambda: _file("examples/weathered_brick.mat"),
@@ -25,6 +32,15 @@ PROGRAMS = {
     "square": lambda: _file("library/entries/tiles/square-tiles.mat"),
     "rustymoss": lambda: author("rusty mossy brick wall").program,
     "worndirty": lambda: author("worn dirty leather").program,
+    "painted": lambda: _entry("painted-metal"),
+    "rusted": lambda: _entry("rusted-metal"),
+    "brushed": lambda: _entry("brushed-metal"),
+    "velvet": lambda: _entry("velvet"),
+    "leather": lambda: _entry("leather"),
+    "porcelain": lambda: _entry("porcelain-white-glaze"),
+    "delft": lambda: _entry("delft-blue-tiles-tulip"),
+    "concrete": lambda: _entry("polished-concrete"),
+    "cobble": lambda: _entry("cobblestone-fan-pattern"),
 }
 
 _cache: dict[str, str] = {}
@@ -36,53 +52,85 @@ def program(name: str) -> str:
     return _cache[name]
 
 
-# (program, request, expected assignments (a subset, values approx), expected View changes)
+# (program, request, expected assignments (a subset, values approx), expected View changes).
+# The steps are those of author/edit/words.toml, sized to show in a lit preview: a joint x2 or
+# /2, a roughness comparative at least 0.22 and half the way to its end (down: x0.45), a finish
+# adjective the library's finish roughness (matte 0.82), a tone step at least 14 L* (CIELAB).
 TABLE: list[tuple[str, str, dict[str, object], dict[str, object]]] = [
     # the paper's three
-    ("black", "wider grout", {"define:tileMask.Bricks.mortar": 0.032}, {}),
+    ("black", "wider grout", {"define:tileMask.Bricks.mortar": 0.04}, {}),
     ("black", "blue glaze", {"layer:2.basecolor.base": (40, 80, 170)}, {}),
     (
         "black",
-        "higher roughness",
-        {"layer:1.roughness.base": 0.91, "layer:2.roughness.base": 0.424},
+        "higher roughness",  # 0.85 + 0.22 (clamped), 0.04 + (1 - 0.04) / 2; the coat x0.3
+        {"layer:1.roughness.base": 1.0, "layer:2.roughness.base": 0.52, "layer:2.coat": 0.285},
         {},
     ),
     # joints
-    ("black", "narrower mortar joints", {"define:tileMask.Bricks.mortar": 0.0125}, {}),
-    ("square", "wider grout", {"define:tile.Bricks.mortar": 0.08}, {}),  # written from its default
+    ("black", "narrower mortar joints", {"define:tileMask.Bricks.mortar": 0.01}, {}),
+    ("square", "wider grout", {"define:tile.Bricks.mortar": 0.1}, {}),  # written from its default
     (
         "brickwall",
         "wider mortar",
         {
-            "define:brick.Bricks.mortar": 0.08,
-            "define:edge.Bricks.mortar": 0.08,
-            "define:tone.Bricks.mortar": 0.08,
+            "define:brick.Bricks.mortar": 0.1,
+            "define:edge.Bricks.mortar": 0.1,
+            "define:tone.Bricks.mortar": 0.1,
         },
         {},
     ),
-    ("weathered", "thinner joints", {"define:brick.Bricks.mortar": 0.0375}, {}),
+    ("weathered", "thinner joints", {"define:brick.Bricks.mortar": 0.03}, {}),
     # the composed brick wall has unit_m=0.23: a 12 mm joint is 0.012 / 0.23 units
     ("rustymoss", "12 mm mortar joints", {"define:brick.Bricks.mortar": 0.012 / 0.23}, {}),
-    # colours
-    ("black", "darker grout", {"layer:1.basecolor.base": (28, 29, 32)}, {}),
+    # colours: named, comparative (CIELAB), a named colour that selects ("the blue"), a family
+    ("black", "darker grout", {"layer:1.basecolor.base": (8, 11, 15)}, {}),
+    ("black", "slightly darker grout", {"layer:1.basecolor.base": (26, 28, 30)}, {}),
     ("square", "blue glaze", {"define:tile": (40, 80, 170)}, {}),
-    ("brickwall", "darker grout", {"define:mortar": (145, 134, 110)}, {}),
+    ("brickwall", "darker grout", {"define:mortar": (132, 126, 113)}, {}),
     ("brickwall", "make the bricks white", {"define:brick": (236, 236, 232)}, {}),
-    ("weathered", "darker mortar", {"layer:1.basecolor": (127, 121, 107)}, {}),
+    ("weathered", "darker mortar", {"layer:1.basecolor": (120, 116, 106)}, {}),
     ("quick", "green bricks", {"layer:2.basecolor": (60, 130, 60)}, {}),
-    ("rustymoss", "lighter mortar", {"define:mortar": (212, 209, 200)}, {}),
-    # roughness
-    ("square", "higher roughness", {"define:rough": 0.52, "layer:1.roughness": 0.94}, {}),
-    ("square", "make it glossier", {"define:rough": 0.1, "layer:1.roughness": 0.45}, {}),
-    ("brickwall", "rougher", {"define:rough": 0.928, "layer:1.roughness": 0.97}, {}),
-    ("quick", "matte", {"layer:1.roughness": 0.8, "layer:2.roughness": 0.8}, {}),
-    ("quick", "shinier", {"layer:1.roughness": 0.175, "layer:2.roughness": 0.175}, {}),
+    ("rustymoss", "lighter mortar", {"define:mortar": (231, 225, 211)}, {}),
+    ("delft", "make the blue darker", {"define:cobalt": (0, 35, 98)}, {}),
+    ("concrete", "lighter grey", {"define:base": (206, 204, 198)}, {}),
+    (
+        "cobble",
+        "grey stones",
+        {"define:stone": (128, 128, 128), "define:stone_warm": (124, 124, 124)},
+        {},
+    ),
+    ("painted", "red paint", {"define:paint_col": (186, 32, 36)}, {}),
+    ("brickwall", "redder bricks", {"define:brick": (166, 52, 39)}, {}),  # 0.45 of the way
+    # the cobbles' mask reads a Define named for the joint: the first layer is the grout
+    ("cobble", "white grout", {"define:joint": (236, 236, 232)}, {}),
+    # roughness: comparatives, finish adjectives, flipped words, the clear coat with it
+    ("square", "higher roughness", {"define:rough": 0.6, "layer:1.roughness": 1.0}, {}),
+    ("square", "make it glossier", {"define:rough": 0.03, "layer:1.roughness": 0.405}, {}),
+    ("brickwall", "rougher", {"define:rough": 1.0, "layer:1.roughness": 1.0}, {}),
+    ("quick", "matte", {"layer:1.roughness": 0.82, "layer:2.roughness": 0.82}, {}),
+    ("quick", "shinier", {"layer:1.roughness": 0.225, "layer:2.roughness": 0.225}, {}),
     (
         "weathered",
         "make it smoother",
-        {"layer:1.roughness": 0.57, "layer:2.roughness.base": 0.42},
+        {"layer:1.roughness": 0.4275, "layer:2.roughness.base": 0.315},
         {},
     ),
+    ("black", "less shiny tiles", {"layer:2.roughness.base": 0.52, "layer:2.coat": 0.285}, {}),
+    (
+        "porcelain",
+        "make it less shiny",
+        {"define:rough": 0.515, "layer:1.coat": 0.3, "layer:2.coat": 0.3},
+        {},
+    ),
+    ("leather", "it is too rough", {"define:rough": 0.252, "layer:1.coat": 0.525}, {}),
+    ("painted", "make the coating rougher", {"define:rough": 0.725}, {}),
+    # single channels and relief
+    ("velvet", "less sheen", {"layer:1.sheen.base": 0.4}, {}),
+    ("velvet", "no sheen", {"layer:1.sheen.base": 0.0}, {}),
+    ("leather", "more clearcoat", {"layer:1.coat": 0.525}, {}),
+    ("brushed", "less metallic", {"layer:1.metallic": 0.5}, {}),
+    ("brickwall", "deeper relief", {"define:relief": 2.0}, {}),
+    ("brickwall", "flatter", {"define:relief": 0.5}, {}),
     # scale
     (
         "black",
@@ -90,28 +138,48 @@ TABLE: list[tuple[str, str, dict[str, object], dict[str, object]]] = [
         {"define:tileMask.Bricks.brick_width": 0.75, "define:tileMask.Bricks.brick_height": 0.75},
         {},
     ),
-    ("square", "smaller tiles", {"define:tile.Bricks.brick_height": 0.666667}, {}),
+    # the square tiles tile: x0.6 is the nearest factor that keeps whole tiles across the View
+    ("square", "smaller tiles", {"define:tile.Bricks.brick_height": 0.6}, {}),
     ("weathered", "denser", {"define:tone.fBm.base_freq": 3.75}, {}),
     ("weathered", "sparser", {"define:tone.fBm.base_freq": 1.66667}, {}),
-    # overlay amounts
-    ("rustymoss", "more rust", {"define:cover": 0.75}, {}),
-    ("rustymoss", "less rust", {"define:cover": 0.25}, {}),
-    ("rustymoss", "less moss", {"define:cover2": 0.25}, {}),
-    ("worndirty", "more wear", {"define:cover": 0.75}, {}),
-    ("worndirty", "less dirt", {"define:cover2": 0.25}, {}),
+    (
+        "concrete",
+        "larger aggregate",
+        {"define:aggD.Worley.base_freq": 17.3333, "define:aggV.Worley.base_freq": 17.3333},
+        {},
+    ),
+    # the cobbles are drawn from constants: the View zooms (x2, so the repeat stays whole)
+    ("cobble", "smaller stones", {}, {"window": [0.1, 0.05, 4.1, 4.05]}),
+    # conditions: an amount, a measured coverage
+    ("rustymoss", "more rust", {"define:cover": 0.8}, {}),
+    ("rustymoss", "less rust", {"define:cover": 0.2}, {}),
+    ("rustymoss", "less moss", {"define:cover2": 0.2}, {}),
+    ("worndirty", "more wear", {"define:cover": 0.8}, {}),
+    ("worndirty", "less dirt", {"define:cover2": 0.2}, {}),
+    ("rusted", "less rust", {"define:wear": 0.3}, {}),
+    (
+        "painted",
+        "more rust",  # the rust mask's Threshold edges shift together
+        {"define:rust.Threshold.below_at": 0.75, "define:rust.Threshold.above_at": 1.75},
+        {},
+    ),
     # View
     ("black", "make it tileable", {}, {"tileable": True}),
     ("weathered", "seamless please", {}, {"tileable": True}),
     ("black", "1 m wide", {}, {"unit_m": 0.5}),
     ("square", "make it 30 cm across", {}, {"unit_m": 0.1}),
     ("brickwall", "3 ft wide", {}, {"unit_m": 0.2286}),
+    # unit_m known (0.23 m per unit, 4 units): the window grows x3 (whole, so it still tiles)
+    ("rustymoss", "make it 3 m wide", {}, {"window": [0.13, 0.13, 12.13, 12.13]}),
 ]
 
 REFUSED: list[tuple[str, str, str]] = [
     ("black", "make it fluffy", "no offline rule"),
-    ("black", "more rust", "no rust amount"),
+    ("black", "less rust", "no rust in this program to reduce"),
     ("square", "make it tileable", "tileable already"),
     ("square", "darker grout", "no colour parameter named like 'grout'"),
+    ("velvet", "less transparent", "no transmission parameter"),
+    ("cobble", "widen the joints between the stones", "no joint"),
     ("quick", "rougher", ""),  # not refused: checked below as a contrast
 ]
 
@@ -126,7 +194,7 @@ def _close(a: object, b: object) -> bool:
 
 def test_table_is_large_enough() -> None:
     assert len(TABLE) >= 30
-    assert len({p for p, *_ in TABLE}) >= 5
+    assert len({p for p, *_ in TABLE}) >= 10
 
 
 @pytest.mark.parametrize(
@@ -153,6 +221,7 @@ def test_offline_edit(
     assert result.report.ok, result.report.locality.describe()
     if plan["intended"] and "alpha" not in plan["intended"]:
         assert set(result.report.locality.changed) <= result.report.locality.allowed
+    assert not result.report.warnings, result.report.warnings  # every step shows
 
 
 @pytest.mark.parametrize(("name", "request_", "reason"), [r for r in REFUSED if r[2]])

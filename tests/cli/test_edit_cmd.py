@@ -35,7 +35,7 @@ def test_edit_writes_program_report_diff_and_previews(tmp_path: Path) -> None:
     res = CliRunner().invoke(cli, ["edit", str(src), "wider grout", "--json"])  # 256 x 256
     assert res.exit_code == 0, res.output
     out = tmp_path / "tiles.edited.mat"
-    assert "mortar=0.032" in out.read_text()
+    assert "mortar=0.04" in out.read_text()
     assert src.read_text() == TILES
     record = json.loads(res.stdout)
     assert record["request"] == "wider grout" and record["mode"] == "rules"
@@ -44,7 +44,7 @@ def test_edit_writes_program_report_diff_and_previews(tmp_path: Path) -> None:
     folder = tmp_path / "tiles.edited.edit"
     assert json.loads((folder / "edit.json").read_text())["request"] == "wider grout"
     diff = (folder / "edit.diff").read_text()
-    assert "-Define(tileMask, Bricks(brick_width=0.5" in diff and "mortar=0.032" in diff
+    assert "-Define(tileMask, Bricks(brick_width=0.5" in diff and "mortar=0.04" in diff
     png = (folder / "before_after.png").read_bytes()
     assert png.startswith(b"\x89PNG")
     assert int.from_bytes(png[16:20], "big") == 2 * 256 + 4  # before | after
@@ -59,7 +59,7 @@ def test_edits_chain_and_undo_restores(tmp_path: Path) -> None:
     first = out.read_text()
     res = run(str(out), "blue glaze")  # an edited program: edited in place, history appended
     assert res.exit_code == 0, res.output
-    assert "(40 + (glazeRipple * 6))" in out.read_text() and "mortar=0.032" in out.read_text()
+    assert "(40 + (glazeRipple * 6))" in out.read_text() and "mortar=0.04" in out.read_text()
     assert _versions(out) == [None, "wider grout", "blue glaze"]
     res = CliRunner().invoke(cli, ["edit", str(out), "--undo"])
     assert res.exit_code == 0, res.output

@@ -4,8 +4,10 @@ Many programs write a channel as a base value plus a noise-driven variation
 (``.roughness((0.04 + (glazeGrain * 0.05)))``, ``.basecolor((12 + (ripple * 6)), ...)``); the
 parameter list (:func:`matloom.lang.params.list_params`) exposes only literals, so the offline
 edits add these bases as parameters of their own: ``layer:N.CHANNEL.base`` (a colour when all
-three components have one), labelled with the layer's and the variation's names. Setting one
-replaces only that constant, so the variation and its seed stay as they were.
+three components have one), labelled with the layer's and the variation's names. The constant
+is looked for down sums and differences (``((0.86 - lie * 0.16) + grain * 0.06)``) and inside a
+``Clamp``. Setting one replaces only that constant, so the variation and its seed stay as they
+were.
 """
 
 from __future__ import annotations
@@ -20,21 +22,60 @@ from matloom.vocab import CHANNELS
 SUFFIX = ".base"
 
 
-def _base(node: A.Node) -> float | None:
-    """The constant of ``c + rest`` / ``rest + c`` (``rest`` not a constant), else None."""
-    if isinstance(node, A.BinOp) and node.op == "+":
-        for a, b in ((node.left, node.right), (node.right, node.left)):
-            if isinstance(a, A.Num) and not isinstance(b, A.Num):
-                return float(a.value)
+#: Calls a channel base is looked for inside (their first argument): a clamp keeps the value.
+_WRAPPERS = frozenset({"Clamp"})
+
+
+def _base_path(node: A.Node) -> tuple[str, ...] | None:
+    """Where the constant term of ``node`` is: the constant of ``c + rest`` / ``rest + c`` /
+    ``c - rest`` (``rest`` not a constant), looked for down the left of sums and differences
+    (``(0.86 - a) + b``) and inside a ``Clamp``; None when there is none."""
+    if isinstance(node, A.Call) and node.func in _WRAPPERS and node.args:
+        sub = _base_path(node.args[0].value)
+        return None if sub is None else ("call", *sub)
+    if isinstance(node, A.BinOp) and node.op in ("+", "-"):
+        left_num, right_num = isinstance(node.left, A.Num), isinstance(node.right, A.Num)
+        if left_num and not right_num:
+            return ("left",)
+        if node.op == "+" and right_num and not left_num:
+            return ("right",)
+        for side in ("left", "right") if node.op == "+" else ("left",):
+            sub = _base_path(getattr(node, side))
+            if sub is not None:
+                return (side, *sub)
     return None
 
 
+def _at(node: A.Node, path: tuple[str, ...]) -> A.Node:
+    for step in path:
+        node = node.args[0].value if step == "call" else getattr(node, step)  # type: ignore[union-attr]
+    return node
+
+
+def _base(node: A.Node) -> float | None:
+    """The constant term of a channel argument (see :func:`_base_path`), else None."""
+    path = _base_path(node)
+    if path is None:
+        return None
+    num = _at(node, path)
+    return float(num.value) if isinstance(num, A.Num) else None
+
+
 def _with_base(node: A.Node, value: float) -> A.Node:
-    assert isinstance(node, A.BinOp)
-    num = A.Num(int(value) if float(value).is_integer() else float(value))
-    if isinstance(node.left, A.Num):
-        return replace(node, left=num)
-    return replace(node, right=num)
+    path = _base_path(node)
+    assert path is not None
+    return _put(node, path, A.Num(int(value) if float(value).is_integer() else float(value)))
+
+
+def _put(node: A.Node, path: tuple[str, ...], num: A.Node) -> A.Node:
+    if not path:
+        return num
+    step, rest = path[0], path[1:]
+    if step == "call":
+        assert isinstance(node, A.Call)
+        first = replace(node.args[0], value=_put(node.args[0].value, rest, num))
+        return replace(node, args=(first, *node.args[1:]))
+    return replace(node, **{step: _put(getattr(node, step), rest, num)})
 
 
 def _refs(node: A.Node) -> list[str]:

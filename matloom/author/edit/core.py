@@ -2,36 +2,43 @@
 
 :func:`edit` is what ``matloom edit`` and ``matloom.edit`` run. An edit is a set of parameter
 assignments (addresses of :mod:`matloom.lang.params`, plus the channel bases of
-:mod:`matloom.author.edit.bases`), View changes (``tileable``, ``unit_m``) and, from a model
-only, replacements of whole named lines (a Define by name, a layer by number). The edited
-program must check clean, keep every seed (unless the request asks about seeds), and change
-no map outside its intended channels on more than 1 % of texels
-(:mod:`matloom.runtime.locality`).
+:mod:`matloom.author.edit.bases`), View changes (``tileable``, ``unit_m``, ``window``),
+replacements of whole named lines (a Define by name, a layer by number) and added lines (new
+Defines, new layers on top: a library overlay, or a model's new structure); see
+:mod:`matloom.author.edit.apply`. The edited program must check clean, keep every existing seed
+(unless the request asks about seeds; added lines bring new ones), and change no map outside
+its intended channels on more than 1 % of texels (:mod:`matloom.runtime.locality`).
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from matloom.author.edit.bases import (
-    base_params,
-    expand_slots,
-    implicit_params,
-    is_base,
-    set_bases,
-    set_implicit,
-    slot_params,
+from matloom.author.edit.apply import (
+    add_lines,
+    all_params,
+    apply_edit,
+    parse_program,
+    replace_lines,
+    set_view,
 )
+from matloom.author.edit.lexicon import edit_words, tokens
 from matloom.author.edit.rules import EditRefused, Plan, plan_edit
+from matloom.author.edit.visible import VISIBLE_SIZE, visible_changes
+from matloom.engine.evaluate import evaluate
 from matloom.lang import ast as A
-from matloom.lang.api import analyse
-from matloom.lang.diagnostics import ProgramError
-from matloom.lang.params import Param, list_params, set_params
-from matloom.lang.printer import format_program
-from matloom.runtime.locality import LOCALITY_SIZE, LocalityReport, locality
+from matloom.lang.params import list_params
+from matloom.lang.printer import format_expr, format_layer
+from matloom.library.data import words
+from matloom.runtime.locality import (
+    LOCALITY_SIZE,
+    LocalityReport,
+    allowed_outputs,
+    compare_maps,
+)
 
 if TYPE_CHECKING:
     from matloom.engine.session import Session
@@ -103,120 +110,30 @@ class EditResult:
     report: EditReport
 
 
-def parse_program(text: str) -> A.Program:
-    program, diags = analyse(text)
-    if program is None or any(d.is_error for d in diags):
-        raise ProgramError(diags, text)
-    return program
+def _seeds(program: A.Program) -> dict[str, Any]:
+    return {p.address: p.value for p in list_params(program) if p.kind == "seed"}
 
 
-def all_params(program: A.Program) -> list[Param]:
-    """The exposed parameters and the channel bases, as the edits see them."""
-    params = list_params(program)
-    extra = implicit_params(program, params) + slot_params(params) + base_params(program)
-    return params + extra
+def changed_seeds(before: A.Program, after: A.Program) -> list[str]:
+    """Seed addresses of ``before`` whose value differs in ``after``. Seeds of added lines are
+    new (an added noise needs one); a seed whose line was removed or rewritten without it is
+    gone, not changed."""
+    old, new = _seeds(before), _seeds(after)
+    return [a for a, v in old.items() if a in new and new[a] != v]
 
 
-def _view(program: A.Program, view: Mapping[str, Any]) -> A.Program:
-    if not view:
-        return program
-    allowed = {"tileable", "unit_m"}
-    unknown = set(view) - allowed
-    if unknown:
-        raise ValueError(f"View changes may set only tileable and unit_m, not {sorted(unknown)}")
-    decl = program.view or A.ViewDecl(0.0, 0.0, 1.0, 1.0)
-    return replace(program, view=replace(decl, **dict(view)))
+@dataclass(frozen=True)
+class Verified:
+    """The checked edited program, its locality report and how much of it shows."""
 
+    program: A.Program
+    locality: LocalityReport
+    visible: dict[str, float]
 
-def replace_lines(program: A.Program, lines: Mapping[str, str]) -> A.Program:
-    """``program`` with named lines replaced: ``define:NAME`` -> the new Define's text
-    (``Define(NAME, ...)``), ``layer:N`` -> the new layer's text (``Layer(...)...``)."""
-    if not lines:
-        return program
-    from matloom.lang.parser import parse_source
-
-    defines = list(program.defines)
-    layers = list(program.layers)
-    for address, text in lines.items():
-        m = re.fullmatch(r"(define):(\w+)|(layer):(\d+)", address)
-        if m is None:
-            raise ValueError(f"cannot replace {address!r}: give define:NAME or layer:N")
-        if m.group(1):
-            name = m.group(2)
-            k = next((i for i, d in enumerate(defines) if d.name == name), None)
-            if k is None:
-                raise ValueError(f"no Define named {name!r}")
-            parsed, diags = parse_source(f"{text}\nMaterial(Layer(1).roughness(0.5))")
-            new = parsed.defines if parsed is not None else ()
-            if len(new) != 1 or new[0].name != name:
-                raise ValueError(f"{address}: expected one Define({name}, ...), got {text!r}")
-            defines[k] = new[0]
-        else:
-            n = int(m.group(4))
-            if not 0 < n <= len(layers):
-                raise ValueError(f"no layer {n} (the program has {len(layers)})")
-            parsed, diags = parse_source(f"Material({text})")
-            new_layers = parsed.layers if parsed is not None else ()
-            if len(new_layers) != 1:
-                raise ValueError(f"{address}: expected one Layer(...), got {text!r}")
-            layers[n - 1] = new_layers[0]
-    return replace(program, defines=tuple(defines), layers=tuple(layers))
-
-
-def apply_edit(
-    program: A.Program,
-    assignments: Mapping[str, Any],
-    view: Mapping[str, Any] | None = None,
-    lines: Mapping[str, str] | None = None,
-) -> tuple[str, list[str]]:
-    """Apply an edit; return the new program's text (comments kept) and the warnings (values
-    clamped into range). Raises ValueError for an unknown address or a bad value."""
-    assignments = expand_slots({k: _value(k, v) for k, v in assignments.items()})
-    prog = replace_lines(program, lines or {})
-    listed = list_params(prog)
-    implicit = {p.address for p in implicit_params(prog, listed)}
-    bases = {k: v for k, v in assignments.items() if is_base(k)}
-    unwritten = {k: v for k, v in assignments.items() if k in implicit}
-    plain = {
-        k: (tuple(v) if isinstance(v, list) else v)
-        for k, v in assignments.items()
-        if k not in bases and k not in unwritten
-    }
-    warnings: list[str] = []
-    for k, v in bases.items():
-        if isinstance(v, tuple):
-            clamped = tuple(min(255.0, max(0.0, c)) for c in v)
-            if clamped != v:
-                warnings.append(f"{k}: {list(v)} is outside [0, 255]; clamped to {list(clamped)}")
-                bases[k] = clamped
-    if bases:
-        prog = set_bases(prog, bases)
-    if unwritten:
-        prog = set_implicit(prog, unwritten)
-    prog = _view(prog, view or {})
-    if plain:
-        text, more = set_params(prog, plain)
-        return text, warnings + more
-    return format_program(prog, comments=True), warnings
-
-
-def _value(address: str, v: Any) -> Any:
-    """A value as an edit gives it: a number, or three numbers (a list becomes a tuple)."""
-    if isinstance(v, list | tuple):
-        if len(v) != 3 or not all(_is_number(c) for c in v):
-            raise ValueError(f"{address}: a colour is three numbers [r, g, b], got {v!r}")
-        return tuple(float(c) for c in v)
-    if not _is_number(v):
-        raise ValueError(f"{address}: expected a number, got {v!r}")
-    return v
-
-
-def _is_number(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool)
-
-
-def _seeds(program: A.Program) -> list[tuple[str, Any]]:
-    return [(p.address, p.value) for p in list_params(program) if p.kind == "seed"]
+    def shows(self, fraction: float) -> bool:
+        """Whether a map the edit meant to change moved visibly on ``fraction`` of texels."""
+        allowed = self.locality.allowed
+        return any(v >= fraction for n, v in self.visible.items() if n in allowed)
 
 
 def verify(
@@ -226,18 +143,39 @@ def verify(
     intended: Sequence[str],
     size: int,
     session: Session | None,
-) -> tuple[A.Program, LocalityReport]:
-    """Check the edited text (errors raise :class:`ProgramError`), that seeds are unchanged
-    (ValueError) and compute the locality report."""
+) -> Verified:
+    """Check the edited text (errors raise :class:`ProgramError`), that existing seeds are
+    unchanged (ValueError), and compute the locality report and the visible change."""
     after = parse_program(text)
     if not (_SEED_WORDS & set(re.findall(r"[a-z]+", request.lower()))):
-        if _seeds(before) != _seeds(after):
-            raise ValueError("the edit changed noise seeds, which the request did not ask for")
-    return after, locality(before, after, intended, size=size, session=session)
+        moved = changed_seeds(before, after)
+        if moved:
+            raise ValueError(
+                f"the edit changed noise seeds ({', '.join(moved[:3])}), which the request did "
+                "not ask for; new lines may bring new seeds, existing ones stay"
+            )
+    intended_t = tuple(dict.fromkeys(intended))
+    allowed_outputs(intended_t)  # validates the names
+    a = evaluate(before, size, size, session=session)
+    b = evaluate(after, size, size, session=session)
+    if size != VISIBLE_SIZE:  # what shows does not depend on the locality grid
+        va = evaluate(before, VISIBLE_SIZE, VISIBLE_SIZE, session=session)
+        vb = evaluate(after, VISIBLE_SIZE, VISIBLE_SIZE, session=session)
+    else:
+        va, vb = a, b
+    return Verified(after, compare_maps(a, b, intended_t), visible_changes(va, vb))
+
+
+def _line_texts(program: A.Program) -> dict[str, str]:
+    out = {f"define:{d.name}": f"Define({d.name}, {format_expr(d.expr)})" for d in program.defines}
+    for i, layer in enumerate(program.layers):
+        out[f"layer:{i + 1}"] = " ".join(x.strip() for x in format_layer(layer))
+    return out
 
 
 def changes(before: A.Program, after: A.Program) -> list[Change]:
-    """Parameters whose value differs between the two programs (by address)."""
+    """Parameters whose value differs between the two programs (by address), then the lines
+    added, and the lines rewritten with no parameter of theirs changed."""
     old = {p.address: p for p in all_params(before)}
     out = []
     for p in all_params(after):
@@ -246,6 +184,15 @@ def changes(before: A.Program, after: A.Program) -> list[Change]:
             out.append(Change(p.address, p.label, _plain(q.value), _plain(p.value)))
     if before.view != after.view:
         out.append(Change("view", "View", _view_json(before.view), _view_json(after.view)))
+    was, now = _line_texts(before), _line_texts(after)
+    for address, text in now.items():
+        if address not in was:
+            label = "added Define" if address.startswith("define:") else "added layer"
+            out.append(Change(address, label, None, text))
+        elif text != was[address] and not any(
+            c.address.startswith(f"{address}.") or c.address == address for c in out
+        ):
+            out.append(Change(address, "rewritten line", was[address], text))
     return out
 
 
@@ -262,14 +209,45 @@ def _view_json(v: A.ViewDecl | None) -> Any:
 def edit_offline(
     text: str, request: str, *, size: int = LOCALITY_SIZE, session: Session | None = None
 ) -> EditResult:
-    """The rule-based edit of ``request`` (raises :class:`EditRefused` when no rule maps it)."""
+    """The rule-based edit of ``request`` (raises :class:`EditRefused` when no rule maps it).
+
+    A graded step whose change does not show (no intended map moved visibly on
+    ``visible_fraction`` of its texels) is planned again at a greater strength (times
+    ``escalate``, up to ``max_strength``; not after "slightly" or "a bit"); a change that still
+    does not show is kept with a warning."""
+    ew = edit_words()
     before = parse_program(text)
-    plan: Plan = plan_edit(before, all_params(before), request)
-    new_text, warnings = apply_edit(before, plan.assignments, plan.view)
-    after, report = verify(before, new_text, request, plan.intended, size, session)
+    params = all_params(before)
+    strength = 1.0
+    plan: Plan = plan_edit(before, params, request, strength, ew)
+    calm = any(words().intensity.get(t, 1.0) < 1.0 for t in tokens(request))
+    while True:
+        new_text, warnings = apply_edit(before, plan.assignments, plan.view, plan.lines, plan.add)
+        checked = verify(before, new_text, request, plan.intended, size, session)
+        structural = bool(plan.assignments or plan.lines or plan.add)
+        shows = checked.shows(ew.f("visible_fraction")) or not (
+            structural or checked.locality.changed
+        )
+        if shows or not plan.graded or calm or strength * ew.f("escalate") > ew.f("max_strength"):
+            break
+        strength *= ew.f("escalate")
+        try:
+            stronger = plan_edit(before, params, request, strength, ew)
+        except EditRefused:
+            break
+        if stronger.assignments == plan.assignments and stronger.lines == plan.lines:
+            break
+        plan = stronger
+    if not shows and structural and not plan.exact:
+        warnings = [*warnings, "the change is small: it may not show in a preview"]
+    record = plan.to_json()
+    if strength != 1.0:
+        record["strength"] = round(strength, 3)
     return EditResult(
         new_text,
-        EditReport(request, "rules", plan.to_json(), changes(before, after), warnings, report),
+        EditReport(
+            request, "rules", record, changes(before, checked.program), warnings, checked.locality
+        ),
     )
 
 
@@ -279,6 +257,13 @@ __all__ = [
     "EditRefused",
     "EditReport",
     "EditResult",
+    "Verified",
+    "add_lines",
+    "all_params",
     "apply_edit",
+    "changed_seeds",
     "edit_offline",
+    "parse_program",
+    "replace_lines",
+    "set_view",
 ]

@@ -1,21 +1,28 @@
 """Offline edits: common requests mapped to parameter changes, driven by the parameter list.
 
-A rule reads the request's words, picks parameters by their kind, label, address and the
-channels they affect (:func:`matloom.lang.params.list_params`), and returns a :class:`Plan`:
-the assignments, the View changes and the channels the edit means to change (the locality
-check holds the edit to them). The rules, in the order they are tried:
+A rule reads the request's words, picks parameters by their kind, label, address, the layers
+they feed and the channels they affect (:func:`matloom.lang.params.list_params`,
+:mod:`matloom.author.edit.targets`), and returns a :class:`Plan`: the assignments, the View
+changes, replaced or added lines, and the channels the edit means to change (the locality check
+holds the edit to them). Steps are sized to be seen in a lit preview (``words.toml``). The
+rules, in the order they are tried:
 
 * **tileable** ("make it tileable", "seamless"): ``View(..., tileable=True)``;
-* **physical size** ("1 m wide", "make it 50 cm across"): ``unit_m`` so the View spans it;
+* **physical size** ("1 m wide", "make it 50 cm across"): with the View's ``unit_m`` known, the
+  window grows or shrinks to span it (features keep their size); else ``unit_m`` is set;
 * **joints** ("wider grout", "narrower mortar joints"): size parameters of mortar, grout, gaps;
-* **overlay amounts** ("more rust", "less moss", "more wear", "less dirt"): the cover amount
-  of a library overlay (or a parameter labelled with the condition);
-* **roughness** ("rougher", "glossier", "matte", "shinier", "higher roughness");
-* **colour** ("blue glaze", "darker grout", "make the tiles dark green"): a named colour from
-  the library's colour table, or a tone word applied to the current colour, on the colour
-  parameter whose label or address names the noun (the main colour when none does);
-* **scale** ("bigger tiles", "smaller", "denser", "sparser"): size, frequency and count
-  parameters (those naming the noun, or all of them).
+* **conditions** ("more rust", "less moss", "add dirt"; :mod:`~matloom.author.edit.conditions`):
+  an amount parameter, the measured coverage of the condition's layer, or the library's overlay
+  added on top;
+* **roughness** ("rougher", "less shiny", "matte"; :mod:`~matloom.author.edit.finish`);
+* **single channels** ("less sheen", "more clearcoat", "less metallic");
+* **relief** ("deeper", "flatter", "more relief");
+* **colour** ("blue glaze", "darker grout", "make the blue darker";
+  :mod:`~matloom.author.edit.colours`);
+* **scale** ("bigger tiles", "smaller", "denser", "sparser"): size and frequency parameters
+  named like the noun, else those that shape the coverage of the noun's layer (all of them when
+  no noun); when the noun names a part of the program that has no such parameter (cobbles drawn
+  from constants), the View zooms, which scales every feature.
 
 A request no rule maps raises :class:`EditRefused`, listing the parameters that could be
 changed: never a silent no-op. So does a rule whose parameters are already at their limit.
@@ -23,223 +30,53 @@ changed: never a silent no-op. So does a rule whose parameters are already at th
 
 from __future__ import annotations
 
+import math
 import re
-import tomllib
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from importlib.resources import files
-from typing import Any
 
+from matloom.author.edit.apply import apply_edit, parse_program
+from matloom.author.edit.colours import colour_rule
+from matloom.author.edit.conditions import amount_rule
+from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
+from matloom.author.edit.lexicon import (
+    WIDTH_UP,
+    WIDTH_WORDS,
+    EditWords,
+    edit_words,
+    split_words,
+    tokens,
+)
+from matloom.author.edit.plan import (
+    Context,
+    EditRefused,
+    Plan,
+    Value,
+    affects,
+    assign,
+    clamp,
+    scaled,
+)
+from matloom.author.edit.targets import coverage_params, named_in_program, own_words, wanted
+from matloom.author.edit.targets import param_words as _param_words
 from matloom.lang import ast as A
 from matloom.lang.params import Param
-from matloom.library.colour import RGB, apply_tone, clamp_rgb
-from matloom.library.data import Words, words
+from matloom.lang.tileable import tileable_warnings
+from matloom.library.data import words
 
-Value = float | tuple[float, float, float]
-
-
-class EditRefused(ValueError):
-    """A request the offline rules cannot map (the message lists what could be changed)."""
-
-    def __init__(self, request: str, reason: str, params: Sequence[Param] = ()) -> None:
-        self.request = request
-        self.reason = reason
-        self.params = list(params)
-        listed = ", ".join(f"{p.address} ({p.label or p.kind})" for p in self.params[:40])
-        more = f" and {len(self.params) - 40} more" if len(self.params) > 40 else ""
-        super().__init__(
-            f"cannot edit {request!r} offline: {reason}"
-            + (f"; parameters it could change: {listed}{more}" if listed else "")
-        )
-
-
-@dataclass(frozen=True)
-class Plan:
-    """What a rule decided: parameter assignments, View changes and intended channels."""
-
-    rule: str
-    note: str
-    assignments: dict[str, Value] = field(default_factory=dict)
-    view: dict[str, Any] = field(default_factory=dict)
-    intended: tuple[str, ...] = ()
-
-    def to_json(self) -> dict[str, Any]:
-        return {
-            "rule": self.rule,
-            "note": self.note,
-            "assignments": {k: _json_value(v) for k, v in self.assignments.items()},
-            "view": dict(self.view),
-            "intended": list(self.intended),
-        }
-
-
-def _json_value(v: Value) -> Any:
-    return list(v) if isinstance(v, tuple) else v
-
-
-# ---- words ---------------------------------------------------------------------------------
-
-_W = tomllib.loads(files("matloom.author.edit").joinpath("words.toml").read_text("utf-8"))
-_JOINT_WORDS = frozenset(_W["words"]["joint"])
-_JOINT_PARAM_WORDS = tuple(_W["words"]["joint_params"])
-_WIDER = frozenset(_W["words"]["wider"])
-_NARROWER = frozenset(_W["words"]["narrower"])
-_MORE = frozenset(_W["words"]["more"])
-_LESS = frozenset(_W["words"]["less"])
-#: condition word -> the stems of its overlay's names and labels
-_CONDITIONS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _W["conditions"].items()}
-_ROUGHER: dict[str, float] = dict(_W["rougher"])
-_GLOSSIER: dict[str, float] = dict(_W["glossier"])
-_HIGHER = frozenset(_W["words"]["higher"])
-_LOWER = frozenset(_W["words"]["lower"])
-#: comparative tone words -> (lightness, saturation) multipliers
-_COMPARATIVE: dict[str, tuple[float, float]] = {
-    k: (float(v[0]), float(v[1])) for k, v in _W["comparative"].items()
-}
-_BIGGER = frozenset(_W["words"]["bigger"])
-_SMALLER = frozenset(_W["words"]["smaller"])
-_DENSER = frozenset(_W["words"]["denser"])
-_SPARSER = frozenset(_W["words"]["sparser"])
-_SIZE_FACTOR = float(_W["factors"]["size"])
-_JOINT_FACTOR = float(_W["factors"]["joint"])
-_AMOUNT_STEP = float(_W["factors"]["amount_step"])
-#: words that carry no noun
-_FILLER = frozenset(_W["words"]["filler"])
-
-
-def tokens(request: str) -> list[str]:
-    """The request's words, lower case (hyphens and punctuation split words)."""
-    return re.findall(r"[a-z0-9]+(?:\.[0-9]+)?", request.lower())
-
-
-def _stem(word: str) -> str:
-    """A plural's singular, roughly: ``tiles`` -> ``tile``, ``patches`` -> ``patch``."""
-    if len(word) <= 3 or not word.endswith("s") or word.endswith("ss"):
-        return word
-    if word.endswith("ies"):
-        return word[:-3] + "y"
-    if word.endswith(("ches", "shes", "sses", "xes")):
-        return word[:-2]
-    return word[:-1]
+__all__ = ["RULES", "Context", "EditRefused", "Plan", "param_words", "plan_edit", "tokens"]
 
 
 def param_words(p: Param, program: A.Program | None = None) -> set[str]:
-    """The words a parameter answers to: its label and address parts (camelCase split), and
-    for a layer's parameter the names its layer's coverage and channel refer to."""
-    text = f"{p.label} {p.address}"
-    text = re.sub(r"([a-z])([A-Z])", r"\1 \2", text)
-    out = {_stem(w) for w in re.findall(r"[a-z]+", text.lower())}
-    m = re.match(r"layer:(\d+)", p.address)
-    if m and program is not None:
-        idx = int(m.group(1))
-        layers = program.layers
-        layer = layers[idx - 1] if 0 < idx <= len(layers) else None
-        if idx == 1 and _jointed(program):
-            out |= {"grout", "mortar", "joint", "gap"}
-        if layer is not None and layer.alpha is not None:
-            for n in A.walk(layer.alpha):
-                if isinstance(n, A.Ref):
-                    split = re.sub(r"([a-z])([A-Z])", r"\1 \2", n.name).lower()
-                    out |= {_stem(w) for w in re.findall(r"[a-z]+", split)}
-    return out
+    """The words a parameter answers to (:func:`matloom.author.edit.targets.param_words`)."""
+    return _param_words(p, program, edit_words())
 
 
-def _jointed(program: A.Program) -> bool:
-    """Whether a layer above the first is masked by a pattern with joints (Bricks): the first
-    layer then shows through the joints, as mortar or grout."""
-    for layer in program.layers[1:]:
-        if isinstance(layer.alpha, A.Ref):
-            d = program.define(layer.alpha.name)
-            if d is not None and any(
-                isinstance(n, A.Call) and n.func == "Bricks" for n in A.walk(d.expr)
-            ):
-                return True
-    return False
-
-
-def _matching(
-    params: Sequence[Param],
-    nouns: Sequence[str],
-    program: A.Program | None,
-    w: Words,
-    synonyms: bool = True,
-) -> list[Param]:
-    """The parameters whose words include a noun of the request (or its role's synonyms)."""
-    wanted: set[str] = set()
-    for n in nouns:
-        wanted.add(_stem(n))
-        role = w.roles.get(n)
-        if role == "grout":
-            wanted |= {"grout", "mortar", "joint", "gap"}
-        if synonyms and n in ("glaze", "tile", "tiles"):
-            wanted |= {"glaze", "tile"}
-    return [p for p in params if param_words(p, program) & wanted]
-
-
-# ---- values --------------------------------------------------------------------------------
-
-
-def _clamp(p: Param, v: float) -> float:
-    lo = p.low if p.low is not None else -float("inf")
-    hi = p.high if p.high is not None else float("inf")
-    v = min(hi, max(lo, v))
-    if p.kind in ("count", "seed"):
-        return float(round(v))
-    return float(f"{v:.6g}")
-
-
-def _scaled(p: Param, factor: float) -> float:
-    v = float(p.value)  # type: ignore[arg-type]
-    return _clamp(p, v * factor)
-
-
-def _changed(p: Param, new: Value) -> bool:
-    if isinstance(new, tuple):
-        return tuple(round(c) for c in new) != tuple(round(c) for c in p.value)  # type: ignore[union-attr]
-    return abs(float(new) - float(p.value)) > 1e-9  # type: ignore[arg-type]
-
-
-def _affects(ps: Sequence[Param]) -> tuple[str, ...]:
-    out: dict[str, None] = {}
-    for p in ps:
-        out.update(dict.fromkeys(p.affects))
-    return tuple(out)
-
-
-def _assign(
-    request: str, rule: str, note: str, new: dict[Param, Value], intended: Sequence[str]
-) -> Plan:
-    moved = {p.address: v for p, v in new.items() if _changed(p, v)}
-    if not moved:
-        raise EditRefused(
-            request,
-            f"{rule}: {', '.join(p.address for p in new)} already at the limit of its range",
-            list(new),
-        )
-    return Plan(rule=rule, note=note, assignments=moved, intended=tuple(intended))
-
-
-# ---- the rules -----------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Context:
-    request: str
-    words: list[str]
-    params: list[Param]
-    program: A.Program
-    vocabulary: Words
-
-    @property
-    def nouns(self) -> list[str]:
-        return [t for t in self.words if t not in _FILLER]
-
-
+# ---- View ------------------------------------------------------------------------------------
 def _tileable(c: Context) -> Plan | None:
-    if not ({"tileable", "seamless", "tiling", "tile-able"} & set(c.words)):
+    if not ({"tileable", "seamless", "tiling", "repeatable"} & set(c.words)):
         return None
     if c.program.view is not None and c.program.view.tileable:
-        raise EditRefused(c.request, "the program is tileable already", c.params)
+        raise c.refuse("the program is tileable already")
     return Plan(
         "tileable", "View(..., tileable=True)", view={"tileable": True}, intended=("alpha",)
     )
@@ -251,15 +88,54 @@ _SIZE_RE = re.compile(
 )
 
 
+def _window(program: A.Program) -> tuple[float, float, float, float]:
+    return program.view_tuple
+
+
+def _tiles(c: Context, window: Sequence[float]) -> bool:
+    """Whether the program still tiles (when it did) with the View's window ``window``."""
+    if not c.program.tileable:
+        return True
+    from dataclasses import replace
+
+    assert c.program.view is not None
+    x1, y1, x2, y2 = window
+    moved = replace(c.program, view=replace(c.program.view, x1=x1, y1=y1, x2=x2, y2=y2))
+    return len(tileable_warnings(moved)) <= len(tileable_warnings(c.program))
+
+
+def _zoomed(c: Context, ratio: float) -> list[float]:
+    x1, y1, x2, y2 = _window(c.program)
+    return [x1, y1, float(f"{x1 + (x2 - x1) * ratio:.6g}"), float(f"{y1 + (y2 - y1) * ratio:.6g}")]
+
+
 def _physical(c: Context) -> Plan | None:
     m = _SIZE_RE.search(c.request.lower())
-    if not m or _JOINT_WORDS & set(c.words):
+    if not m or c.ew["joint"] & set(c.words):
         return None
     metres = float(m.group(1)) * c.vocabulary.units[m.group(2)]
     if metres <= 0:
-        raise EditRefused(c.request, "a physical size must be positive", c.params)
-    view = c.program.view
-    side = 1.0 if view is None else abs(view.x2 - view.x1)
+        raise c.refuse("a physical size must be positive")
+    x1, _, x2, _ = _window(c.program)
+    side = abs(x2 - x1) or 1.0
+    unit_m = c.program.unit_m
+    if unit_m:  # the scale is known: the window spans the size, features keep theirs
+        ratio = metres / unit_m / side
+        options = [ratio]
+        if c.program.tileable:  # the nearest whole or unit-fraction ratio that still tiles
+            options = [float(round(ratio))] if ratio >= 1 else [1 / round(1 / ratio)]
+        for r in options:
+            if r > 0 and abs(r - 1) > 1e-9 and _tiles(c, _zoomed(c, r)):
+                span = side * r * unit_m
+                return Plan(
+                    "physical size",
+                    f"the View spans {span:g} m (unit_m {unit_m:g} kept): window x{r:.4g}",
+                    view={"window": _zoomed(c, r)},
+                    intended=("alpha",),
+                )
+        raise c.refuse(
+            f"the View spans {side * unit_m:g} m already (or cannot tile at {metres:g} m)"
+        )
     unit_m = float(f"{metres / side:.6g}")
     return Plan(
         "physical size",
@@ -269,20 +145,12 @@ def _physical(c: Context) -> Plan | None:
     )
 
 
-def _joints(c: Context) -> Plan | None:
-    ws = set(c.words)
-    sized = _SIZE_RE.search(c.request.lower()) is not None
-    if not (_JOINT_WORDS & ws) or not ((_WIDER | _NARROWER) & ws or sized):
-        return None
-    if ws & {"darker", "lighter", "paler"}:
-        return None
-    factor = _JOINT_FACTOR if _WIDER & ws else 1 / _JOINT_FACTOR
-    size = _SIZE_RE.search(c.request.lower())
-    unit_m = c.program.view.unit_m if c.program.view is not None else None
+# ---- joints ----------------------------------------------------------------------------------
+def _joint_params(c: Context) -> list[Param]:
     found = [
         p
         for p in c.params
-        if p.kind == "size" and any(k in p.address.lower() for k in _JOINT_PARAM_WORDS)
+        if p.kind == "size" and any(k in p.address.lower() for k in c.ew.joint_params)
     ]
     found += [
         p
@@ -291,236 +159,121 @@ def _joints(c: Context) -> Plan | None:
         and p not in found
         and ({"grout", "mortar", "joint"} & set(p.label.lower().split()))
     ]
+    # a named constant for the joint that shapes a coverage (``Define(gap, 0.06)`` used in
+    # ``Threshold(((edge - gap) * 40), ...)``), not a colour component
+    found += [
+        p
+        for p in c.params
+        if p.kind == "scalar"
+        and p not in found
+        and re.fullmatch(r"define:\w+", p.address)
+        and split_words(p.address[7:]) & c.ew["joint"]
+        and "alpha" in p.affects
+    ]
+    return found
+
+
+def _joints(c: Context) -> Plan | None:
+    ws = set(c.words)
+    size = _SIZE_RE.search(c.request.lower())
+    if not (c.ew["joint"] & ws) or not ((c.ew["wider"] | c.ew["narrower"]) & ws or size):
+        return None
+    if ws & set(c.ew.comparative) or any(t in c.vocabulary.named for t in ws):
+        return None  # "darker grout", "white mortar": a colour
+    found = _joint_params(c)
     if not found:
-        raise EditRefused(c.request, "no joint (mortar, grout, gap) width parameter", c.params)
+        raise c.refuse("no joint (mortar, grout, gap) width parameter")
+    unit_m = c.program.unit_m
     if size is not None and unit_m:  # "5 mm grout": the width itself, in the View's units
         metres = float(size.group(1)) * c.vocabulary.units[size.group(2)]
         width = metres / unit_m
-        new = {p: _clamp(p, width) for p in found}
+        new: dict[Param, Value] = {p: clamp(p, width) for p in found}
         note = f"joints {metres * 1000:g} mm wide ({width:.4g} units)"
-        return _assign(c.request, "joints", note, new, _affects(found))
-    new = {p: _scaled(p, factor) for p in found}
-    word = "wider" if factor > 1 else "narrower"
-    return _assign(c.request, "joints", f"joints {word} (x{factor:.3g})", new, _affects(found))
+        return assign(c, "joints", note, new, affects(found), graded=False, exact=True)
+    wider = bool(c.ew["wider"] & ws)
+    factor = c.ew.f("joint") ** (c.k if wider else -c.k)
+    new = {p: scaled(p, factor) for p in found}
+    word = "wider" if wider else "narrower"
+    return assign(c, "joints", f"joints {word} (x{factor:.3g})", new, affects(found))
 
 
-def _amounts(c: Context) -> Plan | None:
-    ws = set(c.words)
-    conds = [w for w in c.words if w in _CONDITIONS]
-    if not conds:
-        return None
-    more = bool(ws & _MORE) or not (ws & _LESS)
-    stems = _CONDITIONS[conds[0]]
-    found = [
-        p
-        for p in c.params
-        if p.kind == "scalar"
-        and any(s in p.label.lower() for s in stems)
-        and any(k in p.label.lower() for k in ("amount", "cover", "coverage"))
-    ]
-    if not found:
-        found = _overlay_covers(c, stems)
-    if not found:
-        raise EditRefused(
-            c.request,
-            f"no {conds[0]} amount in this program (add the overlay by generating "
-            f"'{conds[0]} ...' from the library)",
-            c.params,
-        )
-    step = _AMOUNT_STEP if more else -_AMOUNT_STEP
-    new = {p: _clamp(p, float(p.value) + step) for p in found}  # type: ignore[arg-type]
-    return _assign(
-        c.request,
-        "amount",
-        f"{'more' if more else 'less'} {conds[0]} ({step:+g})",
-        new,
-        _affects(found),
+# ---- scale -----------------------------------------------------------------------------------
+def _zoom(c: Context, bigger: bool) -> Plan:
+    """Every feature bigger or smaller: the View's window shrinks or grows (x2 when the
+    program tiles, so the repeat stays whole)."""
+    f = c.ew.f("size") if not c.program.tileable else 2.0
+    ratio = 1 / f if bigger else f
+    window = _zoomed(c, ratio)
+    if not _tiles(c, window):
+        raise c.refuse("no size parameter of it, and zooming the View would break the tiling")
+    word = "bigger" if bigger else "smaller"
+    return Plan(
+        "scale",
+        f"every feature {word}: the View's window x{ratio:.3g} (no size parameter names it)",
+        view={"window": window},
+        intended=("alpha",),
     )
-
-
-def _overlay_covers(c: Context, stems: Sequence[str]) -> list[Param]:
-    """Cover amounts of composed overlays: a scalar Define named ``cover*`` that a Define
-    named for the condition (``rust``, ``moss``, ``wear``) depends on."""
-    uses: dict[str, set[str]] = {}
-    for d in c.program.defines:
-        refs = {n.name for n in A.walk(d.expr) if isinstance(n, A.Ref)}
-        closure = set(refs)
-        for r in refs:
-            closure |= uses.get(r, set())
-        uses[d.name] = closure
-    out = []
-    for p in c.params:
-        name = p.address.removeprefix("define:")
-        if p.kind != "scalar" or "." in name or not name.startswith("cover"):
-            continue
-        if any(
-            name in deps and any(d.lower().startswith(s) for s in stems) for d, deps in uses.items()
-        ):
-            out.append(p)
-    return out
-
-
-def _roughness(c: Context) -> Plan | None:
-    ws = set(c.words)
-    amount = next((v for k, v in _ROUGHER.items() if k in ws), None)
-    gloss = next((v for k, v in _GLOSSIER.items() if k in ws), None)
-    if "roughness" in ws or "rough" in ws:
-        if ws & _HIGHER:
-            amount = amount or 0.4
-        elif ws & _LOWER:
-            gloss = gloss or 0.5
-        elif amount is None and gloss is None:
-            amount = 0.4
-    if amount is None and gloss is None:
-        return None
-    found = [
-        p
-        for p in c.params
-        if p.kind == "scalar"
-        and "roughness" in p.affects
-        and set(p.affects) <= {"roughness"}
-        and ("rough" in p.label.lower() or "rough" in p.address.lower())
-    ]
-    skip = (
-        {"roughness", "rough", "finish", "surface"}
-        | _HIGHER
-        | _LOWER
-        | set(_ROUGHER)
-        | set(_GLOSSIER)
-    )
-    nouns = [n for n in c.nouns if n not in skip]
-    targets = _matching(found, nouns, c.program, c.vocabulary) or found
-    if not targets:
-        raise EditRefused(c.request, "no roughness parameter", c.params)
-    new: dict[Param, Value] = {}
-    for p in targets:
-        v = float(p.value)  # type: ignore[arg-type]
-        hi = min(1.0, p.high if p.high is not None else 1.0)
-        new[p] = _clamp(p, v + (hi - v) * amount) if amount is not None else _clamp(p, v * gloss)  # type: ignore[operator]
-    note = "rougher" if amount is not None else "glossier"
-    return _assign(c.request, "roughness", note, new, ("roughness",))
-
-
-def _colour_in(c: Context) -> tuple[RGB | None, tuple[float, float] | None, str | None, set[int]]:
-    """The named colour, the tone (multipliers) and its word, and the word indices used."""
-    w = c.vocabulary
-    ws = c.words
-    used: set[int] = set()
-    rgb: RGB | None = None
-    for n in (3, 2):
-        for i in range(len(ws) - n + 1):
-            phrase = " ".join(ws[i : i + n])
-            if rgb is None and phrase in w.phrases:
-                rgb, used = w.phrases[phrase], set(range(i, i + n))
-    if rgb is None:
-        for i, t in enumerate(ws):
-            if t in w.named and t not in _CONDITIONS and t not in ("sand", "stone", "slate"):
-                rgb, used = w.named[t], {i}
-                break
-    tone: tuple[float, float] | None = None
-    tone_word: str | None = None
-    for i, t in enumerate(ws):
-        if i in used:
-            continue
-        if t in _COMPARATIVE:
-            tone, tone_word = _COMPARATIVE[t], t
-            used.add(i)
-            break
-        if (
-            t in w.tones
-            and t not in ("medium",)
-            and (rgb is not None or t in ("dark", "light", "pale", "bright"))
-        ):
-            tone, tone_word = w.tones[t], t
-            used.add(i)
-            break
-    return rgb, tone, tone_word, used
-
-
-def _colour(c: Context) -> Plan | None:
-    rgb, tone, tone_word, used = _colour_in(c)
-    if rgb is None and tone is None:
-        return None
-    colours = [p for p in c.params if p.kind == "colour"]
-    if not colours:
-        raise EditRefused(c.request, "no colour parameter", c.params)
-    nouns = [t for i, t in enumerate(c.words) if i not in used and t not in _FILLER]
-    targets = _matching(colours, nouns, c.program, c.vocabulary)
-    named_elsewhere = _matching(c.params, nouns, c.program, c.vocabulary) if nouns else []
-    if not targets and (named_elsewhere or any(n in c.vocabulary.roles for n in nouns)):
-        raise EditRefused(c.request, f"no colour parameter named like {' '.join(nouns)!r}", colours)
-    target = targets[0] if targets else _main_colour(colours, c.program)
-    current: RGB = clamp_rgb(tuple(float(x) for x in target.value))  # type: ignore[arg-type,union-attr]
-    new = rgb if rgb is not None else current
-    if tone is not None and tone_word is not None:
-        new = apply_tone(new, tone_word, tone)
-    value = tuple(float(x) for x in new)
-    return _assign(
-        c.request,
-        "colour",
-        f"{target.address} -> {new}",
-        {target: value},  # type: ignore[dict-item]
-        ("basecolor",),
-    )
-
-
-def _layer_of(p: Param) -> int:
-    m = re.match(r"layer:(\d+)", p.address)
-    return int(m.group(1)) if m else 0
-
-
-def _main_colour(colours: Sequence[Param], program: A.Program) -> Param:
-    """The colour a request without a noun changes: a colour slot Define that is not a joint's,
-    else the colour of the first layer masked by a named pattern, else the first colour."""
-    joint = {"grout", "mortar", "joint", "gap"}
-    plain = [p for p in colours if not (param_words(p, program) & joint)] or list(colours)
-    plain.sort(key=lambda p: (not p.address.startswith("define:"), _layer_of(p)))
-    for p in plain:
-        if p.address.startswith("define:"):
-            return p
-    for p in plain:
-        m = re.match(r"layer:(\d+)", p.address)
-        if m and int(m.group(1)) <= len(program.layers):
-            if isinstance(program.layers[int(m.group(1)) - 1].alpha, A.Ref):
-                return p
-    return plain[0]
 
 
 def _scale(c: Context) -> Plan | None:
     ws = set(c.words)
-    if ws & _BIGGER:
-        size_f, freq_f = _SIZE_FACTOR, 1 / _SIZE_FACTOR
-    elif ws & _SMALLER:
-        size_f, freq_f = 1 / _SIZE_FACTOR, _SIZE_FACTOR
-    elif ws & _DENSER:
-        size_f, freq_f = 1 / _SIZE_FACTOR, _SIZE_FACTOR
-    elif ws & _SPARSER:
-        size_f, freq_f = _SIZE_FACTOR, 1 / _SIZE_FACTOR
+    ew = c.ew
+    if ws & ew["bigger"] or ws & ew["sparser"] or ws & WIDTH_UP:
+        bigger = True
+    elif ws & ew["smaller"] or ws & ew["denser"] or ws & WIDTH_WORDS:
+        bigger = False
     else:
         return None
+    size_f = ew.f("size") ** (c.k if bigger else -c.k)
     joint = ("mortar", "grout", "gap", "joint", "feather", "seam", "gutter")
     scalable = [
         p
         for p in c.params
         if p.kind in ("size", "frequency") and not any(k in p.address.lower() for k in joint)
     ]
-    nouns = [
-        t
-        for t in c.words
-        if t not in _FILLER
-        and t not in (_BIGGER | _SMALLER | _DENSER | _SPARSER | {"feature", "features", "pattern"})
-    ]
-    targets = _matching(scalable, nouns, c.program, c.vocabulary, synonyms=False) or scalable
+    skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | WIDTH_WORDS
+    skip |= {"feature", "features", "pattern", "scale", "size"}
+    nouns = [t for t in c.nouns if t not in skip]
+    # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else
+    # those that shape its layer's coverage
+    targets = [p for p in scalable if own_words(p) & wanted(nouns, ew, families=False)]
+    if not targets and nouns:
+        targets = coverage_params(scalable, nouns, c.program, ew)
     if not targets:
-        raise EditRefused(c.request, "no size or frequency parameter", c.params)
-    new = {p: _scaled(p, size_f if p.kind == "size" else freq_f) for p in targets}
-    return _assign(
-        c.request,
-        "scale",
-        f"features x{size_f:.3g}",
-        new,
-        _affects(targets),
+        if nouns and named_in_program(c.program, nouns, ew) or not scalable:
+            return _zoom(c, bigger)
+        targets = scalable
+    new = _tiling_sizes(c, targets, size_f)
+    # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
+    # (a velvet's pile) would not show at any step
+    return assign(c, "scale", f"features x{size_f:.3g}", new, affects(targets), graded=False)
+
+
+def _tiling_sizes(c: Context, targets: list[Param], size_f: float) -> dict[Param, Value]:
+    """The targets scaled by ``size_f`` (frequencies by its inverse); for a program that tiles,
+    by the nearest factor that keeps it tiling (whole bricks and cells across the View)."""
+
+    def at(f: float) -> dict[Param, Value]:
+        return {p: scaled(p, f if p.kind == "size" else 1 / f) for p in targets}
+
+    if not c.program.tileable:
+        return at(size_f)
+    warned = len(tileable_warnings(c.program))
+    options = sorted(
+        {size_f, 1.25, 4 / 3, 1.5, 5 / 3, 2.0, 0.8, 0.75, 2 / 3, 0.6, 0.5},
+        key=lambda f: abs(math.log(f / size_f)),
     )
+    for f in options:
+        if (f > 1) != (size_f > 1):
+            continue
+        new = at(f)
+        try:
+            text, _ = apply_edit(c.program, {p.address: v for p, v in new.items()})
+        except ValueError:
+            continue
+        if len(tileable_warnings(parse_program(text))) <= warned:
+            return new
+    return at(size_f)
 
 
 #: The rules, in the order they are tried.
@@ -528,25 +281,36 @@ RULES: tuple[Callable[[Context], Plan | None], ...] = (
     _tileable,
     _physical,
     _joints,
-    _amounts,
-    _roughness,
-    _colour,
+    amount_rule,
+    roughness_rule,
+    channel_rule,
+    relief_rule,
+    colour_rule,
     _scale,
 )
 
 
-def plan_edit(program: A.Program, params: Sequence[Param], request: str) -> Plan:
-    """The offline plan for ``request`` on ``program`` (its parameter list ``params``).
-    Raises :class:`EditRefused` when no rule maps the request."""
-    c = Context(request, tokens(request), list(params), program, words())
+def plan_edit(
+    program: A.Program,
+    params: Sequence[Param],
+    request: str,
+    strength: float = 1.0,
+    ew: EditWords | None = None,
+) -> Plan:
+    """The offline plan for ``request`` on ``program`` (its parameter list ``params``), its
+    steps times ``strength``. Raises :class:`EditRefused` when no rule maps the request."""
+    c = Context(
+        request, tokens(request), list(params), program, words(), strength, ew or edit_words()
+    )
     for rule in RULES:
         plan = rule(c)
         if plan is not None:
             return plan
     raise EditRefused(
         request,
-        "no offline rule understands it (colours, rougher/glossier, bigger/smaller, "
-        "denser/sparser, wider/narrower joints, more/less wear, dirt, rust or moss, tileable, "
-        "a physical size); use --model for other edits",
+        "no offline rule understands it (colours, rougher/glossier, sheen, clearcoat, metallic, "
+        "deeper/flatter relief, bigger/smaller, denser/sparser, wider/narrower joints, "
+        "more/less wear, dirt, rust or moss, tileable, a physical size); use --model for "
+        "other edits",
         params,
     )

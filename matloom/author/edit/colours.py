@@ -1,0 +1,227 @@
+"""The colour rule: "blue glaze", "darker grout", "make the blue darker", "grey stones".
+
+* A **named colour** (the library's colour table, a word or a phrase, with an absolute tone
+  such as "dark green") is set on the colour parameters the request's nouns name, or on the main
+  colour when it names none. When the nouns name several colour parameters (``stone`` and
+  ``stone_warm``), all of them take the colour, each keeping its lightness offset from the first.
+* A **comparative** ("darker", "lighter", "paler", "warmer" ...) moves the current colour in
+  CIELAB by the ``[comparative]`` steps of ``words.toml`` (times the step strength), never less
+  than ``colour_min_de`` (a change too small to see is pushed further); a hue comparative
+  ("greener", "bluer") moves it a share of the way to that colour (``[towards]``).
+* A named colour with a comparative whose target is already that colour ("lighter grey" on a
+  grey, "make the blue darker" on a delft tile's cobalt) **selects** the parameter: the
+  comparative then applies to its current colour instead of repainting it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from matloom.author.edit.plan import Context, Plan, Value, assign
+from matloom.author.edit.targets import main_colour, matching
+from matloom.lang.params import Param
+from matloom.library.colour import RGB, apply_tone, clamp_rgb
+
+Lab = tuple[float, float, float]
+
+
+# ---- CIELAB (D65) ---------------------------------------------------------------------------
+def _lin(c: float) -> float:
+    c /= 255.0
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def _enc(c: float) -> float:
+    c = max(0.0, c)
+    v = 12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
+    return v * 255.0
+
+
+def _f(t: float) -> float:
+    return t ** (1 / 3) if t > 216 / 24389 else (24389 / 27 * t + 16) / 116
+
+
+def _finv(t: float) -> float:
+    return t**3 if t**3 > 216 / 24389 else (116 * t - 16) / (24389 / 27)
+
+
+_WHITE = (0.95047, 1.0, 1.08883)
+
+
+def to_lab(rgb: Sequence[float]) -> Lab:
+    r, g, b = (_lin(float(c)) for c in rgb)
+    x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / _WHITE[0]
+    y = (0.2126 * r + 0.7152 * g + 0.0722 * b) / _WHITE[1]
+    z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / _WHITE[2]
+    fx, fy, fz = _f(x), _f(y), _f(z)
+    return (116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz))
+
+
+def from_lab(lab: Lab) -> RGB:
+    """The sRGB colour of ``lab``, its chroma reduced until it fits the gamut."""
+    L, a, b = lab
+    for k in range(21):
+        s = 1.0 - k * 0.05
+        fy = (L + 16) / 116
+        fx, fz = fy + a * s / 500, fy - b * s / 200
+        x, y, z = _finv(fx) * _WHITE[0], _finv(fy) * _WHITE[1], _finv(fz) * _WHITE[2]
+        rgb = (
+            3.2406 * x - 1.5372 * y - 0.4986 * z,
+            -0.9689 * x + 1.8758 * y + 0.0415 * z,
+            0.0557 * x - 0.2040 * y + 1.0570 * z,
+        )
+        if all(-1e-3 <= v <= 1.001 for v in rgb) or k == 20:
+            return clamp_rgb(tuple(_enc(v) for v in rgb))  # type: ignore[arg-type]
+    raise AssertionError("unreachable")
+
+
+def delta_e(a: Sequence[float], b: Sequence[float]) -> float:
+    la, lb = to_lab(a), to_lab(b)
+    return math.dist(la, lb)
+
+
+def comparative(rgb: Sequence[float], step: tuple[float, float, float], k: float) -> Lab:
+    """``rgb`` moved by a comparative step (delta L*, chroma factor, delta b*) times ``k``."""
+    L, a, b = to_lab(rgb)
+    dl, chroma, db = step
+    if dl > 0:  # lighter: at least the step, and a share of the way to white
+        L = L + max(dl, 0.3 * (100 - L)) * k
+    elif dl < 0:
+        L = L + min(dl, -0.3 * L) * k
+    f = chroma**k
+    return (min(98.0, max(2.0, L)), a * f, b * f + db * k)
+
+
+def _with_offset(named: Lab, current: Lab, primary: Lab) -> Lab:
+    """``named``'s hue and chroma at ``current``'s lightness offset from ``primary``."""
+    return (min(98.0, max(2.0, named[0] + current[0] - primary[0])), named[1], named[2])
+
+
+# ---- reading the request ---------------------------------------------------------------------
+def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]]:
+    """The named colour, the tone word (``tone`` an absolute tone of the library, a comparative
+    of ``words.toml``) and the word indices used."""
+    w = c.vocabulary
+    ws = c.words
+    used: set[int] = set()
+    rgb: RGB | None = None
+    for n in (3, 2):
+        for i in range(len(ws) - n + 1):
+            phrase = " ".join(ws[i : i + n])
+            if rgb is None and phrase in w.phrases:
+                rgb, used = w.phrases[phrase], set(range(i, i + n))
+    if rgb is None:
+        for i, t in enumerate(ws):
+            if (
+                t in w.named
+                and t not in c.ew.conditions
+                and t not in ("sand", "stone", "slate", "metal")
+            ):
+                rgb, used = w.named[t], {i}
+                break
+    tone: str | None = None
+    comparative_word: str | None = None
+    for i, t in enumerate(ws):
+        if i in used:
+            continue
+        if t in c.ew.towards or t in c.ew.comparative:
+            comparative_word = t
+            used.add(i)
+            break
+        if (
+            t in w.tones
+            and t not in ("medium",)
+            and (rgb is not None or t in ("dark", "light", "pale", "bright"))
+        ):
+            tone = t
+            used.add(i)
+            break
+    return rgb, tone, comparative_word, used
+
+
+def _targets(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
+    targets = matching(colours, nouns, c.program, c.ew)
+    if targets:
+        return targets
+    named_elsewhere = matching(c.params, nouns, c.program, c.ew) if nouns else []
+    if named_elsewhere or any(n in c.vocabulary.roles for n in nouns):
+        raise c.refuse(f"no colour parameter named like {' '.join(nouns)!r}", colours)
+    return [main_colour(colours, c.program, c.ew)]
+
+
+def _value(p: Param) -> tuple[float, float, float]:
+    return tuple(float(x) for x in p.value)  # type: ignore[return-value,union-attr]
+
+
+def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
+    """The candidates already close to the named colour (nearest first)."""
+    limit = c.ew.f("select_de")
+    close = sorted(
+        (delta_e(_value(p), rgb), i, p)
+        for i, p in enumerate(candidates)
+        if delta_e(_value(p), rgb) < limit
+    )
+    return [p for _, _, p in close]
+
+
+def colour_rule(c: Context) -> Plan | None:
+    rgb, tone, comp, used = _colour_in(c)
+    if rgb is None and tone is None and comp is None:
+        return None
+    colours = [p for p in c.params if p.kind == "colour"]
+    if not colours:
+        raise c.refuse("no colour parameter")
+    nouns = [t for i, t in enumerate(c.words) if i not in used and t not in c.ew["filler"]]
+    if comp is not None and comp in c.ew.towards:
+        return _towards(c, colours, nouns, comp)
+    step = c.ew.comparative.get(comp) if comp is not None else None
+    if rgb is not None and step is not None:
+        pool = matching(colours, nouns, c.program, c.ew) if nouns else colours
+        chosen = _select(c, rgb, pool)
+        main = main_colour(colours, c.program, c.ew)
+        if not nouns and main in chosen:  # no noun: the main colour first when it is close
+            chosen = [main] + [p for p in chosen if p is not main]
+        if chosen:  # "make the blue darker": the comparative on the colour that is blue
+            rgb = None
+            targets = chosen[:1] if not nouns else chosen
+        else:
+            targets = _targets(c, colours, nouns)
+    else:
+        targets = _targets(c, colours, nouns)
+    primary = targets[0]
+    base_lab = to_lab(_value(primary))
+    new: dict[Param, Value] = {}
+    for p in targets:
+        current = _value(p)
+        if rgb is not None:
+            named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
+            lab = to_lab(named)
+            if p is not primary:
+                lab = _with_offset(lab, to_lab(current), base_lab)
+        elif step is not None:
+            lab = comparative(current, step, c.k)
+        else:  # an absolute tone alone ("dark"): the library's tone on the current colour
+            lab = to_lab(apply_tone(clamp_rgb(current), tone or "", c.vocabulary.tones[tone or ""]))
+        out = from_lab(lab)
+        least = c.ew.f("colour_min_de") * min(1.0, c.intensity)  # "slightly": a smaller least
+        if delta_e(current, out) < least and step is not None:
+            lab = comparative(current, step, c.k * 2)
+            out = from_lab(lab)
+        new[p] = tuple(float(x) for x in out)  # type: ignore[assignment]
+    what = ", ".join(f"{p.address} -> {tuple(int(x) for x in new[p])}" for p in targets)  # type: ignore[union-attr]
+    graded = step is not None and rgb is None
+    return assign(c, "colour", what, new, ("basecolor",), graded=graded, exact=not graded)
+
+
+def _towards(c: Context, colours: list[Param], nouns: list[str], word: str) -> Plan:
+    """ "greener", "bluer": each target colour a share of the way to the word's colour."""
+    goal = to_lab(c.vocabulary.named[c.ew.towards[word]])
+    t = min(1.0, c.ew.f("towards") * c.k)
+    new: dict[Param, Value] = {}
+    for p in _targets(c, colours, nouns):
+        L, a, b = to_lab(_value(p))
+        lab = (L + (goal[0] - L) * t / 3, a + (goal[1] - a) * t, b + (goal[2] - b) * t)
+        new[p] = tuple(float(x) for x in from_lab(lab))  # type: ignore[assignment]
+    what = ", ".join(f"{p.address} -> {tuple(int(x) for x in v)}" for p, v in new.items())  # type: ignore[union-attr]
+    return assign(c, "colour", f"{word}: {what}", new, ("basecolor",))

@@ -1,0 +1,335 @@
+"""The condition rule: "more rust", "less moss", "add dirt", "more worn".
+
+In order:
+
+1. an **amount parameter** of the condition: a scalar labelled with it and "amount"/"cover",
+   a constant Define named for it that reaches a layer's coverage (``Define(wear, 0.45)``), or
+   the cover of a composed library overlay; it moves by ``amount_step``;
+2. a **layer of the condition** (its coverage reads a Define named for it, ``Layer(rust)``):
+   the parameters its coverage depends on are tried, those that feed nothing else first, and
+   the coverage is *measured* (the mask evaluated on a small grid) until it grows x1.5 (or
+   shrinks x0.5), at least ``cover_min``;
+3. **absent** and asked for ("add moss", "more scratches"): the library's overlay for the word
+   (its triggers) is composed on top as new Defines and layers (the overlay's own amount, or the
+   request's amount word), its seeds new, every existing seed kept.
+
+"less X" where the program has no X is refused.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from matloom.author.edit.apply import all_params, apply_edit, parse_program
+from matloom.author.edit.lexicon import WIDTH_WORDS, edit_words, split_words, stem
+from matloom.author.edit.plan import Context, Plan, Value, affects, assign, clamp
+from matloom.author.edit.targets import define_closure, main_colour, mask_names, refs_of
+from matloom.engine.evaluate import evaluate
+from matloom.lang import ast as A
+from matloom.lang.deps import BLENDED, MAXED
+from matloom.lang.params import Param
+from matloom.lang.printer import format_expr, format_layer
+from matloom.lang.tileable import tileable_warnings
+from matloom.library.overlay import Overlay
+
+#: Grid the coverage of a condition's layer is measured on.
+PROBE = 48
+
+
+def _named(name: str, stems: Sequence[str]) -> bool:
+    return any(w.startswith(s) for w in split_words(name) for s in stems)
+
+
+def _labelled(c: Context, stems: Sequence[str]) -> list[Param]:
+    out = []
+    for p in c.params:
+        if p.kind != "scalar" or p.address.endswith(".base"):
+            continue
+        label = p.label.lower()
+        if any(s in label for s in stems) and any(k in label for k in ("amount", "cover")):
+            out.append(p)
+        elif (
+            re.fullmatch(r"define:\w+", p.address)
+            and _named(p.address[7:], stems)
+            and "alpha" in p.affects  # an amount moves a coverage (not a colour component)
+        ):
+            out.append(p)
+    return out
+
+
+def _overlay_covers(c: Context, stems: Sequence[str]) -> list[Param]:
+    """Cover amounts of composed overlays: a scalar Define named ``cover*`` that a Define
+    named for the condition (``rust``, ``moss``, ``wear``) depends on."""
+    closure = define_closure(c.program)
+    out = []
+    for p in c.params:
+        name = p.address.removeprefix("define:")
+        if p.kind != "scalar" or "." in name or not name.startswith("cover"):
+            continue
+        if any(name in deps and _named(d, stems) for d, deps in closure.items()):
+            out.append(p)
+    return out
+
+
+# ---- measured coverage -------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Candidate:
+    """Parameters moved together by one shift (a Threshold's two edges), whether they feed
+    nothing but the condition's layer, and whether they are a named constant."""
+
+    params: tuple[Param, ...]
+    exclusive: bool
+    constant: bool
+
+
+#: Static parameters that are the two edges of one ramp: shifting both moves where it falls.
+_EDGES = (("below_at", "above_at"), ("lo", "hi"), ("edge0", "edge1"))
+
+
+def _coverage(program: A.Program, mask: A.Node) -> float:
+    probe = A.Program(
+        program.view,
+        program.defines,
+        (
+            A.Layer(None, (A.ChannelSet("roughness", (A.Num(0),)),)),
+            A.Layer(mask, (A.ChannelSet("roughness", (A.Num(1),)),)),
+        ),
+    )
+    maps = evaluate(probe, PROBE, PROBE)
+    return float(np.nanmean(maps.roughness))
+
+
+def _candidates(c: Context, index: int) -> list[_Candidate]:
+    """Scalar parameters the coverage of layer ``index`` (0-based) depends on: those feeding
+    nothing else first, a ramp's two edges together before either alone, named constants
+    before parameters inside calls."""
+    program = c.program
+    closure = define_closure(program)
+    mask_refs = refs_of(program.layers[index].alpha, closure)
+    others: set[str] = set()
+    for i, layer in enumerate(program.layers):
+        if i == index:  # the layer's own channels go with its coverage
+            continue
+        for ch in layer.channels:
+            others |= {r for a in ch.args for r in refs_of(a, closure)}
+        others |= refs_of(layer.alpha, closure)
+    singles: list[_Candidate] = []
+    for p in c.params:
+        if p.kind != "scalar" or p.address.endswith(".base"):
+            continue
+        m = re.match(r"define:(\w+)(\.|$)", p.address)
+        if m is None or m.group(1) not in mask_refs:
+            continue
+        singles.append(_Candidate((p,), m.group(1) not in others, m.group(2) == ""))
+    by = {k.params[0].address: k for k in singles}
+    pairs = []
+    for k in singles:
+        for lo, hi in _EDGES:
+            if k.params[0].address.endswith(f".{lo}"):
+                other = by.get(k.params[0].address[: -len(lo)] + hi)
+                if other is not None:
+                    pairs.append(_Candidate((k.params[0], other.params[0]), k.exclusive, False))
+    out = pairs + singles
+    out.sort(key=lambda k: (not k.exclusive, not k.constant, len(k.params) == 1))
+    return out
+
+
+def _shift(c: Context, cand: _Candidate, mask: A.Node, now: float, goal: float):  # noqa: ANN202
+    """The shift of the candidate's values whose measured coverage is nearest ``goal`` (on
+    the side of ``now`` it asks for): (values, coverage), or None."""
+    ps = cand.params
+    vs = [float(p.value) for p in ps]  # type: ignore[arg-type]
+    span = max(max(abs(v) for v in vs), abs(vs[-1] - vs[0]), 0.25)
+    best = None
+    for f in (0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0):
+        for sign in (1, -1):
+            xs = [clamp(p, v + sign * f * span) for p, v in zip(ps, vs, strict=True)]
+            if xs == vs:
+                continue
+            try:
+                text, _ = apply_edit(c.program, {p.address: x for p, x in zip(ps, xs, strict=True)})
+                cov = _coverage(parse_program(text), mask)
+            except ValueError:
+                continue
+            if (cov - now) * (goal - now) <= 0:
+                continue
+            if best is None or abs(cov - goal) < abs(best[1] - goal):
+                best = (xs, cov)
+    return best
+
+
+def _measured(c: Context, index: int, more: bool, word: str) -> Plan | None:
+    mask = c.program.layers[index].alpha
+    assert mask is not None
+    now = _coverage(c.program, mask)
+    k = c.k
+    if more:
+        goal = min(0.95, max(now * c.ew.f("cover_more") ** k, now + c.ew.f("cover_min") * k))
+        if now >= 0.93:
+            raise c.refuse(f"the {word} covers {now:.0%} already")
+    else:
+        goal = max(0.0, min(now * c.ew.f("cover_less") ** k, now - c.ew.f("cover_min") * k))
+        if now <= 0.005:
+            raise c.refuse(f"the {word} covers nothing already")
+    for cand in _candidates(c, index):
+        best = _shift(c, cand, mask, now, goal)
+        if best is not None and abs(best[1] - now) >= 0.5 * abs(goal - now):
+            note = f"{'more' if more else 'less'} {word}: coverage {now:.0%} -> {best[1]:.0%}"
+            new: dict[Param, Value] = dict(zip(cand.params, best[0], strict=True))
+            return assign(c, "amount", note, new, affects(cand.params), graded=True)
+    return None
+
+
+def _condition_layers(c: Context, stems: Sequence[str]) -> list[int]:
+    """Layers above the first whose coverage reads a Define named for the condition."""
+    out = []
+    for i, layer in enumerate(c.program.layers):
+        if i == 0 or layer.alpha is None:
+            continue
+        if any(_named(n, stems) for n in mask_names(layer.alpha)):
+            out.append(i)
+    return out
+
+
+# ---- overlays ----------------------------------------------------------------------------------
+def _seeds(program: A.Program) -> set[int]:
+    return {
+        int(a.value.value)
+        for _, e in A.program_expressions(program)
+        for n in A.walk(e)
+        if isinstance(n, A.Call)
+        for a in n.args
+        if a.param == "seed" and isinstance(a.value, A.Num)
+    }
+
+
+def overlay_lines(
+    program: A.Program, overlay: Overlay, cover: float | None = None
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
+    where a name is taken, its seeds re-derived where one is taken; its host colour bound to
+    the program's main colour slot), and the channels a layer on top changes where it covers. ``cover``: the
+    overlay's amount (None: its own). ValueError when it would break the program's tiling."""
+    from matloom.library.overlay import compose
+    from matloom.library.passes.compose import reseed
+
+    params = all_params(program)
+    colours = [p for p in params if p.kind == "colour"]
+    main = None
+    if colours:
+        name = main_colour(colours, program, edit_words()).address.split(":", 1)[1]
+        if program.define(f"{name}_r") is not None:
+            main = name
+    taken = _seeds(program)
+
+    def fresh(q: A.Program) -> A.Program:
+        return reseed(q, f"edit+{overlay.name}", 1) if _seeds(q) & taken else q
+
+    composed = compose(program, overlay, main_colour=main, cover=cover, reseed=fresh)
+    if program.tileable and len(tileable_warnings(composed)) > len(tileable_warnings(program)):
+        raise ValueError(f"the {overlay.name} overlay would not tile with this program")
+    defines = composed.defines[len(program.defines) :]
+    layers = composed.layers[len(program.layers) :]
+    add = tuple(f"Define({d.name}, {format_expr(d.expr)})" for d in defines) + tuple(
+        " ".join(x.strip() for x in format_layer(layer)) for layer in layers
+    )
+    # a layer on top enters every blended channel where it covers (those it does not write
+    # take their defaults there) and the height's maximum
+    return add, (*BLENDED, *MAXED)
+
+
+@functools.cache
+def _overlays() -> tuple[Overlay, ...]:
+    from matloom.library.overlay import OVERLAY_DIR, load_overlay
+
+    return tuple(load_overlay(path) for path in sorted(OVERLAY_DIR.glob("*.mat")))
+
+
+def library_overlays() -> dict[str, Overlay]:
+    """The library's overlays by name (read once)."""
+    return {ov.name: ov for ov in _overlays()}
+
+
+def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
+    """A library overlay's one-word trigger in the request ("wet", "snowy", "faded") when the
+    request asks for an amount of it (more, less, add, some ...) or is that word alone, with
+    the stems its layers would be named by."""
+    direction = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
+    alone = len([n for n in c.nouns if n not in direction]) == 1
+    for t in c.words:
+        for ov in _overlays():
+            if t in ov.triggers and (alone or set(c.words) & direction):
+                return t, tuple(dict.fromkeys((stem(t), ov.name.removesuffix("y")[:5])))
+    return None
+
+
+def _overlay_for(word: str, stems: Sequence[str]) -> Overlay | None:
+    overlays = library_overlays()
+    for ov in overlays.values():
+        if word in ov.triggers:
+            return ov
+    for ov in overlays.values():
+        if any(t.startswith(s) for t in ov.triggers for s in stems):
+            return ov
+    return None
+
+
+def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
+    ov = _overlay_for(word, stems)
+    if ov is None:
+        return None
+    amounts = [c.vocabulary.amounts[t] for t in c.words if t in c.vocabulary.amounts]
+    cover = amounts[0] if amounts else None
+    try:
+        add, channels = overlay_lines(c.program, ov, cover)
+    except ValueError as err:
+        raise c.refuse(str(err)) from None
+    amount = f" (amount {cover:g})" if cover is not None else ""
+    return Plan(
+        "overlay",
+        f"the library's {ov.name!r} overlay added on top{amount}",
+        add=add,
+        intended=channels,
+    )
+
+
+def amount_rule(c: Context) -> Plan | None:
+    ws = set(c.words)
+    sizes = c.ew["bigger"] | c.ew["smaller"] | c.ew["denser"] | c.ew["sparser"] | WIDTH_WORDS
+    if ws & (sizes - set(c.vocabulary.amounts)):  # "a little moss" is an amount
+        return None  # "bigger chips", "finer cracks": the scale of a feature
+    conds = [t for t in c.words if t in c.ew.conditions]
+    if conds:
+        word = conds[0]
+        stems = c.ew.conditions[word]
+    else:
+        found = _trigger_word(c)
+        if found is None:
+            return None
+        word, stems = found
+    more = bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
+    found = _labelled(c, stems) or _overlay_covers(c, stems)
+    if found:
+        step = c.ew.f("amount_step") * c.k * (1 if more else -1)
+        new: dict[Param, Value] = {p: clamp(p, float(p.value) + step) for p in found}  # type: ignore[arg-type]
+        note = f"{'more' if more else 'less'} {word} ({step:+.3g})"
+        return assign(c, "amount", note, new, affects(found))
+    for index in _condition_layers(c, stems):
+        plan = _measured(c, index, more, word)
+        if plan is not None:
+            return plan
+    present = bool(_condition_layers(c, stems))
+    if present and not more:
+        raise c.refuse(f"no parameter moves the {word} layer's coverage")
+    if not more:
+        raise c.refuse(f"there is no {word} in this program to reduce")
+    # more of something absent, or present with nothing to move it: the overlay on top
+    plan = _add_overlay(c, word, stems)
+    if plan is None:
+        raise c.refuse(f"no {word} amount in this program and no library overlay for it")
+    return plan

@@ -1,0 +1,261 @@
+"""Finish rules: roughness ("rougher", "less shiny", "matte"), single channels ("less sheen",
+"more clearcoat", "less metallic") and relief ("deeper", "flatter", "more relief").
+
+Steps are sized to show in a lit preview (``[factors]`` of ``words.toml``): a comparative moves
+roughness by at least ``rough_min`` and half the way to its end; a finish adjective ("matte",
+"glossy") moves it to the library's value for that finish (``finish_roughness``), or a step
+further when it is there already. A word after "less", "not", "too" ... flips ("less shiny"
+is rougher). "rough"/"smooth" also mean touch: when the roughness cannot move visibly, the
+relief moves with it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from matloom.author.edit.lexicon import flipped
+from matloom.author.edit.plan import Context, Plan, Value, assign, clamp
+from matloom.author.edit.targets import matching, param_layers
+from matloom.lang import ast as A
+from matloom.lang.params import Param
+from matloom.lang.printer import format_layer
+
+_ROUGH_WORDS = frozenset({"roughness", "roughen", "glossiness", "shininess", "finish"})
+
+
+def _finish_word(c: Context) -> tuple[int, str, str] | None:
+    """(direction, kind, word) of the request's finish word (flips applied)."""
+    ws = c.words
+    for i, t in enumerate(ws):
+        if t in c.ew.finish:
+            d, kind = c.ew.finish[t]
+            if flipped(ws, i, c.ew["flip"]):
+                return (-d if d else 1), "step", t
+            if any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
+                kind = "step"
+            return d, kind, t
+    if "roughness" in ws or "roughen" in ws:
+        if set(ws) & c.ew["lower"]:
+            return -1, "step", "roughness"
+        return 1, "step", "roughness"
+    if {"glossiness", "shininess"} & set(ws):
+        return (1 if set(ws) & c.ew["lower"] else -1), "step", "gloss"
+    return None
+
+
+def _rough_params(c: Context) -> list[Param]:
+    return [
+        p
+        for p in c.params
+        if p.kind == "scalar"
+        and "roughness" in p.affects
+        and set(p.affects) <= {"roughness"}
+        and ("rough" in p.label.lower() or "rough" in p.address.lower())
+    ]
+
+
+def _step(v: float, d: int, c: Context, hi: float = 1.0) -> float:
+    k = c.k
+    if d > 0:
+        return min(hi, v + max(c.ew.f("rough_min") * k, (hi - v) * c.ew.f("rough_frac") * k))
+    floor = min(v, 0.03)
+    return max(floor, min(v - c.ew.f("rough_min") * k, v * c.ew.f("gloss_factor") ** k))
+
+
+def roughness_rule(c: Context) -> Plan | None:
+    found = _finish_word(c)
+    if found is None:
+        return None
+    d, kind, word = found
+    params = _rough_params(c)
+    skip = (
+        set(c.ew.finish)
+        | _ROUGH_WORDS
+        | c.ew["higher"]
+        | c.ew["lower"]
+        | c.ew["flip"]
+        | {"rough", "gloss"}
+    )
+    nouns = [n for n in c.nouns if n not in skip]
+    targets = matching(params, nouns, c.program, c.ew) or params
+    if not targets:
+        raise c.refuse("no roughness parameter")
+    finish = c.vocabulary.finishes.get(word)
+    target = c.vocabulary.finish_roughness.get(finish) if finish and kind == "target" else None
+    new: dict[Param, Value] = {}
+    for p in targets:
+        v = float(p.value)  # type: ignore[arg-type]
+        hi = min(1.0, p.high if p.high is not None else 1.0)
+        if target is not None and c.strength == 1.0:
+            t = target if d == 0 else (max(v, target) if d > 0 else min(v, target))
+            new[p] = clamp(p, t)
+        else:
+            new[p] = clamp(p, _step(v, d or (1 if (target or 0.5) > v else -1), c, hi))
+    if target is not None and all(abs(float(new[p]) - float(p.value)) < 0.1 for p in targets):  # type: ignore[arg-type]
+        d = d or 1
+        new = {p: clamp(p, _step(float(p.value), d, c)) for p in targets}  # type: ignore[arg-type]
+    intended: tuple[str, ...] = ("roughness",)
+    note = "rougher" if d > 0 else "glossier" if d < 0 else f"{word} (roughness {target:g})"
+    coats = _coats(c, targets, d)
+    if coats:
+        new.update(coats)
+        intended += ("coat",)
+        note += ", clearcoat " + ("down" if d > 0 else "up")
+    lines: dict[str, str] = {}
+    starts = [float(p.value) for p in targets]  # type: ignore[arg-type]
+    mean = sum(starts) / len(starts)
+    if word in c.ew.tactile and (mean >= 0.6 if d > 0 else mean <= 0.25):
+        # rough to the touch too: an already rough surface gets rougher in relief (and an
+        # already glossy one smoother), which a lit preview shows where roughness barely does
+        factor = c.ew.f("tactile_relief") ** (c.k if d > 0 else -c.k)
+        more, lines = relief_change(c, factor)
+        if more or lines:
+            new.update(more)
+            intended += ("height",)
+            note += f", relief x{factor:.3g}"
+    return _plan(assign(c, "roughness", note, new, intended) if new else None, lines, c, note)
+
+
+def _plan(plan: Plan | None, lines: dict[str, str], c: Context, note: str) -> Plan:
+    if plan is None:
+        if not lines:
+            raise c.refuse("nothing to change")
+        return Plan("relief", note, lines=lines, intended=("height",), graded=True)
+    return replace(plan, lines=lines) if lines else plan
+
+
+def _coats(c: Context, targets: list[Param], d: int) -> dict[Param, Value]:
+    """Clearcoat amounts of the layers the roughness targets feed: a clear coat keeps a
+    surface glossy whatever the roughness under it, so "less shiny" lowers it and "glossier"
+    raises one that is there."""
+    if d == 0:
+        return {}
+    layers = set().union(*(param_layers(p, c.program) for p in targets))
+    out: dict[Param, Value] = {}
+    for p in c.params:
+        if (
+            p.kind != "scalar"
+            or set(p.affects) != {"coat"}
+            or not param_layers(p, c.program) & layers
+        ):
+            continue
+        v = float(p.value)  # type: ignore[arg-type]
+        if d > 0 and v > 0:
+            out[p] = clamp(p, v * c.ew.f("coat_factor") ** c.k)
+        elif d < 0 and v > 0:
+            hi = min(1.0, p.high) if p.high is not None else 1.0
+            step = max(c.ew.f("channel_min") * c.k, (hi - v) * c.ew.f("channel_frac") * c.k)
+            out[p] = clamp(p, min(hi, v + step))
+    return out
+
+
+# ---- single channels ---------------------------------------------------------------------------
+def channel_rule(c: Context) -> Plan | None:
+    ws = c.words
+    hit = next(((i, c.ew.channel_of(t)) for i, t in enumerate(ws) if c.ew.channel_of(t)), None)
+    if hit is None:
+        return None
+    i, channel = hit
+    assert channel is not None
+    before = ws[max(0, i - 2) : i]
+    zero = any(w in ("no", "without", "remove") for w in before)
+    d = -1 if flipped(ws, i, c.ew["flip"]) else 1
+    params = [
+        p
+        for p in c.params
+        if p.kind == "scalar" and channel in p.affects and set(p.affects) <= {channel}
+    ]
+    if not params:
+        raise c.refuse(f"no {channel} parameter (no layer writes {channel} as a number)")
+    skip = c.ew.channels[channel] | c.ew["more"] | c.ew["flip"] | {channel}
+    nouns = [n for n in c.nouns if n not in skip]
+    targets = matching(params, nouns, c.program, c.ew) or params
+    k = c.k
+    new: dict[Param, Value] = {}
+    for p in targets:
+        v = float(p.value)  # type: ignore[arg-type]
+        lo = p.low if p.low is not None else 0.0
+        hi = min(1.0, p.high) if p.high is not None else 1.0
+        if zero:
+            new[p] = clamp(p, lo)
+        elif d > 0:
+            step = max(c.ew.f("channel_min") * k, (hi - v) * c.ew.f("channel_frac") * k)
+            new[p] = clamp(p, min(hi, v + step))
+        else:
+            step = max(c.ew.f("channel_min") * k, (v - lo) * c.ew.f("channel_frac") * k)
+            new[p] = clamp(p, max(lo, v - step))
+    word = "no" if zero else "more" if d > 0 else "less"
+    return assign(c, "channel", f"{word} {channel}", new, (channel,), graded=not zero)
+
+
+# ---- relief ------------------------------------------------------------------------------------
+def _relief_params(c: Context) -> list[Param]:
+    """Scalars that scale the relief: labelled relief or depth, feeding only height."""
+    return [
+        p
+        for p in c.params
+        if p.kind == "scalar"
+        and "height" in p.affects
+        and set(p.affects) <= {"height", "normal", "ao"}
+        and any(k in p.label.lower() for k in ("relief", "depth", "bump", "displacement"))
+        and float(p.value) != 0  # type: ignore[arg-type]
+    ]
+
+
+def _relief_direction(c: Context) -> int | None:
+    ws = c.words
+    w = c.vocabulary
+    if any(t in w.named for t in ws) or {"colour", "color"} & set(ws):
+        return None  # "deeper red" is a colour
+    for i, t in enumerate(ws):
+        if t in c.ew.relief:
+            d = c.ew.relief[t]
+            return -d if flipped(ws, i, c.ew["flip"]) else d
+    for i, t in enumerate(ws):
+        if t in c.ew.relief_nouns:
+            near = ws[max(0, i - 2) : i]
+            if any(x in c.ew["flip"] or x in c.ew["lower"] for x in near):
+                return -1
+            if any(x in c.ew["more"] | c.ew["higher"] | {"stronger", "deeper"} for x in near):
+                return 1
+    return None
+
+
+def relief_change(c: Context, factor: float) -> tuple[dict[Param, Value], dict[str, str]]:
+    """The relief times ``factor``: the relief scalars when the program has some, else every
+    varying height channel multiplied (the layers rewritten)."""
+    params = _relief_params(c)
+    if params:
+        return {p: clamp(p, float(p.value) * factor) for p in params}, {}  # type: ignore[arg-type]
+    lines: dict[str, str] = {}
+    for i, layer in enumerate(c.program.layers):
+        chans = []
+        for ch in layer.channels:
+            if ch.name == "height" and not isinstance(ch.args[0], A.Num):
+                num = A.Num(float(f"{factor:.4g}"))
+                ch = replace(ch, args=(A.BinOp("*", ch.args[0], num),))
+            chans.append(ch)
+        if chans != list(layer.channels):
+            text = " ".join(x.strip() for x in format_layer(replace(layer, channels=tuple(chans))))
+            lines[f"layer:{i + 1}"] = text
+    return {}, lines
+
+
+def relief_rule(c: Context) -> Plan | None:
+    d = _relief_direction(c)
+    if d is None:
+        return None
+    factor = c.ew.f("relief") ** (d * c.k)
+    new, lines = relief_change(c, factor)
+    word = "deeper" if d > 0 else "flatter"
+    if new:
+        return assign(c, "relief", f"relief {word} (x{factor:.3g})", new, ("height",))
+    if not lines:
+        raise c.refuse("no relief: no layer has a height that varies")
+    return Plan(
+        "relief",
+        f"every layer's varying height x{factor:.3g} ({word})",
+        lines=lines,
+        intended=("height",),
+        graded=True,
+    )

@@ -1,0 +1,114 @@
+"""The offline edit rules' words and steps (``words.toml`` beside this module), and the small
+word helpers every rule uses: tokens, plural stems, and whether a word's sense is flipped by a
+word before it ("less shiny", "too glossy")."""
+
+from __future__ import annotations
+
+import functools
+import re
+import tomllib
+from collections.abc import Sequence
+from dataclasses import dataclass
+from importlib.resources import files
+
+#: Width words of a feature that is no joint ("thinner stripes", "wider ribs"): a scale.
+WIDTH_WORDS = frozenset(
+    {"wider", "widen", "broader", "broaden", "thicker", "thicken", "narrower", "thinner"}
+)
+WIDTH_UP = frozenset({"wider", "widen", "broader", "broaden", "thicker", "thicken"})
+
+
+@dataclass(frozen=True)
+class EditWords:
+    """The tables of ``words.toml`` (see the comments there)."""
+
+    words: dict[str, frozenset[str]]
+    joint_params: tuple[str, ...]
+    nouns: dict[str, frozenset[str]]
+    conditions: dict[str, tuple[str, ...]]
+    finish: dict[str, tuple[int, str]]
+    tactile: frozenset[str]
+    channels: dict[str, frozenset[str]]
+    relief: dict[str, int]
+    relief_nouns: frozenset[str]
+    comparative: dict[str, tuple[float, float, float]]
+    towards: dict[str, str]
+    factors: dict[str, float]
+
+    def __getitem__(self, key: str) -> frozenset[str]:
+        return self.words[key]
+
+    def f(self, key: str) -> float:
+        return self.factors[key]
+
+    def family(self, noun: str) -> frozenset[str]:
+        """The noun's family words (the noun itself when it is in none)."""
+        s = stem(noun)
+        out = {s}
+        for members in self.nouns.values():
+            if s in members or noun in members:
+                out |= members
+        return frozenset(out)
+
+    def channel_of(self, word: str) -> str | None:
+        """The channel a word names ("sheen", "clearcoat" -> coat), or None."""
+        for channel, ws in self.channels.items():
+            if word in ws:
+                return channel
+        return None
+
+
+@functools.cache
+def edit_words() -> EditWords:
+    """The tables of ``words.toml`` (read once)."""
+    raw = tomllib.loads(files("matloom.author.edit").joinpath("words.toml").read_text("utf-8"))
+    w = raw["words"]
+    relief = dict(raw["relief"])
+    relief_nouns = frozenset(relief.pop("nouns"))
+    finish = dict(raw["finish"])
+    tactile = frozenset(finish.pop("tactile"))
+    return EditWords(
+        words={k: frozenset(v) for k, v in w.items() if k != "joint_params"},
+        joint_params=tuple(w["joint_params"]),
+        nouns={k: frozenset(v) for k, v in raw["nouns"].items()},
+        conditions={k: tuple(v) for k, v in raw["conditions"].items()},
+        finish={k: (int(v[0]), str(v[1])) for k, v in finish.items()},
+        tactile=tactile,
+        channels={k: frozenset(v) for k, v in raw["channels"].items()},
+        relief={k: int(v) for k, v in relief.items()},
+        relief_nouns=relief_nouns,
+        comparative={
+            k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw["comparative"].items()
+        },
+        towards={k: str(v) for k, v in raw["towards"].items()},
+        factors={k: float(v) for k, v in raw["factors"].items()},
+    )
+
+
+def tokens(request: str) -> list[str]:
+    """The request's words, lower case (hyphens and punctuation split words)."""
+    return re.findall(r"[a-z0-9]+(?:\.[0-9]+)?", request.lower())
+
+
+def stem(word: str) -> str:
+    """A plural's singular, roughly: ``tiles`` -> ``tile``, ``patches`` -> ``patch``."""
+    if len(word) <= 3 or not word.endswith("s") or word.endswith("ss"):
+        return word
+    if word.endswith("ies"):
+        return word[:-3] + "y"
+    if word.endswith(("ches", "shes", "sses", "xes")):
+        return word[:-2]
+    return word[:-1]
+
+
+def flipped(words: Sequence[str], i: int, flips: frozenset[str]) -> bool:
+    """Whether the word at ``i`` is flipped by one of ``flips`` at most two words before it
+    ("less shiny", "not so glossy", "too rough")."""
+    return any(w in flips for w in words[max(0, i - 2) : i])
+
+
+def split_words(name: str) -> set[str]:
+    """The stemmed words of an identifier or label (``stone_warm`` -> stone, warm;
+    ``tileMask`` -> tile, mask)."""
+    spaced = re.sub(r"([a-z])([A-Z])", r"\1 \2", name)
+    return {stem(w) for w in re.findall(r"[a-z]+", spaced.lower())}

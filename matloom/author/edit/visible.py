@@ -1,0 +1,62 @@
+"""Whether an edit shows: the share of texels of the intended maps that moved by a visible
+amount (not the locality tolerance of half an 8-bit level, but a step a viewer of a lit preview
+would notice). The offline edits escalate a step whose change does not show
+(:func:`matloom.author.edit.core.edit_offline`)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from matloom.lang.deps import OUTPUTS
+
+if TYPE_CHECKING:
+    from matloom.engine.maps import MaterialMaps
+
+#: A texel changed visibly when a component moved by more than this: colours in 8-bit sRGB
+#: levels, height as a share of its range, the rest in their own units.
+THRESHOLDS: dict[str, float] = {
+    "basecolor": 8 / 255,
+    "emissive": 8 / 255,
+    "height": 0.1,
+    "normal": 0.06,
+    "ao": 0.06,
+    "ior": 0.05,
+    "anisotropy_angle": 10.0,
+}
+DEFAULT_THRESHOLD = 0.08
+#: Grid side the visible change is measured on, whatever the locality grid (a preview is 192
+#: to 256 pixels: what shows at 128 shows there).
+VISIBLE_SIZE = 128
+
+
+def _array(maps: MaterialMaps, name: str) -> np.ndarray:
+    if hasattr(maps, f"{name}_linear"):
+        lin = np.clip(np.asarray(getattr(maps, f"{name}_linear"), np.float64), 0.0, 1.0)
+        return np.where(lin <= 0.0031308, 12.92 * lin, 1.055 * lin ** (1 / 2.4) - 0.055)
+    return np.asarray(getattr(maps, name), np.float64)
+
+
+def visible_changes(
+    before: MaterialMaps, after: MaterialMaps, names: Iterable[str] = OUTPUTS
+) -> dict[str, float]:
+    """Map -> the fraction of its texels that changed visibly."""
+    out: dict[str, float] = {}
+    for name in names:
+        a, b = _array(before, name), _array(after, name)
+        if a.shape != b.shape:
+            out[name] = 1.0
+            continue
+        limit = THRESHOLDS.get(name, DEFAULT_THRESHOLD)
+        if name == "height":
+            finite = a[np.isfinite(a)]
+            limit *= max(float(np.ptp(finite)) if finite.size else 0.0, 1e-9)
+        diff = np.abs(a - b)
+        diff = np.where(np.isnan(a) & np.isnan(b), 0.0, diff)
+        diff = np.where(np.isfinite(diff), diff, np.inf)
+        if diff.ndim == 3:
+            diff = diff.max(axis=2)
+        out[name] = float(np.count_nonzero(diff > limit)) / max(1, diff.size)
+    return out

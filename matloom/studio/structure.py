@@ -1,0 +1,129 @@
+"""The structured view of a program and the panel's edits (``/api/check``, ``/api/format``,
+``/api/structure``, ``/api/set``, ``/api/layers``).
+
+The structure is the exposed-parameter model of :mod:`matloom.lang.params` (every literal a
+parameter with its registry range), grouped the way the panel shows it: the View, the Defines
+and the layers (1-based, bottom first), plus the noise seeds (:mod:`matloom.studio.seeds`).
+Edits go through the language's own code -- :func:`matloom.lang.params.set_params` for values,
+the canonical printer with comments for layer moves -- and come back as text that keeps the
+user's comments and names (:func:`matloom.studio.rewrite.program_text`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+from matloom.lang import ast as A
+from matloom.lang.api import analyse
+from matloom.lang.params import Param, list_params
+from matloom.lang.printer import format_expr, format_layer, format_program
+from matloom.studio.program import check_json, checked, diagnostics_json, layer_label
+from matloom.studio.protocol import ApiError
+from matloom.studio.rewrite import program_text
+from matloom.studio.seeds import seed_entries
+
+__all__ = [
+    "check_json",
+    "checked",
+    "diagnostics_json",
+    "format_text",
+    "layer_label",
+    "layer_op",
+    "set_values",
+    "structure_json",
+]
+
+LAYER_OPS = ("move", "duplicate", "delete")
+
+
+def format_text(text: str) -> str:
+    """``/api/format``: the canonical text, comments kept (``matloom fmt``)."""
+    return format_program(checked(text), comments=True)
+
+
+# ---------------------------------------------------------------------------- structure
+def structure_json(text: str) -> dict[str, Any]:
+    """``/api/structure`` (docs/studio-api.md)."""
+    program = checked(text)
+    params = list_params(program)
+    v = program.view
+    x1, y1, x2, y2 = program.view_tuple
+    view = {"x1": x1, "y1": y1, "x2": x2, "y2": y2, "tileable": program.tileable,
+            "unit_m": v.unit_m if v is not None else None}  # fmt: skip
+    return {
+        "params": [p.to_json() for p in params],
+        "view": view,
+        "defines": [_define_json(d, params) for d in program.defines],
+        "layers": [_layer_json(k, layer, params) for k, layer in enumerate(program.layers)],
+        "seeds": [s.to_json() for s in seed_entries(program)],
+    }
+
+
+def _owned(prefix: str, params: list[Param]) -> list[str]:
+    return [p.address for p in params if p.address == prefix or p.address.startswith(prefix + ".")]
+
+
+def _define_json(d: A.Define, params: list[Param]) -> dict[str, Any]:
+    owned = _owned(f"define:{d.name}", params)
+    if d.name.endswith("_r"):  # a colour slot C_r, C_g, C_b is one parameter define:C
+        slot = f"define:{d.name[:-2]}"
+        owned += [p.address for p in params if p.address == slot and p.kind == "colour"]
+    return {
+        "name": d.name,
+        "line": d.span.line,
+        "text": f"Define({d.name}, {format_expr(d.expr)})",
+        "params": owned,
+    }
+
+
+def _layer_json(k: int, layer: A.Layer, params: list[Param]) -> dict[str, Any]:
+    return {
+        "index": k + 1,
+        "line": layer.span.line,
+        "text": "\n".join(line.strip() for line in format_layer(layer)),
+        "label": layer_label(k, layer),
+        "params": _owned(f"layer:{k + 1}", params),
+    }
+
+
+# ---------------------------------------------------------------------------- edits
+def set_values(text: str, values: dict[str, Any]) -> dict[str, Any]:
+    """``/api/set``: the text with the parameters set (only the touched literals rewritten
+    where possible), and the clamping warnings. 400 for an unknown address or a wrong value."""
+    from matloom.lang.params import set_params
+
+    before = checked(text)
+    converted = {k: tuple(v) if isinstance(v, list) else v for k, v in values.items()}
+    try:
+        canonical, warnings = set_params(before, converted)
+    except ValueError as err:
+        raise ApiError(400, str(err)) from None
+    after, _ = analyse(canonical)
+    if after is None:  # cannot happen: the printer's text parses
+        return {"text": canonical, "warnings": warnings}
+    return {"text": program_text(text, before, after), "warnings": warnings}
+
+
+def layer_op(text: str, op: str, index: int, to: int | None) -> dict[str, Any]:
+    """``/api/layers``: move layer ``index`` to position ``to``, duplicate it (the copy goes
+    above it) or delete it; 1-based, bottom first. The layer's comments go with it."""
+    program = checked(text)
+    layers = list(program.layers)
+    count = len(layers)
+    if op not in LAYER_OPS:
+        raise ApiError(400, f"unknown layer operation {op!r}; choose {', '.join(LAYER_OPS)}")
+    if not 1 <= index <= count:
+        raise ApiError(400, f"layer {index} does not exist (the program has {count})")
+    layer = layers[index - 1]
+    if op == "move":
+        if to is None or not 1 <= to <= count:
+            raise ApiError(400, f"'to' must be a layer position in [1, {count}]")
+        layers.insert(to - 1, layers.pop(index - 1))
+    elif op == "duplicate":
+        layers.insert(index, layer)
+    else:
+        if count == 1:
+            raise ApiError(422, "a material needs at least one layer; this is its last")
+        layers.pop(index - 1)
+    return {"text": format_program(replace(program, layers=tuple(layers)), comments=True)}

@@ -1,0 +1,154 @@
+// Live evaluation: every program or layer change is evaluated, a quick first pass (256 px)
+// then full size (512 px), one request in flight per stream plus the latest pending, so a
+// slider drag never queues up. Also refreshes the structure (/api/structure) for the panel.
+import { ApiError, type Maps } from "./api";
+import type { Ctx } from "./ctx";
+import type { Structure } from "./store";
+
+export const PREVIEW_SIZE = 256;
+export const FULL_SIZE = 512;
+/** Debounce of editor typing; panel drags and layer toggles go at once. */
+const TYPING_DEBOUNCE_MS = 30;
+/** When the last full pass came back faster than this, the first pass is skipped. */
+const FAST_FULL_MS = 70;
+
+interface Job {
+  text: string;
+  hidden: number[];
+  solo: number | null;
+}
+
+export interface EvalInfo {
+  pass: "preview" | "full";
+  size: number;
+  evalMs: number;
+  roundTripMs: number;
+}
+
+/** Runs at most one task at a time and keeps only the latest one waiting. */
+class Latest<T> {
+  private running = false;
+  private next: T | null = null;
+  constructor(
+    private readonly run: (job: T, superseded: () => boolean) => Promise<void>,
+    private readonly onIdle: () => void,
+  ) {}
+
+  push(job: T): void {
+    this.next = job;
+    if (!this.running) void this.loop();
+  }
+
+  get busy(): boolean {
+    return this.running || this.next !== null;
+  }
+
+  private async loop(): Promise<void> {
+    this.running = true;
+    try {
+      while (this.next !== null) {
+        const job = this.next;
+        this.next = null;
+        await this.run(job, () => this.next !== null);
+      }
+    } finally {
+      this.running = false;
+    }
+    this.onIdle();
+  }
+}
+
+export class Live {
+  private seq = 0;
+  private timer: ReturnType<typeof setTimeout> | undefined;
+  private lastFullMs = Infinity;
+  private evaluator: Latest<Job>;
+  private structurer: Latest<string>;
+  private infoListeners: ((info: EvalInfo) => void)[] = [];
+  /** The last evaluation succeeded (the status returns to `ready` only then). */
+  private ok = true;
+
+  constructor(
+    private readonly ctx: Ctx,
+    readonly stream = "main",
+  ) {
+    this.evaluator = new Latest((job, superseded) => this.evaluate(job, superseded), () => this.idle());
+    this.structurer = new Latest((text, superseded) => this.structure(text, superseded), () => this.idle());
+    const { store } = ctx;
+    store.on("text", ({ source }) => {
+      clearTimeout(this.timer);
+      this.ctx.store.emit("status", { state: "busy" }); // at once, not after the debounce
+      if (source === "editor") this.timer = setTimeout(() => this.kick(true), TYPING_DEBOUNCE_MS);
+      else this.kick(true);
+    });
+    store.on("layers", () => this.kick(false));
+  }
+
+  onInfo(fn: (info: EvalInfo) => void): void {
+    this.infoListeners.push(fn);
+  }
+
+  /** Evaluate the current program now (and refresh the structure when `structure`). */
+  kick(structure = true): void {
+    const { store } = this.ctx;
+    this.ctx.store.emit("status", { state: "busy" });
+    this.evaluator.push({ text: store.text, hidden: [...store.hidden], solo: store.solo });
+    if (structure) this.structurer.push(store.text);
+  }
+
+  private idle(): void {
+    if (!this.evaluator.busy && !this.structurer.busy && this.ok) this.ctx.store.emit("status", { state: "ready" });
+  }
+
+  private async evaluate(job: Job, superseded: () => boolean): Promise<void> {
+    const skipPreview = this.lastFullMs < FAST_FULL_MS;
+    const passes: ("preview" | "full")[] = skipPreview ? ["full"] : ["preview", "full"];
+    for (const pass of passes) {
+      if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits
+      const size = pass === "full" ? FULL_SIZE : PREVIEW_SIZE;
+      // Increasing across page loads too: the server keeps each stream's newest seq and answers
+      // an older one with 409, so a reload must not start again at 1.
+      const seq = (this.seq = Math.max(this.seq + 1, Date.now()));
+      const t0 = performance.now();
+      let maps: Maps;
+      try {
+        maps = await this.ctx.api.maps({
+          text: job.text,
+          size,
+          stream: this.stream,
+          seq,
+          hidden: job.hidden,
+          solo: job.solo,
+          pass,
+        });
+      } catch (e) {
+        if (e instanceof ApiError && e.status === 409) return; // superseded: normal
+        this.ok = false;
+        if (!superseded()) this.ctx.store.emit("status", { state: "error", message: oneLine(e) });
+        return;
+      }
+      const roundTripMs = performance.now() - t0;
+      if (pass === "full") this.lastFullMs = roundTripMs;
+      this.ok = true;
+      if (pass === "full") this.ctx.store.maps = maps;
+      this.ctx.store.emit("maps", maps);
+      for (const fn of this.infoListeners) fn({ pass, size, evalMs: maps.header.eval_ms, roundTripMs });
+    }
+  }
+
+  private async structure(text: string, superseded: () => boolean): Promise<void> {
+    try {
+      const s = await this.ctx.api.json<Structure>("/api/structure", { text });
+      if (superseded() || text !== this.ctx.store.text) return;
+      this.ctx.store.structure = s;
+      this.ctx.store.emit("structure", s);
+    } catch {
+      /* a program that does not check has no structure; the diagnostics say why */
+    }
+  }
+}
+
+function oneLine(e: unknown): string {
+  const msg = e instanceof Error ? e.message : String(e);
+  return msg.split("\n")[0].slice(0, 200) || "evaluation failed";
+}
