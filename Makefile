@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo studio test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
+.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -21,7 +21,29 @@ studio: $(VENV)/.installed-fast,llm,studio
 	$(VENV)/bin/matloom studio
 
 test: $(VENV)/.installed-fast,llm,test,studio tools
-	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender"
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser"
+
+# Rebuild the studio's front end (studio-web/, TypeScript) into matloom/studio/static/ with the
+# pinned toolchain in studio-web/package-lock.json. Only needed after changing studio-web/src:
+# the built assets are committed, so installing MatLoom needs no node.
+studio-build:
+	cd studio-web && npm ci --no-audit --no-fund && node build.mjs
+
+# The studio's real-browser tests: Playwright for Python driving Debian's chromium (headless,
+# WebGL2 through SwiftShader), in their own venv. Without chromium they skip and say why.
+STUDIO_VENV ?= .venv-studio
+PLAYWRIGHT_VERSION ?= 1.65.3
+
+studio-venv: $(STUDIO_VENV)/.installed
+
+$(STUDIO_VENV)/.installed: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
+	$(PYTHON) -m venv $(STUDIO_VENV)
+	$(STUDIO_VENV)/bin/pip install --quiet --upgrade pip
+	$(STUDIO_VENV)/bin/pip install --quiet -e ".[fast,llm,test,studio]" "playwright==$(PLAYWRIGHT_VERSION)"
+	touch $@
+
+test-studio: $(STUDIO_VENV)/.installed tools
+	$(STUDIO_VENV)/bin/python -m pytest -q -p no:cacheprovider -m browser tests/studio/browser
 
 # The Khronos glTF validator (npm) for the glTF preset tests, in a project-local folder. If npm
 # or the registry is unreachable the tests that need it skip and say so; `make test` goes on.

@@ -11,6 +11,16 @@ export const FULL_SIZE = 512;
 const TYPING_DEBOUNCE_MS = 30;
 /** When the last full pass came back faster than this, the first pass is skipped. */
 const FAST_FULL_MS = 70;
+/** The first pass aims to come back within this, scaled from the last full pass's time. */
+const FIRST_PASS_MS = 120;
+
+/** First-pass size: 256 px, or smaller for a program whose full pass is slow (its time scales
+ * with the texels), in steps of 32 px and at least 64 px. */
+export function previewSize(lastFullMs: number): number {
+  if (!Number.isFinite(lastFullMs) || lastFullMs <= 0) return PREVIEW_SIZE;
+  const fit = FULL_SIZE * Math.sqrt(FIRST_PASS_MS / lastFullMs);
+  return Math.max(64, Math.min(PREVIEW_SIZE, Math.floor(fit / 32) * 32));
+}
 
 interface Job {
   text: string;
@@ -105,7 +115,7 @@ export class Live {
     const passes: ("preview" | "full")[] = skipPreview ? ["full"] : ["preview", "full"];
     for (const pass of passes) {
       if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits
-      const size = pass === "full" ? FULL_SIZE : PREVIEW_SIZE;
+      const size = pass === "full" ? FULL_SIZE : previewSize(this.lastFullMs);
       // Increasing across page loads too: the server keeps each stream's newest seq and answers
       // an older one with 409, so a reload must not start again at 1.
       const seq = (this.seq = Math.max(this.seq + 1, Date.now()));

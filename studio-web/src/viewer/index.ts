@@ -97,7 +97,7 @@ class Viewer {
       this.applyTiling();
     }
     this.overlay.message(this.binder.info.notes.join(" · "));
-    this.view.markShown(h.seq);
+    this.view.markShown(h.seq, h.pass === "preview");
   }
 
   private changed(s: ViewSettings, what: keyof ViewSettings): void {

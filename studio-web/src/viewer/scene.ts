@@ -13,6 +13,8 @@ import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import { frameDrawn } from "./hooks";
 
 const FOV = 35;
+/** How long after the last change a software-GL view keeps drawing cheap frames (ms). */
+const BUSY_MS = 400;
 
 export class ViewerScene {
   readonly renderer: WebGLRenderer;
@@ -26,6 +28,13 @@ export class ViewerScene {
   lastFrameMs = 0;
   private pending = false;
   private shownSeq: number | null = null;
+  /** Full pixel ratio, and (software GL only) a cheaper one while things move. */
+  private readonly ratio = Math.min(window.devicePixelRatio || 1, 2);
+  private lowRes = false;
+  private dragging = false;
+  private busyUntil = 0;
+  private lastMapsAt = -Infinity;
+  private refine: ReturnType<typeof setTimeout> | undefined;
   private readonly resizer: ResizeObserver;
   private disposed = false;
 
@@ -36,13 +45,21 @@ export class ViewerScene {
     this.renderer = new WebGLRenderer({ canvas, antialias: !this.software, powerPreference: "high-performance" });
     this.renderer.outputColorSpace = SRGBColorSpace;
     this.renderer.toneMapping = NeutralToneMapping;
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.renderer.setPixelRatio(this.ratio);
     this.scene.add(this.light, this.light.target);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.enableDamping = true;
     this.controls.dampingFactor = 0.2;
     this.controls.screenSpacePanning = true;
-    this.controls.addEventListener("change", () => this.requestRender());
+    this.controls.addEventListener("start", () => (this.dragging = true));
+    this.controls.addEventListener("end", () => {
+      this.dragging = false;
+      this.busy(); // the damped glide after a release
+    });
+    this.controls.addEventListener("change", () => {
+      if (this.dragging) this.busy();
+      this.requestRender();
+    });
     this.resizer = new ResizeObserver(() => this.resize());
     this.resizer.observe(canvas.parentElement ?? canvas);
     this.resize();
@@ -64,10 +81,21 @@ export class ViewerScene {
     requestAnimationFrame(() => this.draw());
   }
 
-  /** The next frame drawn is the first to show maps `seq` (for window.matloomStudio). */
-  markShown(seq: number): void {
+  /** The next frame drawn is the first to show maps `seq` (for window.matloomStudio);
+   * `preview`: the quick first pass of an evaluation. */
+  markShown(seq: number, preview = false): void {
+    const now = performance.now();
+    // a first pass, or maps in a stream (a slider drag): a full pass follows soon
+    if (preview || now - this.lastMapsAt < BUSY_MS) this.busy();
+    this.lastMapsAt = now;
     this.shownSeq = seq;
     this.requestRender();
+  }
+
+  /** On software GL, draw at half resolution for a moment (orbiting, dragging a slider) and
+   * redraw at full resolution once things are still: a SwiftShader frame costs about 3x less. */
+  private busy(): void {
+    if (this.software) this.busyUntil = performance.now() + BUSY_MS;
   }
 
   /** Place the camera around `center` at `radius` (bounding sphere), azimuth/elevation in
@@ -123,6 +151,7 @@ export class ViewerScene {
 
   dispose(): void {
     this.disposed = true;
+    clearTimeout(this.refine);
     this.resizer.disconnect();
     this.controls.dispose();
     this.renderer.dispose();
@@ -148,11 +177,20 @@ export class ViewerScene {
     if (this.disposed || this.canvas.clientWidth === 0 || this.canvas.clientHeight === 0) return;
     const moving = this.controls.update();
     const t0 = performance.now();
+    const low = t0 < this.busyUntil;
+    if (low !== this.lowRes) {
+      this.lowRes = low;
+      this.renderer.setPixelRatio(low ? this.ratio * 0.5 : this.ratio);
+    }
     this.renderer.render(this.scene, this.camera);
     this.lastFrameMs = performance.now() - t0;
     frameDrawn(this.shownSeq);
     this.shownSeq = null;
     if (moving) this.requestRender();
+    else if (low) {
+      clearTimeout(this.refine);
+      this.refine = setTimeout(() => this.requestRender(), this.busyUntil - performance.now() + 20);
+    }
   }
 }
 

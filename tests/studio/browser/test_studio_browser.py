@@ -7,7 +7,6 @@ import json
 import shutil
 import subprocess
 import urllib.request
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -15,6 +14,8 @@ import pytest
 from PIL import Image
 
 from .conftest import ROOT, Studio, open_page, shot
+
+pytestmark = pytest.mark.browser
 
 MORTAR = "define:tileMask.Bricks.mortar"
 
@@ -200,20 +201,23 @@ def test_a_cost_bomb_gets_its_error_and_the_studio_keeps_working(page: Any) -> N
 
 
 def test_inspector_tiling_compare_and_author_views(page: Any) -> None:
+    # a second version first (while the 3D view is showing), for the A/B compare
+    seq = shown_seq(page)
+    select_in_editor(page, "base_freq=7")
+    page.keyboard.type("base_freq=3")
+    wait_full_shown(page, seq)
     page.locator('[data-testid="tab-inspector"]').click()
     page.locator('[data-testid="inspector-canvas"]').wait_for()
     page.wait_for_timeout(1500)
     assert canvas(page, "inspector-canvas").std() > 5
     assert canvas(page, "tiling-canvas").std() > 5
     shot(page, "studio-inspector")
-    seq = shown_seq(page)
-    select_in_editor(page, "base_freq=7")
-    page.keyboard.type("base_freq=3")
-    wait_full_shown(page, seq)
     page.locator('[data-testid="tab-compare"]').click()
     metrics = page.locator('[data-testid="compare-metrics"]')
     metrics.get_by_text("PSNR", exact=False).wait_for(timeout=60_000)
     assert "SSIM" in metrics.text_content()
+    page.wait_for_timeout(500)
+    assert canvas(page, "compare-canvas").std() > 5
     shot(page, "studio-compare")
     page.locator('[data-testid="tab-author"]').click()
     page.locator('[data-testid="author-prompt"]').fill("weathered red brick wall")
