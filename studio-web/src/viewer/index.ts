@@ -35,7 +35,6 @@ export function mountViewer(el: HTMLElement, ctx: Ctx): void {
     return;
   }
   new Viewer(root, view, ctx);
-  (window as unknown as { __mlv: unknown }).__mlv = view; // TEMP profiling
 }
 
 class Viewer {

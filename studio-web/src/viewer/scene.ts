@@ -33,7 +33,6 @@ export class ViewerScene {
   private lowRes = false;
   private dragging = false;
   private busyUntil = 0;
-  private lastMapsAt = -Infinity;
   private refine: ReturnType<typeof setTimeout> | undefined;
   private readonly resizer: ResizeObserver;
   private disposed = false;
@@ -84,16 +83,16 @@ export class ViewerScene {
   /** The next frame drawn is the first to show maps `seq` (for window.matloomStudio);
    * `preview`: the quick first pass of an evaluation. */
   markShown(seq: number, preview = false): void {
-    const now = performance.now();
-    // a first pass, or maps in a stream (a slider drag): a full pass follows soon
-    if (preview || now - this.lastMapsAt < BUSY_MS) this.busy();
-    this.lastMapsAt = now;
+    // A first pass is drawn cheaply (its full pass follows at once); a full pass always at
+    // full resolution, so what a test or a screenshot sees after it is the final image.
+    if (preview) this.busy();
+    else if (!this.dragging) this.busyUntil = 0;
     this.shownSeq = seq;
     this.requestRender();
   }
 
-  /** On software GL, draw at half resolution for a moment (orbiting, dragging a slider) and
-   * redraw at full resolution once things are still: a SwiftShader frame costs about 3x less. */
+  /** On software GL, draw at half resolution for a moment (orbiting, a first pass) and redraw
+   * at full resolution once things are still: a SwiftShader frame costs about 3x less. */
   private busy(): void {
     if (this.software) this.busyUntil = performance.now() + BUSY_MS;
   }
@@ -102,7 +101,7 @@ export class ViewerScene {
    * degrees (azimuth 90 = on +z), and make that the reset position. */
   frame(center: Vector3, radius: number, az: number, el: number): void {
     const half = (Math.min(FOV, this.horizontalFov()) / 2) * (Math.PI / 180);
-    const dist = (radius / Math.sin(half)) * 1.08;
+    const dist = (radius / Math.sin(half)) * 1.15;
     this.camera.near = dist / 100;
     this.camera.far = dist * 100;
     this.camera.updateProjectionMatrix();

@@ -1,6 +1,7 @@
 // Preview shapes, sized at the material's physical scale: `span` is the View's width in world
 // units (metres when the program states unit_m), so a tile of the maps is that big on the mesh.
-// Tessellation is enough for the height map's displacement but light enough for SwiftShader.
+// Tessellation is enough for the height map's displacement (the normal map carries the fine
+// relief) but light enough for SwiftShader, where tiny triangles cost more than their pixels.
 import {
   Box3,
   BufferGeometry,
@@ -62,14 +63,14 @@ export function buildShape(
     view = [90, 42];
   } else if (name === "sphere") {
     // Circumference = two spans: the maps repeat twice around, once from pole to pole.
-    add(withUv1(new SphereGeometry(span / Math.PI, 160, 80)));
+    add(withUv1(new SphereGeometry(span / Math.PI, 128, 64)));
     repeat = [2, 1];
     view = [90, 15];
   } else if (name === "cube") {
-    add(cube(span, 64));
+    add(cube(span, 48));
     view = [60, 28];
   } else if (name === "cloth") {
-    add(cloth(span, 144));
+    add(cloth(span, 128));
     view = [90, 32];
     doubleSided = true;
   } else {
@@ -102,7 +103,7 @@ function withUv1(g: BufferGeometry): BufferGeometry {
 
 /** A horizontal plane facing +y; the top of the maps is away from the default camera. */
 function plane(w: number, h: number): BufferGeometry {
-  const seg = 160;
+  const seg = 128;
   const g = new PlaneGeometry(w, h, seg, Math.max(2, Math.round(seg * (h / w))));
   g.rotateX(-Math.PI / 2);
   return withUv1(g);
@@ -239,7 +240,7 @@ function shaderBall(span: number): { shell: BufferGeometry; core: BufferGeometry
 }
 
 function latheWithSphereUv(points: Vector2[], phiStart: number, phiLength: number, R: number): BufferGeometry {
-  const segs = Math.max(8, Math.round((144 * phiLength) / (Math.PI * 2)));
+  const segs = Math.max(8, Math.round((128 * phiLength) / (Math.PI * 2)));
   const g = new LatheGeometry(points, segs, phiStart, phiLength);
   const uv = g.getAttribute("uv");
   const pos = g.getAttribute("position");
