@@ -9,6 +9,9 @@ times (an ``input`` event, as one step of a drag) and measures, in the page:
   after it (the quick first pass, or the full pass when the program is fast enough to skip it),
   counted at the next animation frame after that frame's draw (so the draw itself is included);
 * full: to the first frame showing the full-size (512 px) pass;
+* maps: to the moment the first maps evaluated after it reached the page (decoded, before
+  any drawing): the part MatLoom controls; the rest is the browser's WebGL draw, which under
+  SwiftShader (software GL, no GPU here) costs about 100-300 ms a frame by itself;
 * server: the server's own evaluation time of that full pass (``eval_ms``).
 
 Between steps it waits for the full pass, so each step is measured alone. Goals (issue 25):
@@ -60,6 +63,10 @@ STEP = """async ({address, value}) => {
   if (!el) throw new Error("no slider " + address);
   const before = Math.max(s.lastShownAt.seq, s.store.maps ? s.store.maps.header.seq : 0);
   const frame = () => new Promise((r) => requestAnimationFrame(r));
+  let arrived = null;
+  const off = s.store.on("maps", (m) => {
+    if (arrived === null && m.header.seq > before) arrived = performance.now() - t0;
+  });
   const t0 = performance.now();
   el.value = String(value);
   el.dispatchEvent(new Event("input", { bubbles: true }));
@@ -77,8 +84,9 @@ STEP = """async ({address, value}) => {
     const m = s.store.maps;
     if (m && m.header.seq > before && m.header.pass === "full" && s.lastShownAt.seq >= m.header.seq) {
       await frame();
+      off();
       return { first: first ?? performance.now() - t0, full: performance.now() - t0,
-               server: m.header.eval_ms };
+               server: m.header.eval_ms, arrived };
     }
   }
   throw new Error("no full pass shown within 60 s");
@@ -160,19 +168,21 @@ def main() -> None:
                 finally:
                     proc.terminate()
                     proc.wait(10)
+            arrived = [r["arrived"] for r in results]
             first = [r["first"] for r in results]
             full = [r["full"] for r in results]
             server = [r["server"] for r in results]
-            rows.append((name, first, full, server))
+            rows.append((name, arrived, first, full, server))
         browser.close()
     print(f"slider step -> 3D view, {args.steps} steps each (ms; chromium + SwiftShader)")
     print(
-        f"{'program':10} {'first p50':>10} {'first p90':>10} {'full p50':>9} {'full p90':>9} "
-        f"{'server eval p50':>16}"
+        f"{'program':10} {'maps p50':>9} {'maps p90':>9} {'first p50':>10} {'first p90':>10} "
+        f"{'full p50':>9} {'full p90':>9} {'server eval p50':>16}"
     )
-    for name, first, full, server in rows:
+    for name, arrived, first, full, server in rows:
         print(
-            f"{name:10} {statistics.median(first):10.1f} {_pct(first, 0.9):10.1f} "
+            f"{name:10} {statistics.median(arrived):9.1f} {_pct(arrived, 0.9):9.1f} "
+            f"{statistics.median(first):10.1f} {_pct(first, 0.9):10.1f} "
             f"{statistics.median(full):9.1f} {_pct(full, 0.9):9.1f} {statistics.median(server):16.1f}"
         )
 

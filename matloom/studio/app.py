@@ -232,7 +232,7 @@ async def check(studio: Studio, request: Request) -> Response:
     from matloom.studio.structure import check_json
 
     text = need_str(await read_body(request), "text")
-    return _json(await run_in_threadpool(check_json, text))
+    return _json(await run_in_threadpool(check_json, text, studio.session))
 
 
 async def format_(studio: Studio, request: Request) -> Response:
@@ -246,7 +246,7 @@ async def structure(studio: Studio, request: Request) -> Response:
     from matloom.studio.structure import structure_json
 
     text = need_str(await read_body(request), "text")
-    return _json(await run_in_threadpool(structure_json, text))
+    return _json(await run_in_threadpool(structure_json, text, studio.session))
 
 
 async def set_(studio: Studio, request: Request) -> Response:
@@ -257,7 +257,7 @@ async def set_(studio: Studio, request: Request) -> Response:
     values = body.get("values")
     if not isinstance(values, dict) or not values:
         raise ApiError(400, "'values' must be an object of address -> value")
-    return _json(await run_in_threadpool(set_values, text, values))
+    return _json(await run_in_threadpool(set_values, text, values, studio.session))
 
 
 async def layers(studio: Studio, request: Request) -> Response:

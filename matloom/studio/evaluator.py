@@ -161,15 +161,9 @@ class Evaluator:
     def parsed(self, text: str) -> A.Program:
         """The checked program of ``text`` (cached in the session); 422 with the diagnostics
         when it does not check."""
-        from matloom.lang.api import parse
-        from matloom.lang.diagnostics import ProgramError
+        from matloom.studio.program import checked
 
-        try:
-            return self.session.cached("parsed", text, lambda: parse(text))
-        except ProgramError as err:
-            from matloom.studio.program import refusal
-
-            raise refusal(text, err.diagnostics) from None
+        return checked(text, self.session)
 
     def warm(self, text: str) -> None:
         """Warm the engine (numba's import and cached kernels) on small evaluations of

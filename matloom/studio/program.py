@@ -3,13 +3,16 @@ not), its diagnostics as the editor reads them, and the labels the panel gives i
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from matloom.lang import ast as A
 from matloom.lang.api import analyse
 from matloom.lang.diagnostics import Diagnostic
 from matloom.lang.params import words
 from matloom.studio.protocol import ApiError
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 
 def _utf16(text: str, offset: int) -> int:
@@ -50,9 +53,19 @@ def diagnostics_json(text: str, diags: list[Diagnostic]) -> list[dict[str, Any]]
     return out
 
 
-def check_json(text: str) -> dict[str, Any]:
+def analysed(
+    text: str, session: Session | None = None
+) -> tuple[A.Program | None, list[Diagnostic]]:
+    """``analyse(text)``, remembered in ``session`` (by text) when one is given: a drag sends
+    the same program to several endpoints, and a big program takes tens of ms to check."""
+    if session is None:
+        return analyse(text)
+    return session.cached("studio-analysed", text, lambda: analyse(text))
+
+
+def check_json(text: str, session: Session | None = None) -> dict[str, Any]:
     """``/api/check``: every diagnostic of ``text``."""
-    program, diags = analyse(text)
+    program, diags = analysed(text, session)
     ok = program is not None and not any(d.is_error for d in diags)
     return {"ok": ok, "diagnostics": diagnostics_json(text, diags)}
 
@@ -70,9 +83,9 @@ def refusal(text: str, diags: list[Diagnostic]) -> ApiError:
     return ApiError(422, message, diagnostics=diagnostics_json(text, errors))
 
 
-def checked(text: str) -> A.Program:
+def checked(text: str, session: Session | None = None) -> A.Program:
     """The program of ``text``; 422 with its diagnostics when it does not check."""
-    program, diags = analyse(text)
+    program, diags = analysed(text, session)
     if program is None or any(d.is_error for d in diags):
         raise refusal(text, diags)
     return program

@@ -12,7 +12,7 @@ user's comments and names (:func:`matloom.studio.rewrite.program_text`).
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from matloom.lang import ast as A
 from matloom.lang.api import analyse
@@ -22,6 +22,9 @@ from matloom.studio.program import check_json, checked, diagnostics_json, layer_
 from matloom.studio.protocol import ApiError
 from matloom.studio.rewrite import program_text
 from matloom.studio.seeds import seed_entries
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 __all__ = [
     "check_json",
@@ -43,9 +46,9 @@ def format_text(text: str) -> str:
 
 
 # ---------------------------------------------------------------------------- structure
-def structure_json(text: str) -> dict[str, Any]:
+def structure_json(text: str, session: Session | None = None) -> dict[str, Any]:
     """``/api/structure`` (docs/studio-api.md)."""
-    program = checked(text)
+    program = checked(text, session)
     params = list_params(program)
     v = program.view
     x1, y1, x2, y2 = program.view_tuple
@@ -88,12 +91,12 @@ def _layer_json(k: int, layer: A.Layer, params: list[Param]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------------- edits
-def set_values(text: str, values: dict[str, Any]) -> dict[str, Any]:
+def set_values(text: str, values: dict[str, Any], session: Session | None = None) -> dict[str, Any]:
     """``/api/set``: the text with the parameters set (only the touched literals rewritten
     where possible), and the clamping warnings. 400 for an unknown address or a wrong value."""
     from matloom.lang.params import set_params
 
-    before = checked(text)
+    before = checked(text, session)
     converted = {k: tuple(v) if isinstance(v, list) else v for k, v in values.items()}
     try:
         canonical, warnings = set_params(before, converted)

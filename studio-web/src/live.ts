@@ -11,6 +11,8 @@ export const FULL_SIZE = 512;
 const TYPING_DEBOUNCE_MS = 30;
 /** When the last full pass came back faster than this, the first pass is skipped. */
 const FAST_FULL_MS = 70;
+/** After a panel edit the structure is refreshed once no further panel edit came for this long. */
+const PANEL_STRUCTURE_MS = 350;
 /** The first pass aims to come back within this, scaled from the last full pass's time. */
 const FIRST_PASS_MS = 120;
 
@@ -71,6 +73,7 @@ class Latest<T> {
 export class Live {
   private seq = 0;
   private timer: ReturnType<typeof setTimeout> | undefined;
+  private structureTimer: ReturnType<typeof setTimeout> | undefined;
   private lastFullMs = Infinity;
   private evaluator: Latest<Job>;
   private structurer: Latest<string>;
@@ -89,7 +92,13 @@ export class Live {
       clearTimeout(this.timer);
       this.ctx.store.emit("status", { state: "busy" }); // at once, not after the debounce
       if (source === "editor") this.timer = setTimeout(() => this.kick(true), TYPING_DEBOUNCE_MS);
-      else this.kick(true);
+      else if (source === "panel") {
+        // A drag: evaluate at once, refresh the structure only once the drag pauses, so the
+        // structure request does not compete with the evaluation for the server's cores.
+        this.kick(false);
+        clearTimeout(this.structureTimer);
+        this.structureTimer = setTimeout(() => this.structurer.push(store.text), PANEL_STRUCTURE_MS);
+      } else this.kick(true);
     });
     store.on("layers", () => this.kick(false));
   }

@@ -223,4 +223,4 @@ def test_inspector_tiling_compare_and_author_views(page: Any) -> None:
     page.locator('[data-testid="author-prompt"]').fill("weathered red brick wall")
     page.locator('[data-testid="author-run"]').click()
     page.locator('[data-testid="author-rounds"] img').first.wait_for(timeout=120_000)
-    shot(page, "studio-author")
+    shot(page, "studio-author-offline")
