@@ -466,14 +466,33 @@ def set_params(program: A.Program | str, values: Mapping[str, Value]) -> tuple[s
     """
     from matloom.lang.printer import format_program
 
-    prog = _program(program)
-    params, sites = _list(prog, {})
+    prog, warnings = edit_program(_program(program), values)
+    return format_program(prog, comments=True), warnings
+
+
+#: What :func:`listing` returns: the parameters and where their literals live.
+Listing = tuple[list[Param], dict[str, "_Site"]]
+
+
+def listing(program: A.Program) -> Listing:
+    """The parameters of ``program`` and their sites, for :func:`edit_program` (a caller that
+    edits one program many times, like the studio's sliders, keeps it)."""
+    return _list(program, {})
+
+
+def edit_program(
+    program: A.Program, values: Mapping[str, Value], listed: Listing | None = None
+) -> tuple[A.Program, list[str]]:
+    """:func:`set_params` on a parsed program: the edited program (not yet printed or checked)
+    and the warnings. ``listed``: the program's :func:`listing`, when the caller has it."""
+    params, sites = listed if listed is not None else listing(program)
     by_address = {p.address: p for p in params}
     warnings: list[str] = []
+    prog = program
     for address, value in values.items():
         param, site = _resolve(address, by_address, sites)
         prog = _apply(prog, site, _checked(param, site, value, warnings))
-    return format_program(prog, comments=True), warnings
+    return prog, warnings
 
 
 def _resolve(

@@ -13,6 +13,7 @@ import asyncio
 import contextlib
 import json
 import logging
+import threading
 from collections.abc import AsyncIterator, Awaitable, Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +21,7 @@ from typing import Any
 
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
+from starlette.exceptions import HTTPException
 from starlette.middleware import Middleware
 from starlette.requests import Request
 from starlette.responses import (
@@ -80,6 +82,8 @@ class Studio:
     static: Path = STATIC
     blender: bool = False
     vocab: dict[str, Any] | None = field(default=None, repr=False)
+    #: Held while a Blender render runs: one at a time (each is a Blender process).
+    blender_busy: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     @property
     def session(self) -> Session:
@@ -151,9 +155,18 @@ def create_app(
         route("/{path:path}", static_file, "GET"),
     ]
     middleware = [Middleware(Guard, token=token, host=host, port=port)]  # type: ignore[arg-type]
-    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
+    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan,
+                    exception_handlers={HTTPException: _http_error})  # fmt: skip
     app.state.studio = studio
     return app
+
+
+async def _http_error(request: Request, exc: Exception) -> Response:
+    """Starlette's own refusals (a wrong method: 405) as the studio's one-line JSON errors."""
+    assert isinstance(exc, HTTPException)
+    reply = error_response(exc.status_code, str(exc.detail))
+    reply.headers.update(exc.headers or {})
+    return reply
 
 
 def _blender_available() -> bool:
@@ -381,7 +394,7 @@ async def generate(studio: Studio, request: Request) -> Response:
 async def job_events(studio: Studio, request: Request) -> Response:
     job = studio.jobs.get(request.path_params["job"])
     try:
-        start = int(request.headers.get("last-event-id", "-1")) + 1
+        start = max(0, int(request.headers.get("last-event-id", "-1")) + 1)
     except ValueError:
         start = 0
     _, over = job.since(start)
@@ -434,7 +447,12 @@ async def blender(studio: Studio, request: Request) -> Response:
     text = need_str(body, "text")
     mode = opt_str(body, "mode", "flat") or "flat"
     size = opt_int(body, "size", 512, 16, 2048)
-    png = await run_in_threadpool(render_png, text, mode, size, studio.session)
+    if not studio.blender_busy.acquire(blocking=False):
+        raise ApiError(409, "a Blender render is already running; try again when it is done")
+    try:
+        png = await run_in_threadpool(render_png, text, mode, size, studio.session)
+    finally:
+        studio.blender_busy.release()
     return Response(png, media_type="image/png", headers={"Cache-Control": "no-store"})
 
 
@@ -444,8 +462,12 @@ async def static_file(studio: Studio, request: Request) -> Response:
     if rel.startswith("static/"):
         rel = rel[len("static/") :]
     root = studio.static.resolve()
-    target = (root / rel).resolve()
-    if root not in target.parents or not target.is_file():
+    try:
+        target = (root / rel).resolve()
+        found = root in target.parents and target.is_file()
+    except (OSError, ValueError):  # a NUL byte, a name too long
+        found = False
+    if not found:
         if rel == "index.html":
             return HTMLResponse(NO_FRONT_END, status_code=503)
         raise ApiError(404, f"no such file: /{rel}")

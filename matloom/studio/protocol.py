@@ -58,9 +58,32 @@ async def read_body(request: Request) -> dict[str, Any]:
         data = json.loads(raw or b"{}")
     except (json.JSONDecodeError, UnicodeDecodeError) as err:
         raise ApiError(400, f"the body is not JSON: {err}") from None
+    except RecursionError:  # arrays or objects nested thousands deep
+        raise ApiError(400, "the body is not JSON the studio reads: nested too deep") from None
     if not isinstance(data, dict):
         raise ApiError(400, "the body must be a JSON object")
+    _refuse_lone_surrogates(data)
     return data
+
+
+def _refuse_lone_surrogates(data: Any) -> None:
+    """400 when a string of the body holds a lone UTF-16 surrogate (``"\\ud800"``): JSON lets
+    one through, but no file, reply or program can hold it."""
+    stack = [data]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            try:
+                item.encode("utf-8")
+            except UnicodeEncodeError:
+                raise ApiError(
+                    400, "the body holds text that is not valid Unicode (a lone surrogate)"
+                ) from None
+        elif isinstance(item, dict):
+            stack.extend(item)
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
 
 
 def need_str(body: dict[str, Any], name: str, *, empty: bool = True) -> str:
@@ -85,7 +108,12 @@ def opt_int(
     value = body.get(name, default)
     if value is None:
         value = default
-    if isinstance(value, bool) or not isinstance(value, int | float) or value != int(value):
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int | float)
+        or (isinstance(value, float) and not math.isfinite(value))  # NaN, Infinity
+        or value != int(value)
+    ):
         raise ApiError(400, f"'{name}' must be a whole number, got {value!r}")
     value = int(value)
     if (low is not None and value < low) or (high is not None and value > high):

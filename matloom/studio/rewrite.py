@@ -24,15 +24,21 @@ class _Mismatch(Exception):
 def program_text(text: str, before: A.Program, after: A.Program) -> str:
     """The text of ``after``: ``text`` (whose program is ``before``) with only the changed
     literals replaced when that is all that changed, else the canonical text with comments."""
+    spliced = spliced_text(text, before, after)
+    if spliced is not None and _parses_to(spliced, after):
+        return spliced
+    return format_program(after, comments=True)
+
+
+def spliced_text(text: str, before: A.Program, after: A.Program) -> str | None:
+    """``text`` with the literals that differ between ``before`` (its program) and ``after``
+    replaced, or None when the programs differ in more than literals. Not yet verified: the
+    caller parses the result and compares it with ``after``."""
     try:
         edits = _program_edits(before, after)
     except _Mismatch:
-        edits = None
-    if edits is not None:
-        spliced = _apply(text, edits)
-        if spliced is not None and _parses_to(spliced, after):
-            return spliced
-    return format_program(after, comments=True)
+        return None
+    return _apply(text, edits)
 
 
 def _parses_to(text: str, program: A.Program) -> bool:

@@ -6,7 +6,7 @@ parameter with its registry range), grouped the way the panel shows it: the View
 and the layers (1-based, bottom first), plus the noise seeds (:mod:`matloom.studio.seeds`).
 Edits go through the language's own code -- :func:`matloom.lang.params.set_params` for values,
 the canonical printer with comments for layer moves -- and come back as text that keeps the
-user's comments and names (:func:`matloom.studio.rewrite.program_text`).
+user's comments and names (:func:`matloom.studio.rewrite.spliced_text`).
 """
 
 from __future__ import annotations
@@ -15,12 +15,11 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from matloom.lang import ast as A
-from matloom.lang.api import analyse
 from matloom.lang.params import Param, list_params
 from matloom.lang.printer import format_expr, format_layer, format_program
-from matloom.studio.program import check_json, checked, diagnostics_json, layer_label
+from matloom.studio.program import analysed, check_json, checked, diagnostics_json, layer_label
 from matloom.studio.protocol import ApiError
-from matloom.studio.rewrite import program_text
+from matloom.studio.rewrite import spliced_text
 from matloom.studio.seeds import seed_entries
 
 if TYPE_CHECKING:
@@ -93,19 +92,30 @@ def _layer_json(k: int, layer: A.Layer, params: list[Param]) -> dict[str, Any]:
 # ---------------------------------------------------------------------------- edits
 def set_values(text: str, values: dict[str, Any], session: Session | None = None) -> dict[str, Any]:
     """``/api/set``: the text with the parameters set (only the touched literals rewritten
-    where possible), and the clamping warnings. 400 for an unknown address or a wrong value."""
-    from matloom.lang.params import set_params
+    where possible), and the clamping warnings. 400 for an unknown address or a wrong value.
+
+    With a ``session`` (the studio's), the program's parameter listing is kept per text and the
+    new text's analysis is left in the session's cache, so the evaluation, structure and check
+    requests that follow a slider step parse nothing again."""
+    from matloom.lang.params import edit_program, listing
 
     before = checked(text, session)
+    listed = (
+        session.cached("studio-listing", text, lambda: listing(before))
+        if session is not None
+        else None
+    )
     converted = {k: tuple(v) if isinstance(v, list) else v for k, v in values.items()}
     try:
-        canonical, warnings = set_params(before, converted)
+        edited, warnings = edit_program(before, converted, listed)
     except ValueError as err:
         raise ApiError(400, str(err)) from None
-    after, _ = analyse(canonical)
-    if after is None:  # cannot happen: the printer's text parses
-        return {"text": canonical, "warnings": warnings}
-    return {"text": program_text(text, before, after), "warnings": warnings}
+    spliced = spliced_text(text, before, edited)
+    if spliced is not None:
+        parsed, _ = analysed(spliced, session)
+        if parsed is not None and format_program(parsed) == format_program(edited):
+            return {"text": spliced, "warnings": warnings}
+    return {"text": format_program(edited, comments=True), "warnings": warnings}
 
 
 def layer_op(text: str, op: str, index: int, to: int | None) -> dict[str, Any]:

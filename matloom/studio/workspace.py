@@ -29,6 +29,11 @@ DEMO_EXAMPLE = "black_ceramic_tiles"
 #: Listing bounds: folders deeper than this and programs past this count are not listed.
 LIST_DEPTH = 4
 LIST_MAX = 500
+#: The longest path and file name most file systems take (Linux's PATH_MAX and NAME_MAX).
+PATH_MAX = 4096
+NAME_MAX = 255
+#: The most folders deep a path the browser names may go.
+PATH_DEPTH = 32
 
 
 class WorkspaceError(ValueError):
@@ -73,6 +78,12 @@ class Workspace:
         if program and pure.suffix != PROGRAM_SUFFIX:
             raise ApiError(400, f"{rel!r} is not a program file (*{PROGRAM_SUFFIX})")
         target = self.root.joinpath(*pure.parts)
+        if (
+            len(pure.parts) > PATH_DEPTH
+            or len(os.fsencode(target)) >= PATH_MAX
+            or any(len(os.fsencode(part)) > NAME_MAX for part in pure.parts)
+        ):
+            raise ApiError(400, f"{rel[:60]!r}... is too long (or deep) a path")
         if not _inside(os.path.realpath(target), self.root):
             raise ApiError(400, f"{rel!r} leads outside the workspace (a symlink); refused")
         return target

@@ -115,6 +115,9 @@ export function rangeF32(src: Float32Array): Range {
   return { min, max, mean: sum / src.length };
 }
 
+/** The largest first-pass size (live.ts PREVIEW_SIZE): textures up to it get no mipmaps. */
+const FIRST_PASS_MAX = 256;
+
 export class TexturePool {
   private readonly byName = new Map<string, DataTexture[]>();
   private wrap: Wrapping = RepeatWrapping;
@@ -185,8 +188,11 @@ export class TexturePool {
     tex.colorSpace = srgb ? SRGBColorSpace : NoColorSpace;
     tex.wrapS = tex.wrapT = this.wrap;
     tex.magFilter = LinearFilter;
-    tex.minFilter = LinearMipmapLinearFilter;
-    tex.generateMipmaps = true;
+    // The quick first pass (<= 256 px) skips mipmaps: building them on every update costs more
+    // than the draw under software GL, and the full pass that follows has them.
+    const mips = Math.max(w, h) > FIRST_PASS_MAX;
+    tex.minFilter = mips ? LinearMipmapLinearFilter : LinearFilter;
+    tex.generateMipmaps = mips;
     tex.anisotropy = this.maxAnisotropy;
     tex.unpackAlignment = 4;
     return tex;
