@@ -54,41 +54,50 @@ class Studio:
     proc: subprocess.Popen
 
 
-@pytest.fixture(scope="module")
-def studio(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Studio]:
-    pytest.importorskip("starlette", reason="the studio needs the [studio] extra")
-    root = tmp_path_factory.mktemp("workspace")
-    shutil.copy(DEMO, root / DEMO.name)
+def start_studio(file: Path, env: dict[str, str] | None = None) -> Studio:
+    """``matloom studio FILE --no-browser`` in a subprocess, once it printed its URL."""
     proc = subprocess.Popen(
-        [sys.executable, "-m", "matloom", "studio", str(root / DEMO.name), "--no-browser"],
+        [sys.executable, "-m", "matloom", "studio", str(file), "--no-browser"],
         stderr=subprocess.PIPE,
         stdout=subprocess.DEVNULL,
         text=True,
-        cwd=root,
+        cwd=file.parent,
+        env=env,
     )
     url = None
     deadline = time.monotonic() + 60
     assert proc.stderr is not None
-    while time.monotonic() < deadline:
+    while url is None and time.monotonic() < deadline:
         line = proc.stderr.readline()
         if not line:
             break
         if m := re.search(r"MatLoom studio at (\S+)", line):
             url = m.group(1)
-            break
-    if url is None:
+    m = re.match(r"http://[^:]+:(\d+)/\?token=(\S+)", url or "")
+    if m is None:
         proc.kill()
         pytest.fail("matloom studio did not print its URL")
-    m = re.match(r"http://[^:]+:(\d+)/\?token=(\S+)", url)
-    assert m, url
+    return Studio(m.group(0), file.parent, int(m.group(1)), m.group(2), proc)
+
+
+def stop_studio(studio: Studio) -> None:
+    studio.proc.terminate()
     try:
-        yield Studio(url, root, int(m.group(1)), m.group(2), proc)
+        studio.proc.wait(10)
+    except subprocess.TimeoutExpired:
+        studio.proc.kill()
+
+
+@pytest.fixture(scope="module")
+def studio(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Studio]:
+    pytest.importorskip("starlette", reason="the studio needs the [studio] extra")
+    root = tmp_path_factory.mktemp("workspace")
+    shutil.copy(DEMO, root / DEMO.name)
+    running = start_studio(root / DEMO.name)
+    try:
+        yield running
     finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+        stop_studio(running)
 
 
 @pytest.fixture(scope="module")

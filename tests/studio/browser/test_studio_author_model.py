@@ -7,9 +7,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import os
-import re
 import shutil
-import subprocess
 import sys
 import time
 from collections.abc import Iterator
@@ -20,7 +18,7 @@ import pytest
 
 from matloom.author.prompts.system import FEW_SHOT_EXAMPLES
 
-from .conftest import DEMO, ROOT, open_page, shot
+from .conftest import DEMO, ROOT, open_page, shot, start_studio, stop_studio
 
 
 def _chat_server() -> Any:
@@ -68,32 +66,11 @@ def model_studio(tmp_path: Path) -> Iterator[tuple[str, Any]]:
         root.mkdir()
         shutil.copy(DEMO, root / DEMO.name)
         env = {**os.environ, "MATLOOM_CONFIG": str(config), "MATLOOM_TEST_KEY": "test-key"}
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "matloom", "studio", str(root / DEMO.name), "--no-browser"],
-            stderr=subprocess.PIPE,
-            stdout=subprocess.DEVNULL,
-            text=True,
-            cwd=root,
-            env=env,
-        )
-        assert proc.stderr is not None
-        url = None
-        deadline = time.monotonic() + 60
-        while url is None and time.monotonic() < deadline:
-            line = proc.stderr.readline()
-            if not line:
-                break
-            if m := re.search(r"MatLoom studio at (\S+)", line):
-                url = m.group(1)
+        running = start_studio(root / DEMO.name, env)
         try:
-            assert url, "matloom studio did not print its URL"
-            yield url, server
+            yield running.url, server
         finally:
-            proc.terminate()
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+            stop_studio(running)
 
 
 def test_a_model_run_streams_rounds_and_cancel_stops_it(browser: Any, model_studio: Any) -> None:
