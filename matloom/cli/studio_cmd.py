@@ -19,7 +19,14 @@ PORT = click.IntRange(0, 65535)
     "than the loopback, anyone who can reach it and has the URL can use the studio.",
 )
 @click.option("--no-browser", is_flag=True, help="Print the URL; do not open a browser.")
-def studio_cmd(target: str | None, port: int, host: str, no_browser: bool) -> None:
+@click.option(
+    "--link",
+    metavar="PERMALINK",
+    help="Open the program of a studio permalink (a URL ending in #p=..., from any machine).",
+)
+def studio_cmd(
+    target: str | None, port: int, host: str, no_browser: bool, link: str | None
+) -> None:
     """Open the studio on FILE (its folder is the workspace), on FOLDER's programs, or, with no
     argument, on a copy of the demo material in ./matloom-studio/ (made if missing)."""
     try:
@@ -30,9 +37,16 @@ def studio_cmd(target: str | None, port: int, host: str, no_browser: bool) -> No
         raise click.ClickException(
             f"`matloom studio` needs {name}, which is not installed: pip install 'matloom[studio]'"
         ) from None
+    from matloom.studio.permalink import PermalinkError, decode, encode
     from matloom.studio.server import serve
     from matloom.studio.workspace import DEMO_FOLDER, Workspace, WorkspaceError
 
+    fragment = ""
+    if link is not None:
+        try:
+            fragment = encode(decode(link))
+        except PermalinkError as err:
+            raise click.ClickException(str(err)) from None
     try:
         workspace = Workspace.open(target)
     except WorkspaceError as err:
@@ -44,7 +58,7 @@ def studio_cmd(target: str | None, port: int, host: str, no_browser: bool) -> No
             err=True,
         )
     try:
-        serve(workspace, host=host, port=port, open_browser=not no_browser)
+        serve(workspace, host=host, port=port, open_browser=not no_browser, fragment=fragment)
     except OSError as err:
         raise click.ClickException(
             f"cannot listen on {host}:{port}: {err.strerror or err}"

@@ -56,6 +56,7 @@ def serve(
     port: int = 0,
     open_browser: bool = True,
     say: Callable[[str], None] = lambda line: print(line, file=sys.stderr),
+    fragment: str = "",
 ) -> None:
     """Run the studio on ``workspace`` until interrupted (see the module docstring)."""
     import uvicorn
@@ -72,7 +73,7 @@ def serve(
     app = create_app(workspace, token, port=address.port, host=host, session=session, warm=True)
     if host not in LOOPBACK:
         say(f"warning: serving on {host}: anyone who can reach it and has the URL can use it")
-    url = address.url(token)
+    url = address.url(token) + (f"#{fragment}" if fragment else "")
     say(
         f"workspace: {workspace.root}"
         + (f" (opened {workspace.opened})" if workspace.opened else "")

@@ -54,10 +54,11 @@ class Studio:
     proc: subprocess.Popen
 
 
-def start_studio(file: Path, env: dict[str, str] | None = None) -> Studio:
-    """``matloom studio FILE --no-browser`` in a subprocess, once it printed its URL."""
+def start_studio(file: Path, env: dict[str, str] | None = None, *args: str) -> Studio:
+    """``matloom studio FILE --no-browser [ARGS]`` in a subprocess, once it printed its URL
+    (the whole URL, a permalink's ``#p=`` fragment included)."""
     proc = subprocess.Popen(
-        [sys.executable, "-m", "matloom", "studio", str(file), "--no-browser"],
+        [sys.executable, "-m", "matloom", "studio", str(file), "--no-browser", *args],
         stderr=subprocess.PIPE,
         stdout=subprocess.DEVNULL,
         text=True,
@@ -73,11 +74,11 @@ def start_studio(file: Path, env: dict[str, str] | None = None) -> Studio:
             break
         if m := re.search(r"MatLoom studio at (\S+)", line):
             url = m.group(1)
-    m = re.match(r"http://[^:]+:(\d+)/\?token=(\S+)", url or "")
+    m = re.match(r"http://[^:]+:(\d+)/\?token=([\w-]+)", url or "")
     if m is None:
         proc.kill()
         pytest.fail("matloom studio did not print its URL")
-    return Studio(m.group(0), file.parent, int(m.group(1)), m.group(2), proc)
+    return Studio(url or "", file.parent, int(m.group(1)), m.group(2), proc)
 
 
 def stop_studio(studio: Studio) -> None:

@@ -13,7 +13,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from .conftest import ROOT, Studio, open_page, shot
+from matloom.studio.permalink import decode
+
+from .conftest import ROOT, Studio, open_page, shot, start_studio, stop_studio
 
 pytestmark = pytest.mark.browser
 
@@ -131,6 +133,18 @@ def test_a_permalink_reopens_the_same_program(browser: Any, page: Any, studio: S
         assert editor_text(other) == edited
     finally:
         other.close()
+    # the same link in a new studio (as on another machine): `matloom studio --link`
+    assert decode(link) == edited
+    fresh = start_studio(studio.root / "black_ceramic_tiles.mat", None, "--link", link)
+    try:
+        assert "#p=" in fresh.url
+        again = open_page(browser, fresh.url)
+        try:
+            assert editor_text(again) == edited
+        finally:
+            again.close()
+    finally:
+        stop_studio(fresh)
 
 
 def test_export_writes_a_folder_whose_gltf_passes_the_khronos_validator(
