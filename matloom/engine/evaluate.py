@@ -101,7 +101,9 @@ def evaluate(
     ``tileable=True`` (or ``View(..., tileable=True)`` in the program, or a tileable ``view``)
     makes every map repeat seamlessly with the View's width and height (docs/tileable.md).
     ``session`` (default: :func:`~matloom.engine.session.default_session`) decides what
-    ``backend="auto"`` means and holds the parse caches; this call does not take its lock.
+    ``backend="auto"`` means and holds the parse caches; the evaluation runs under its lock
+    (re-entrant: a caller that holds it already, like a render job, is fine), so threads that
+    share a session never run the kernels at once.
     """
     s = session or default_session()
     program = prepare(program_or_text, program_seed, session=s)
@@ -117,7 +119,7 @@ def evaluate(
     if v.unit_m is None and program.unit_m is not None:
         v = replace(v, unit_m=program.unit_m)
     x, y = sample_axes(v, width, height)
-    with running(s):  # numba's compile events go to this session's reporter
+    with s.lock, running(s):  # numba's compile events go to this session's reporter
         return _run(program, x, y, v, be, ao_radius_units, stats)
 
 

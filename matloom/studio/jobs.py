@@ -273,8 +273,9 @@ def edit_json(text: str, request: str, use_model: bool | None, session: Session)
             except Exception as err:  # noqa: BLE001 - ModelError and friends, one line
                 raise ApiError(400, one_line(err)) from None
     try:
-        with session.lock:
-            result = edit(text, request, model, session=session)
+        # not under the session's lock: each evaluation takes it (engine.evaluate), so the 3D
+        # view keeps updating while a model answers
+        result = edit(text, request, model, session=session)
     except EditRefused as err:
         raise ApiError(422, str(err), parameters=[p.to_json() for p in err.params]) from None
     except (EditError, ProgramError, ValueError) as err:
