@@ -41,6 +41,12 @@ def studio_cmd(
     from matloom.studio.server import serve
     from matloom.studio.workspace import DEMO_FOLDER, Workspace, WorkspaceError
 
+    if host in ("0.0.0.0", "::", ""):
+        raise click.ClickException(
+            f"--host {host or repr(host)} would listen on every address, but the studio checks that "
+            "each request names the address it serves: give one address (e.g. this machine's "
+            "LAN address), or leave the default 127.0.0.1"
+        )
     fragment = ""
     if link is not None:
         try:

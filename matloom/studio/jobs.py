@@ -82,6 +82,13 @@ class Job:
     state: str = "running"  # running, done, error, cancelled
     cancel: threading.Event = field(default_factory=threading.Event)
     lock: threading.Lock = field(default_factory=threading.Lock)
+    #: The thread running it: a cancelled run's thread stops at its next progress report.
+    thread: threading.Thread | None = None
+
+    @property
+    def busy(self) -> bool:
+        """Running, or cancelled but its thread not yet stopped (its work still uses the CPU)."""
+        return self.state == "running" or (self.thread is not None and self.thread.is_alive())
 
     def emit(self, kind: str, data: dict[str, Any]) -> None:
         """Add an event unless the job is over (a cancelled run's late events are dropped)."""
@@ -139,9 +146,13 @@ class Jobs:
         if use_model is False or setup.model is None:
             config = config.model_copy(update={"generator": None, "critic": None})
         with self._lock:
-            running = [j for j in self._jobs.values() if j.state == "running"]
-            if running:
+            running = [j for j in self._jobs.values() if j.busy]
+            if any(j.state == "running" for j in running):
                 raise ApiError(400, "a generate run is going on; cancel it first")
+            if running:
+                raise ApiError(
+                    409, "the cancelled run is still stopping (at its next step); try again soon"
+                )
             job = Job(uuid.uuid4().hex[:12], prompt)
             self._jobs[job.id] = job
             while len(self._jobs) > KEEP_JOBS:
@@ -150,10 +161,10 @@ class Jobs:
             job.emit("log", {"line": "no model configured: using the material library"})
         elif setup.access:
             job.emit("log", {"line": setup.access})
-        thread = threading.Thread(
+        job.thread = threading.Thread(
             target=self._run, args=(job, config), name=f"matloom-generate-{job.id}", daemon=True
         )
-        thread.start()
+        job.thread.start()
         return job
 
     def _run(self, job: Job, config: Any) -> None:

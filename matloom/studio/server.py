@@ -72,7 +72,10 @@ def serve(
     session = Session.from_env(cold_start=background_compile())
     app = create_app(workspace, token, port=address.port, host=host, session=session, warm=True)
     if host not in LOOPBACK:
-        say(f"warning: serving on {host}: anyone who can reach it and has the URL can use it")
+        say(
+            f"warning: serving on {host}: anyone who can reach {host} and has the URL (with "
+            "its token) can use the studio"
+        )
     url = address.url(token) + (f"#{fragment}" if fragment else "")
     say(
         f"workspace: {workspace.root}"

@@ -6,6 +6,7 @@ from __future__ import annotations
 import io
 import json
 import os
+import time
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -153,6 +154,16 @@ def test_generate_cancel_ends_the_stream(studio: StudioServer) -> None:
         assert events[-1] == ("error", {"error": "cancelled"})
     else:  # it finished first
         assert events[-1][0] == "done"
+    # while the cancelled run's thread stops, a new run waits (409), never runs beside it
+    deadline = time.monotonic() + 120
+    while True:
+        again = studio.post("/api/generate", {"prompt": "weathered red brick wall"})
+        if again.status != 409 or time.monotonic() > deadline:
+            break
+        assert "still stopping" in again.json()["error"]
+        time.sleep(0.2)
+    assert again.status == 200, again.body
+    assert _events(studio, again.json()["job"])[-1][0] == "done"
     assert studio.post("/api/jobs/nope/cancel", {}).status == 404
     assert studio.post("/api/generate", {"prompt": ""}).status == 400
     assert studio.post("/api/generate", {"prompt": "x", "model": True}).status == 400

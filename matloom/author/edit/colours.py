@@ -18,9 +18,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+from matloom.author.edit.lexicon import split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
-from matloom.author.edit.targets import main_colour, matching
+from matloom.author.edit.targets import main_colour, matching, overlaps, wanted
+from matloom.lang import ast as A
+from matloom.lang.constants import constant_defines
 from matloom.lang.params import Param
+from matloom.lang.static import static_number
 from matloom.library.colour import RGB, apply_tone, clamp_rgb
 
 Lab = tuple[float, float, float]
@@ -140,10 +144,47 @@ def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]
     return rgb, tone, comparative_word, used
 
 
+#: Address prefix of a derived colour slot (:func:`_derived`): set by rewriting its lines.
+DERIVED = "derived:"
+
+
+def _derived(c: Context, nouns: list[str]) -> list[Param]:
+    """Colour slots the nouns name whose components are constant expressions of other Defines
+    (``Define(knot_r, (wood_r * 0.42))``): their current colour, as parameters that the rule
+    sets by replacing the three Define lines with the new components."""
+    if not nouns:
+        return []
+    consts = constant_defines(c.program)
+    want = wanted(nouns, c.ew)
+    out: list[Param] = []
+    for d in c.program.defines:
+        if not d.name.endswith("_r") or isinstance(d.expr, A.Num):
+            continue
+        base = d.name[:-2]
+        names = [f"{base}_{k}" for k in "rgb"]
+        if not all(n in consts for n in names) or not overlaps(split_words(base), want):
+            continue
+        try:
+            value = tuple(float(static_number(consts[n])) for n in names)
+        except (TypeError, ValueError):
+            continue
+        rgb = tuple(min(255.0, max(0.0, v)) for v in value)
+        out.append(
+            Param(
+                f"{DERIVED}{base}", rgb, "colour", 0.0, 255.0, "sRGB 0-255",  # type: ignore[arg-type]
+                f"{base} colour (derived)", ("basecolor",), d.span.line, d.span.col,
+            )  # fmt: skip
+        )
+    return out
+
+
 def _targets(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
     targets = matching(colours, nouns, c.program, c.ew)
     if targets:
         return targets
+    derived = _derived(c, nouns)
+    if derived:
+        return derived
     named_elsewhere = matching(c.params, nouns, c.program, c.ew) if nouns else []
     if named_elsewhere or any(n in c.vocabulary.roles for n in nouns):
         raise c.refuse(f"no colour parameter named like {' '.join(nouns)!r}", colours)
@@ -211,7 +252,19 @@ def colour_rule(c: Context) -> Plan | None:
         new[p] = tuple(float(x) for x in out)  # type: ignore[assignment]
     what = ", ".join(f"{p.address} -> {tuple(int(x) for x in new[p])}" for p in targets)  # type: ignore[union-attr]
     graded = step is not None and rgb is None
+    if any(p.address.startswith(DERIVED) for p in new):
+        return _derived_plan(c, what, new, graded)
     return assign(c, "colour", what, new, ("basecolor",), graded=graded, exact=not graded)
+
+
+def _derived_plan(c: Context, what: str, new: dict[Param, Value], graded: bool) -> Plan:
+    """The plan that writes derived colour slots as constants (their lines replaced)."""
+    lines: dict[str, str] = {}
+    for p, v in new.items():
+        base = p.address.removeprefix(DERIVED)
+        for k, x in zip("rgb", v, strict=True):  # type: ignore[arg-type]
+            lines[f"define:{base}_{k}"] = f"Define({base}_{k}, {round(float(x))})"
+    return Plan("colour", what, lines=lines, intended=("basecolor",), graded=graded)
 
 
 def _towards(c: Context, colours: list[Param], nouns: list[str], word: str) -> Plan:

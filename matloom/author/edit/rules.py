@@ -56,7 +56,7 @@ from matloom.author.edit.plan import (
     clamp,
     scaled,
 )
-from matloom.author.edit.targets import coverage_params, named_in_program, own_words, wanted
+from matloom.author.edit.targets import coverage_params, overlaps, own_words, wanted
 from matloom.author.edit.targets import param_words as _param_words
 from matloom.lang import ast as A
 from matloom.lang.params import Param
@@ -236,17 +236,32 @@ def _scale(c: Context) -> Plan | None:
     nouns = [t for t in c.nouns if t not in skip]
     # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else
     # those that shape its layer's coverage
-    targets = [p for p in scalable if own_words(p) & wanted(nouns, ew, families=False)]
+    targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]
     if not targets and nouns:
         targets = coverage_params(scalable, nouns, c.program, ew)
     if not targets:
-        if nouns and named_in_program(c.program, nouns, ew) or not scalable:
-            return _zoom(c, bigger)
-        targets = scalable
+        # no parameter draws the named feature (hexagons drawn from constants), or no noun:
+        # the View zooms, which scales every feature in step (scaling some noises and not
+        # the constants that share their pattern turns a weave into a plaid)
+        return _zoom(c, bigger)
+    targets = _with_copies(targets, scalable)
     new = _tiling_sizes(c, targets, size_f)
     # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
     # (a velvet's pile) would not show at any step
     return assign(c, "scale", f"features x{size_f:.3g}", new, affects(targets), graded=False)
+
+
+def _with_copies(targets: list[Param], scalable: Sequence[Param]) -> list[Param]:
+    """The targets and their copies: the same parameter of the same function at the same value
+    in another Define (``board`` and ``boardval`` both ``Bricks(brick_width=2)``; a Tile
+    repeated for each part of a knot), so every copy of a pattern scales in step."""
+
+    def key(p: Param) -> tuple[str, object] | None:
+        parts = p.address.split(".", 1)
+        return (parts[1], p.value) if p.address.startswith("define:") and len(parts) == 2 else None
+
+    keys = {key(p) for p in targets} - {None}
+    return targets + [p for p in scalable if p not in targets and key(p) in keys]
 
 
 def _tiling_sizes(c: Context, targets: list[Param], size_f: float) -> dict[Param, Value]:

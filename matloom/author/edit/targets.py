@@ -159,6 +159,25 @@ def wanted(nouns: Iterable[str], ew: EditWords, families: bool = True) -> set[st
     return out
 
 
+def overlaps(names: Iterable[str], want: Iterable[str]) -> bool:
+    """Whether a word of ``names`` is a word of ``want``, or one is a part of the other: a
+    name that begins a noun ("hex" of "hexagons"), a name of 5 letters or more inside one
+    ("stitch" of "topstitching"), a noun of 4 letters or more inside a name ("knot" of
+    ``knotcore``)."""
+    names, want = set(names), set(want)
+    if names & want:
+        return True
+    for w in names:
+        for n in want:
+            if len(w) >= 3 and n.startswith(w):
+                return True
+            if len(w) >= 5 and w in n:
+                return True
+            if len(n) >= 4 and n in w:
+                return True
+    return False
+
+
 def matching(
     params: Sequence[Param],
     nouns: Sequence[str],
@@ -171,10 +190,10 @@ def matching(
     want = wanted(nouns, ew, families)
     if not want:
         return []
-    direct = [p for p in params if own_words(p) & want]
+    direct = [p for p in params if overlaps(own_words(p), want)]
     if direct or program is None:
         return direct
-    return [p for p in params if param_words(p, program, ew) & want]
+    return [p for p in params if overlaps(param_words(p, program, ew), want)]
 
 
 def coverage_params(
@@ -187,11 +206,15 @@ def coverage_params(
     closure = define_closure(program)
     names: set[str] = set()
     layers: set[int] = set()
-    named = [i for i in range(1, len(program.layers)) if layer_words(program, i, ew) & want]
+    named = [
+        i for i in range(1, len(program.layers)) if overlaps(layer_words(program, i, ew), want)
+    ]
     # a layer whose coverage is the noun alone (``Layer(tile)``) before one it only limits
     # (``Layer(paint * tile)``)
     pure = [
-        i for i in named if all(split_words(n) & want for n in mask_names(program.layers[i].alpha))
+        i
+        for i in named
+        if all(overlaps(split_words(n), want) for n in mask_names(program.layers[i].alpha))
     ]
     for i in pure or named:
         names |= refs_of(program.layers[i].alpha, closure)
@@ -211,9 +234,9 @@ def named_in_program(program: A.Program, nouns: Sequence[str], ew: EditWords) ->
     want = wanted(nouns, ew)
     if not want:
         return False
-    if any(split_words(d.name) & want for d in program.defines):
+    if any(overlaps(split_words(d.name), want) for d in program.defines):
         return True
-    return any(layer_words(program, i, ew) & want for i in range(len(program.layers)))
+    return any(overlaps(layer_words(program, i, ew), want) for i in range(len(program.layers)))
 
 
 def main_colour(colours: Sequence[Param], program: A.Program, ew: EditWords) -> Param:
