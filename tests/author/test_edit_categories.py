@@ -4,6 +4,7 @@ and clamps, and the escalation of a step too small to see."""
 
 from __future__ import annotations
 
+import math
 import re
 
 import pytest
@@ -162,3 +163,88 @@ def test_changed_seeds_ignores_new_lines_but_not_a_changed_one() -> None:
     assert changed_seeds(before, grown) == []
     reseeded = parse_program(program("black").replace("seed=891377204", "seed=5"))
     assert changed_seeds(before, reseeded) == ["define:groutNoise.fBm.seed"]
+
+
+def test_derived_colour_slot_of_a_named_part() -> None:
+    # the square tiles' grout is derived from the tile colour: "darker grout" writes the
+    # grout's three components as constants (darker), and leaves the tile colour alone
+    before = program("square")
+    result = edit_offline(before, "darker grout", size=32)
+    lines = result.report.plan["replace"]
+    assert set(lines) == {"define:grout_r", "define:grout_g", "define:grout_b"}
+    assert "Define(tile_r, 226)" in result.program
+    assert not [d for d in check(result.program) if d.is_error]
+    new = [int(re.search(r", (\d+)\)", lines[f"define:grout_{k}"]).group(1)) for k in "rgb"]
+    assert sum(new) < (226 + 224 + 218) * 0.65  # darker than the derived grout was
+
+
+def test_less_dark_is_lighter() -> None:
+    # "less dark" flips the tone: the derived grout gets lighter than it was
+    result = edit_offline(program("square"), "make the grout less dark", size=32)
+    lines = result.report.plan["replace"]
+    assert int(re.search(r", (\d+)\)", lines["define:grout_r"]).group(1)) > 226 * 0.65
+
+
+@pytest.mark.parametrize(
+    ("request_", "reason"),
+    [
+        # a feature the program does not draw: refused, not the whole material rescaled
+        ("smaller hexagons", "nothing in the program is named like 'hexagons'"),
+        # a count no parameter draws: zooming would change the size, not the number
+        ("fewer specks", "no parameter draws the specks"),
+    ],
+)
+def test_unnamed_feature_refused(request_: str, reason: str) -> None:
+    with pytest.raises(EditRefused, match=reason) as info:
+        edit_offline(program("square"), request_, size=32)
+    assert "define:" in str(info.value)  # the parameters it could change are listed
+
+
+def test_keep_clause_and_mixed_colour() -> None:
+    # what the request keeps is not what it changes
+    kept = edit_offline(program("square"), "dark grey grout, keep the tiles as they are", size=32)
+    assert set(kept.report.plan["replace"]) == {
+        "define:grout_r",
+        "define:grout_g",
+        "define:grout_b",
+    }
+    # "purple brown": between the two in CIELAB, not the first one
+    mixed = edit_offline(program("square"), "purple brown tiles", size=32).report.plan
+    r, g, b = mixed["assignments"]["colour:tile"]
+    assert r > b > g  # a brownish purple: red first, then blue, green least
+
+
+def test_greyer_less_named_colour_reduces_chroma() -> None:
+    from matloom.author.edit.colours import to_lab
+
+    before = dict((p.address, p.value) for p in all_params(parse_program(program("painted"))))
+    plan = edit_offline(program("painted"), "greyer paint, less red", size=32).report.plan
+    new = plan["assignments"]["define:paint_col"]
+    chroma = [math.hypot(*to_lab(c)[1:]) for c in (before["define:paint_col"], new)]
+    assert chroma[1] < chroma[0] * 0.6
+
+
+def test_copies_of_a_pattern_scale_in_step() -> None:
+    text = (
+        "Define(plank, Bricks(brick_width=1, brick_height=0.25, mortar=0.01))\n"
+        'Define(plankval, Bricks(brick_width=1, brick_height=0.25, output="cell_value", seed=3))\n'
+        "Material(Layer(1).basecolor(40, 30, 20).roughness(0.9),"
+        " Layer(plank).basecolor((120 + (plankval * 60)), 90, 60).roughness(0.6))"
+    )
+    plan = edit_offline(text, "bigger planks", size=32).report.plan
+    assert plan["assignments"]["define:plank.Bricks.brick_width"] == 1.5
+    assert plan["assignments"]["define:plankval.Bricks.brick_width"] == 1.5
+
+
+def test_relief_visibility_is_measured_in_the_normal_map() -> None:
+    from matloom.author.edit.core import verify
+
+    text = (
+        "Define(n, fBm(octaves=3, base_freq=4, seed=1))\n"
+        "Material(Layer(1).basecolor(100, 100, 100).roughness(0.5).height((0.01 + (n * 0.001))))"
+    )
+    after = text.replace("(0.01 + ", "(0.02 + ")
+    checked = verify(parse_program(text), after, "deeper", ("height",), 32, None)
+    assert checked.visible["height"] > 0.5  # the whole height map moved up ...
+    assert checked.shows(0.05)  # ... which any allowed map counts
+    assert not checked.shows(0.05, ("height",))  # but the lit preview (normals) would not show

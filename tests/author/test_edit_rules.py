@@ -140,8 +140,9 @@ TABLE: list[tuple[str, str, dict[str, object], dict[str, object]]] = [
     ),
     # the square tiles tile: x0.6 is the nearest factor that keeps whole tiles across the View
     ("square", "smaller tiles", {"define:tile.Bricks.brick_height": 0.6}, {}),
-    ("weathered", "denser", {"define:tone.fBm.base_freq": 3.75}, {}),
-    ("weathered", "sparser", {"define:tone.fBm.base_freq": 1.66667}, {}),
+    # no noun: the View zooms, so every feature (bricks and noises) scales in step
+    ("weathered", "denser", {}, {"window": [0.25, 0.25, 9.25, 9.25]}),
+    ("weathered", "sparser", {}, {"window": [0.25, 0.25, 4.25, 4.25]}),
     (
         "concrete",
         "larger aggregate",
@@ -177,7 +178,7 @@ REFUSED: list[tuple[str, str, str]] = [
     ("black", "make it fluffy", "no offline rule"),
     ("black", "less rust", "no rust in this program to reduce"),
     ("square", "make it tileable", "tileable already"),
-    ("square", "darker grout", "no colour parameter named like 'grout'"),
+    ("square", "make the hinges red", "no part of the program is named like 'hinges'"),
     ("velvet", "less transparent", "no transmission parameter"),
     ("cobble", "widen the joints between the stones", "no joint"),
     ("quick", "rougher", ""),  # not refused: checked below as a contrast

@@ -18,9 +18,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from matloom.author.edit.lexicon import split_words
+from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
-from matloom.author.edit.targets import main_colour, matching, overlaps, wanted
+from matloom.author.edit.targets import main_colour, matching, overlaps, param_words, wanted
 from matloom.lang import ast as A
 from matloom.lang.constants import constant_defines
 from matloom.lang.params import Param
@@ -102,6 +102,10 @@ def _with_offset(named: Lab, current: Lab, primary: Lab) -> Lab:
     return (min(98.0, max(2.0, named[0] + current[0] - primary[0])), named[1], named[2])
 
 
+#: An absolute tone after "less", "not" ... reads as the opposite comparative.
+_OPPOSITE = {"dark": "lighter", "light": "darker", "pale": "richer", "bright": "duller"}
+
+
 # ---- reading the request ---------------------------------------------------------------------
 def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]]:
     """The named colour, the tone word (``tone`` an absolute tone of the library, a comparative
@@ -122,7 +126,15 @@ def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]
                 and t not in c.ew.conditions
                 and t not in ("sand", "stone", "slate", "metal")
             ):
-                rgb, used = w.named[t], {i}
+                if flipped(ws, i, c.ew["flip"]):  # "less beige": not a colour to paint
+                    used.add(i)
+                    continue
+                rgb, used = w.named[t], used | {i}
+                nxt = ws[i + 1] if i + 1 < len(ws) else ""
+                if nxt in w.named and nxt not in c.ew.conditions:  # "purple brown": the mix
+                    a, b = to_lab(rgb), to_lab(w.named[nxt])
+                    rgb = from_lab(tuple((x + y) / 2 for x, y in zip(a, b, strict=True)))  # type: ignore[arg-type]
+                    used.add(i + 1)
                 break
     tone: str | None = None
     comparative_word: str | None = None
@@ -131,6 +143,10 @@ def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]
             continue
         if t in c.ew.towards or t in c.ew.comparative:
             comparative_word = t
+            used.add(i)
+            break
+        if t in _OPPOSITE and flipped(ws, i, c.ew["flip"]):  # "less dark" is lighter
+            comparative_word = _OPPOSITE[t]
             used.add(i)
             break
         if (
@@ -171,14 +187,24 @@ def _derived(c: Context, nouns: list[str]) -> list[Param]:
         rgb = tuple(min(255.0, max(0.0, v)) for v in value)
         out.append(
             Param(
-                f"{DERIVED}{base}", rgb, "colour", 0.0, 255.0, "sRGB 0-255",  # type: ignore[arg-type]
-                f"{base} colour (derived)", ("basecolor",), d.span.line, d.span.col,
+                f"{DERIVED}{base}",
+                rgb,
+                "colour",
+                0.0,
+                255.0,
+                "sRGB 0-255",  # type: ignore[arg-type]
+                f"{base} colour (derived)",
+                ("basecolor",),
+                d.span.line,
+                d.span.col,
             )  # fmt: skip
         )
     return out
 
 
-def _targets(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
+def _targets(
+    c: Context, colours: list[Param], nouns: list[str], comparative_all: bool = False
+) -> list[Param]:
     targets = matching(colours, nouns, c.program, c.ew)
     if targets:
         return targets
@@ -188,6 +214,17 @@ def _targets(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
     named_elsewhere = matching(c.params, nouns, c.program, c.ew) if nouns else []
     if named_elsewhere or any(n in c.vocabulary.roles for n in nouns):
         raise c.refuse(f"no colour parameter named like {' '.join(nouns)!r}", colours)
+    ws = c.words
+    parts = [
+        ws[i + 1] for i in range(len(ws) - 1) if ws[i] in ("the", "only") and ws[i + 1] in nouns
+    ]
+    if parts:  # "make the topstitching white" with no such part: not the whole material
+        raise c.refuse(f"no part of the program is named like {' '.join(parts)!r}", colours)
+    if nouns and comparative_all:  # "greyer gravel": the material itself, every colour but
+        joint = c.ew.nouns["joint"]  # the joints'
+        return [p for p in colours if not overlaps(param_words(p, c.program, c.ew), joint)] or [
+            main_colour(colours, c.program, c.ew)
+        ]
     return [main_colour(colours, c.program, c.ew)]
 
 
@@ -229,7 +266,7 @@ def colour_rule(c: Context) -> Plan | None:
         else:
             targets = _targets(c, colours, nouns)
     else:
-        targets = _targets(c, colours, nouns)
+        targets = _targets(c, colours, nouns, comparative_all=rgb is None and step is not None)
     primary = targets[0]
     base_lab = to_lab(_value(primary))
     new: dict[Param, Value] = {}
@@ -238,6 +275,8 @@ def colour_rule(c: Context) -> Plan | None:
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
+            if step is not None:  # "darker, purple-brown": the comparative on the named colour
+                lab = comparative(named, step, 1.0)
             if p is not primary:
                 lab = _with_offset(lab, to_lab(current), base_lab)
         elif step is not None:

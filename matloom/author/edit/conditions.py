@@ -298,6 +298,11 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     )
 
 
+def _floored(p: Param, v: float) -> float:
+    """``v``, not below 0 for an amount that is not negative (its range may be open)."""
+    return max(0.0, v) if float(p.value) >= 0 and (p.low is None or p.low < 0) else v  # type: ignore[arg-type]
+
+
 def amount_rule(c: Context) -> Plan | None:
     ws = set(c.words)
     sizes = c.ew["bigger"] | c.ew["smaller"] | c.ew["denser"] | c.ew["sparser"] | WIDTH_WORDS
@@ -316,7 +321,11 @@ def amount_rule(c: Context) -> Plan | None:
     found = _labelled(c, stems) or _overlay_covers(c, stems)
     if found:
         step = c.ew.f("amount_step") * c.k * (1 if more else -1)
-        new: dict[Param, Value] = {p: clamp(p, float(p.value) + step) for p in found}  # type: ignore[arg-type]
+        # an amount that starts at 0 or more stays there (no negative wear)
+        new: dict[Param, Value] = {
+            p: clamp(p, _floored(p, float(p.value) + step))  # type: ignore[arg-type]
+            for p in found
+        }
         note = f"{'more' if more else 'less'} {word} ({step:+.3g})"
         return assign(c, "amount", note, new, affects(found))
     for index in _condition_layers(c, stems):

@@ -130,10 +130,35 @@ class Verified:
     locality: LocalityReport
     visible: dict[str, float]
 
-    def shows(self, fraction: float) -> bool:
-        """Whether a map the edit meant to change moved visibly on ``fraction`` of texels."""
-        allowed = self.locality.allowed
-        return any(v >= fraction for n, v in self.visible.items() if n in allowed)
+    def shows(self, fraction: float, channels: Sequence[str] = ()) -> bool:
+        """Whether a map the edit meant to change moved visibly on ``fraction`` of texels.
+
+        With ``channels`` (the request's own: the plan's intended channels), the change is
+        measured where a lit preview shows it: a relief in the normal map (a height map may
+        double its range and still not show), another channel in its own map; else in any map
+        the locality allows."""
+        seen = [SEEN_AS.get(ch, ch) for ch in channels if ch != "alpha"]
+        names = [n for n in dict.fromkeys(seen) if n in self.visible]
+        if not names:
+            names = [n for n in self.visible if n in self.locality.allowed]
+        for n in names:
+            v = self.visible[n]
+            moved = self.locality.maps[n].fraction if n in self.locality.maps else v
+            # visible on enough of the map, or on most of the texels that moved at all (a
+            # part that covers little of the surface: the knots, the veins, the worn patches)
+            if v >= fraction or (v >= PART_FRACTION and moved > 0 and v / moved >= PART_SHARE):
+                return True
+        return False
+
+
+#: A change confined to a part shows when it is visible on this share of the texels it moved
+#: (and on at least ``PART_FRACTION`` of the map).
+PART_SHARE = 0.3
+PART_FRACTION = 0.004
+
+
+#: The map a change of a channel shows in, in a lit preview.
+SEEN_AS = {"height": "normal"}
 
 
 def verify(
@@ -213,22 +238,28 @@ def edit_offline(
 
     A graded step whose change does not show (no intended map moved visibly on
     ``visible_fraction`` of its texels) is planned again at a greater strength (times
-    ``escalate``, up to ``max_strength``; not after "slightly" or "a bit"); a change that still
-    does not show is kept with a warning."""
+    ``escalate``, up to ``max_strength``; not after "slightly" or "a bit"). The change is
+    measured in the request's own channels (a relief in the normal map). A change that still
+    does not show at ``max_strength`` is refused with the reason; one whose parameters reached
+    their limits (all the wear removed) is kept with a warning, as is a "slightly" step."""
     ew = edit_words()
     before = parse_program(text)
     params = all_params(before)
     strength = 1.0
     plan: Plan = plan_edit(before, params, request, strength, ew)
     calm = any(words().intensity.get(t, 1.0) < 1.0 for t in tokens(request))
+    capped = False  # the strength ran out before the parameters reached their limits
     while True:
         new_text, warnings = apply_edit(before, plan.assignments, plan.view, plan.lines, plan.add)
         checked = verify(before, new_text, request, plan.intended, size, session)
         structural = bool(plan.assignments or plan.lines or plan.add)
-        shows = checked.shows(ew.f("visible_fraction")) or not (
+        shows = checked.shows(ew.f("visible_fraction"), plan.intended) or not (
             structural or checked.locality.changed
         )
-        if shows or not plan.graded or calm or strength * ew.f("escalate") > ew.f("max_strength"):
+        if shows or not plan.graded or calm:
+            break
+        if strength * ew.f("escalate") > ew.f("max_strength"):
+            capped = True
             break
         strength *= ew.f("escalate")
         try:
@@ -239,6 +270,14 @@ def edit_offline(
             break
         plan = stronger
     if not shows and structural and not plan.exact:
+        if capped:  # an edit that would not show is refused, not returned
+            seen = ", ".join(dict.fromkeys(SEEN_AS.get(ch, ch) for ch in plan.intended)) or "maps"
+            raise EditRefused(
+                request,
+                f"{plan.rule}: even at {strength:.3g} times the step ({plan.note}) the {seen} "
+                "would change too little to show",
+                params,
+            )
         warnings = [*warnings, "the change is small: it may not show in a preview"]
     record = plan.to_json()
     if strength != 1.0:

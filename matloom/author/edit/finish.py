@@ -96,11 +96,18 @@ def roughness_rule(c: Context) -> Plan | None:
         new = {p: clamp(p, _step(float(p.value), d, c)) for p in targets}  # type: ignore[arg-type]
     intended: tuple[str, ...] = ("roughness",)
     note = "rougher" if d > 0 else "glossier" if d < 0 else f"{word} (roughness {target:g})"
-    coats = _coats(c, targets, d)
+    # a finish target ("satin" on a glossy glaze) moves the clear coat the way the roughness
+    # moves, or the coat keeps the surface as glossy as it was
+    mean_before = sum(float(p.value) for p in targets) / len(targets)  # type: ignore[arg-type]
+    mean_after = sum(float(new[p]) for p in targets) / len(targets)  # type: ignore[arg-type]
+    coat_d = d or (
+        1 if mean_after > mean_before + 0.05 else -1 if mean_after < mean_before - 0.05 else 0
+    )
+    coats = _coats(c, targets, coat_d)
     if coats:
         new.update(coats)
         intended += ("coat",)
-        note += ", clearcoat " + ("down" if d > 0 else "up")
+        note += ", clearcoat " + ("down" if coat_d > 0 else "up")
     lines: dict[str, str] = {}
     starts = [float(p.value) for p in targets]  # type: ignore[arg-type]
     mean = sum(starts) / len(starts)

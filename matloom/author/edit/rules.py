@@ -56,7 +56,13 @@ from matloom.author.edit.plan import (
     clamp,
     scaled,
 )
-from matloom.author.edit.targets import coverage_params, overlaps, own_words, wanted
+from matloom.author.edit.targets import (
+    coverage_params,
+    named_in_program,
+    overlaps,
+    own_words,
+    wanted,
+)
 from matloom.author.edit.targets import param_words as _param_words
 from matloom.lang import ast as A
 from matloom.lang.params import Param
@@ -180,6 +186,8 @@ def _joints(c: Context) -> Plan | None:
         return None
     if ws & set(c.ew.comparative) or any(t in c.vocabulary.named for t in ws):
         return None  # "darker grout", "white mortar": a colour
+    if ws & (set(c.ew.relief_nouns) | set(c.ew.relief)):
+        return None  # "stones further out from the mortar, more relief": the relief
     found = _joint_params(c)
     if not found:
         raise c.refuse("no joint (mortar, grout, gap) width parameter")
@@ -209,7 +217,8 @@ def _zoom(c: Context, bigger: bool) -> Plan:
     word = "bigger" if bigger else "smaller"
     return Plan(
         "scale",
-        f"every feature {word}: the View's window x{ratio:.3g} (no size parameter names it)",
+        f"every feature {word}: the View's window x{ratio:.3g} (no parameter draws a named "
+        "feature)",
         view={"window": window},
         intended=("alpha",),
     )
@@ -239,6 +248,14 @@ def _scale(c: Context) -> Plan | None:
     targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]
     if not targets and nouns:
         targets = coverage_params(scalable, nouns, c.program, ew)
+    if not targets and nouns and ws & (ew["denser"] | ew["sparser"]):
+        # "fewer veins": a count, which zooming would turn into a size (thicker veins)
+        raise c.refuse(
+            f"no parameter draws the {' '.join(nouns)} (their number cannot change without "
+            "changing their size)"
+        )
+    if not targets and nouns and not _drawn(c, nouns):
+        raise c.refuse(f"nothing in the program is named like {' '.join(nouns)!r}")
     if not targets:
         # no parameter draws the named feature (hexagons drawn from constants), or no noun:
         # the View zooms, which scales every feature in step (scaling some noises and not
@@ -249,6 +266,15 @@ def _scale(c: Context) -> Plan | None:
     # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
     # (a velvet's pile) would not show at any step
     return assign(c, "scale", f"features x{size_f:.3g}", new, affects(targets), graded=False)
+
+
+def _drawn(c: Context, nouns: Sequence[str]) -> bool:
+    """Whether a noun names a Define or layer of the program, or a pattern it calls ("weave"
+    for a ``Weave``, "bricks" for ``Bricks``)."""
+    if named_in_program(c.program, nouns, c.ew):
+        return True
+    called = {n.func for d in c.program.defines for n in A.walk(d.expr) if isinstance(n, A.Call)}
+    return any(overlaps(split_words(f), wanted(nouns, c.ew)) for f in called)
 
 
 def _with_copies(targets: list[Param], scalable: Sequence[Param]) -> list[Param]:
@@ -291,6 +317,12 @@ def _tiling_sizes(c: Context, targets: list[Param], size_f: float) -> dict[Param
     return at(size_f)
 
 
+#: A clause naming what an edit must leave alone ("but keep the tiles white").
+_KEEP_RE = re.compile(
+    r"[,;]?\s*\b(?:but|while|and)?\s*(?:keep|keeping|leave|leaving)\b.*$", re.IGNORECASE
+)
+
+
 #: The rules, in the order they are tried.
 RULES: tuple[Callable[[Context], Plan | None], ...] = (
     _tileable,
@@ -314,8 +346,10 @@ def plan_edit(
 ) -> Plan:
     """The offline plan for ``request`` on ``program`` (its parameter list ``params``), its
     steps times ``strength``. Raises :class:`EditRefused` when no rule maps the request."""
+    # "charcoal grout but keep the tiles white": what is to be kept is not what is to change
+    asked = _KEEP_RE.sub("", request) or request
     c = Context(
-        request, tokens(request), list(params), program, words(), strength, ew or edit_words()
+        request, tokens(asked), list(params), program, words(), strength, ew or edit_words()
     )
     for rule in RULES:
         plan = rule(c)

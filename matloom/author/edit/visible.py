@@ -27,6 +27,10 @@ THRESHOLDS: dict[str, float] = {
     "anisotropy_angle": 10.0,
 }
 DEFAULT_THRESHOLD = 0.08
+#: The normal map's threshold is at most this share of its spread (2.5 to 97.5 percentile of
+#: a component), never under ``NORMAL_FLOOR``.
+NORMAL_SHARE = 0.25
+NORMAL_FLOOR = 0.01
 #: Grid side the visible change is measured on, whatever the locality grid (a preview is 192
 #: to 256 pixels: what shows at 128 shows there).
 VISIBLE_SIZE = 128
@@ -53,6 +57,12 @@ def visible_changes(
         if name == "height":
             finite = a[np.isfinite(a)]
             limit *= max(float(np.ptp(finite)) if finite.size else 0.0, 1e-9)
+        elif name == "normal" and a.ndim == 3:
+            # a subtle texture (a fine stipple) tilts its normals little: a change of a
+            # quarter of its spread shows in a lit preview, whatever the absolute step
+            finite = np.where(np.isfinite(a), a, 0.0).reshape(-1, a.shape[2])
+            spread = float(np.max(np.percentile(finite, 97.5, 0) - np.percentile(finite, 2.5, 0)))
+            limit = min(limit, max(NORMAL_SHARE * spread, NORMAL_FLOOR))
         diff = np.abs(a - b)
         diff = np.where(np.isnan(a) & np.isnan(b), 0.0, diff)
         diff = np.where(np.isfinite(diff), diff, np.inf)
