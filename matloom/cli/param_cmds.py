@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import sys
 from typing import NoReturn
 
@@ -11,8 +12,24 @@ import click
 from matloom.cli.lang_cmds import _read
 from matloom.lang.deps import OUTPUTS
 from matloom.lang.diagnostics import ProgramError, format_diagnostics
-from matloom.lang.params import Param, list_params, parse_value, set_params
+from matloom.lang.params import Param, Value, list_params, set_params
 from matloom.lang.printer import fmt_num
+
+
+def parse_value(text: str) -> Value:
+    """A value as written on a command line: a number, ``r,g,b`` or ``#rrggbb``."""
+    t = text.strip()
+    if re.fullmatch(r"#[0-9a-fA-F]{6}", t):
+        return (float(int(t[1:3], 16)), float(int(t[3:5], 16)), float(int(t[5:7], 16)))
+    try:
+        if "," in t:
+            parts = [float(x) for x in t.split(",")]
+            if len(parts) != 3:
+                raise ValueError
+            return (parts[0], parts[1], parts[2])
+        return int(t) if re.fullmatch(r"[+-]?\d+", t) else float(t)
+    except ValueError:
+        raise ValueError(f"not a number, r,g,b or #rrggbb: {text!r}") from None
 
 
 def _fail(message: str) -> NoReturn:

@@ -441,22 +441,6 @@ def _program(program: A.Program | str) -> A.Program:
 
 
 # ---------------------------------------------------------------------------- setting
-def parse_value(text: str) -> Value:
-    """A value as written on a command line: a number, ``r,g,b`` or ``#rrggbb``."""
-    t = text.strip()
-    if re.fullmatch(r"#[0-9a-fA-F]{6}", t):
-        return (float(int(t[1:3], 16)), float(int(t[3:5], 16)), float(int(t[5:7], 16)))
-    try:
-        if "," in t:
-            parts = [float(x) for x in t.split(",")]
-            if len(parts) != 3:
-                raise ValueError
-            return (parts[0], parts[1], parts[2])
-        return int(t) if re.fullmatch(r"[+-]?\d+", t) else float(t)
-    except ValueError:
-        raise ValueError(f"not a number, r,g,b or #rrggbb: {text!r}") from None
-
-
 def set_params(program: A.Program | str, values: Mapping[str, Value]) -> tuple[str, list[str]]:
     """Set parameters by address; return the new program text (canonical, comments and names
     kept) and the warnings (one per value clamped into its range).
@@ -470,8 +454,7 @@ def set_params(program: A.Program | str, values: Mapping[str, Value]) -> tuple[s
     return format_program(prog, comments=True), warnings
 
 
-#: What :func:`listing` returns: the parameters and where their literals live.
-Listing = tuple[list[Param], dict[str, "_Site"]]
+Listing = tuple[list[Param], dict[str, "_Site"]]  # the parameters and where their literals are
 
 
 def listing(program: A.Program) -> Listing:

@@ -6,7 +6,8 @@ from __future__ import annotations
 import pytest
 
 import matloom
-from matloom.lang.params import Param, list_params, parse_value, set_params, words
+from matloom.cli.param_cmds import parse_value
+from matloom.lang.params import Param, list_params, set_params, words
 from matloom.lang.parser import parse_source
 
 TEXT = """View(0, 0, 2, 2, unit_m=0.5)
