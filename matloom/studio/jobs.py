@@ -88,7 +88,10 @@ class Job:
     @property
     def busy(self) -> bool:
         """Running, or cancelled but its thread not yet stopped (its work still uses the CPU)."""
-        return self.state == "running" or (self.thread is not None and self.thread.is_alive())
+        if self.state == "running":
+            return True
+        thread = self.thread
+        return self.state == "cancelled" and thread is not None and thread.is_alive()
 
     def emit(self, kind: str, data: dict[str, Any]) -> None:
         """Add an event unless the job is over (a cancelled run's late events are dropped)."""
