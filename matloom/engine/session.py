@@ -14,9 +14,10 @@ The session holds what used to hide in module globals:
   gives a :class:`ColdStart` from :mod:`matloom.runtime.cold_start` that compiles them in a
   background process and keeps ``auto`` on numpy meanwhile;
 * the compile/progress **reporter** (a ``CompileReporter``; None is silent);
-* the evaluation **lock**: the numba kernels are ``parallel=True`` and share one thread pool
-  whose default threading layer is not thread-safe, so callers that evaluate from several
-  threads (the author's batch) serialise their engine work with ``session.lock``;
+* the evaluation **lock** (re-entrant): the numba kernels are ``parallel=True`` and share one
+  thread pool whose default threading layer is not thread-safe, so ``evaluate`` takes it for
+  each evaluation, and callers that run other engine work from several threads (shading,
+  sweeps: the author's batch, the studio) hold it around that work too;
 * **caches** (parsed and seeded programs, bounded LRU per kind) and the warm-up state.
 
 Environment variables are read once, when :meth:`Session.from_env` creates a session (the

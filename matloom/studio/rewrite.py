@@ -11,43 +11,40 @@ edited program (checked).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from matloom.lang import ast as A
 from matloom.lang.diagnostics import NO_SPAN
 from matloom.lang.printer import fmt_num, format_expr, format_program
+from matloom.studio.program import analysed
 from matloom.vocab import CONSTANTS
+
+if TYPE_CHECKING:
+    from matloom.engine.session import Session
 
 
 class _Mismatch(Exception):
     """The two programs differ in more than literal numbers."""
 
 
-def program_text(text: str, before: A.Program, after: A.Program) -> str:
+def program_text(
+    text: str, before: A.Program, after: A.Program, session: Session | None = None
+) -> str:
     """The text of ``after``: ``text`` (whose program is ``before``) with only the changed
-    literals replaced when that is all that changed, else the canonical text with comments."""
-    spliced = spliced_text(text, before, after)
-    if spliced is not None and _parses_to(spliced, after):
-        return spliced
-    return format_program(after, comments=True)
+    literals replaced when that is all that changed, else the canonical text with comments.
 
-
-def spliced_text(text: str, before: A.Program, after: A.Program) -> str | None:
-    """``text`` with the literals that differ between ``before`` (its program) and ``after``
-    replaced, or None when the programs differ in more than literals. Not yet verified: the
-    caller parses the result and compares it with ``after``."""
+    The spliced text is checked to parse back to ``after``; with the studio's ``session`` that
+    analysis stays in its cache, so the requests that follow an edit do not parse it again."""
     try:
         edits = _program_edits(before, after)
     except _Mismatch:
-        return None
-    return _apply(text, edits)
-
-
-def _parses_to(text: str, program: A.Program) -> bool:
-    """Whether ``text`` parses to ``program`` (compared as canonical text, so a named constant
-    and its value count as equal)."""
-    from matloom.lang.parser import parse_source
-
-    parsed, _ = parse_source(text)
-    return parsed is not None and format_program(parsed) == format_program(program)
+        edits = None
+    spliced = _apply(text, edits) if edits is not None else None
+    if spliced is not None:
+        parsed, _ = analysed(spliced, session)
+        if parsed is not None and format_program(parsed) == format_program(after):
+            return spliced
+    return format_program(after, comments=True)
 
 
 def _apply(text: str, edits: list[tuple[int, int, str]]) -> str | None:

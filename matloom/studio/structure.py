@@ -6,7 +6,7 @@ parameter with its registry range), grouped the way the panel shows it: the View
 and the layers (1-based, bottom first), plus the noise seeds (:mod:`matloom.studio.seeds`).
 Edits go through the language's own code -- :func:`matloom.lang.params.set_params` for values,
 the canonical printer with comments for layer moves -- and come back as text that keeps the
-user's comments and names (:func:`matloom.studio.rewrite.spliced_text`).
+user's comments and names (:func:`matloom.studio.rewrite.program_text`).
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ from typing import TYPE_CHECKING, Any
 from matloom.lang import ast as A
 from matloom.lang.params import Param, list_params
 from matloom.lang.printer import format_expr, format_layer, format_program
-from matloom.studio.program import analysed, check_json, checked, diagnostics_json, layer_label
+from matloom.studio.program import check_json, checked, diagnostics_json, layer_label
 from matloom.studio.protocol import ApiError
-from matloom.studio.rewrite import spliced_text
+from matloom.studio.rewrite import program_text
 from matloom.studio.seeds import seed_entries
 
 if TYPE_CHECKING:
@@ -110,12 +110,7 @@ def set_values(text: str, values: dict[str, Any], session: Session | None = None
         edited, warnings = edit_program(before, converted, listed)
     except ValueError as err:
         raise ApiError(400, str(err)) from None
-    spliced = spliced_text(text, before, edited)
-    if spliced is not None:
-        parsed, _ = analysed(spliced, session)
-        if parsed is not None and format_program(parsed) == format_program(edited):
-            return {"text": spliced, "warnings": warnings}
-    return {"text": format_program(edited, comments=True), "warnings": warnings}
+    return {"text": program_text(text, before, edited, session), "warnings": warnings}
 
 
 def layer_op(text: str, op: str, index: int, to: int | None) -> dict[str, Any]:

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from matloom.author.edit.apply import all_params, apply_edit, parse_program
-from matloom.author.edit.lexicon import WIDTH_WORDS, edit_words, split_words, stem
+from matloom.author.edit.lexicon import edit_words, split_words, stem
 from matloom.author.edit.plan import Context, Plan, Value, affects, assign, clamp
 from matloom.author.edit.targets import define_closure, main_colour, mask_names, refs_of
 from matloom.engine.evaluate import evaluate
@@ -305,7 +305,7 @@ def _floored(p: Param, v: float) -> float:
 
 def amount_rule(c: Context) -> Plan | None:
     ws = set(c.words)
-    sizes = c.ew["bigger"] | c.ew["smaller"] | c.ew["denser"] | c.ew["sparser"] | WIDTH_WORDS
+    sizes = c.ew["bigger"] | c.ew["smaller"] | c.ew["denser"] | c.ew["sparser"] | c.ew["width"]
     if ws & (sizes - set(c.vocabulary.amounts)):  # "a little moss" is an amount
         return None  # "bigger chips", "finer cracks": the scale of a feature
     conds = [t for t in c.words if t in c.ew.conditions]

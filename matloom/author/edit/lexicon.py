@@ -11,12 +11,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib.resources import files
 
-#: Width words of a feature that is no joint ("thinner stripes", "wider ribs"): a scale.
-WIDTH_WORDS = frozenset(
-    {"wider", "widen", "broader", "broaden", "thicker", "thicken", "narrower", "thinner"}
-)
-WIDTH_UP = frozenset({"wider", "widen", "broader", "broaden", "thicker", "thicken"})
-
 
 @dataclass(frozen=True)
 class EditWords:

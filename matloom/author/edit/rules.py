@@ -39,8 +39,6 @@ from matloom.author.edit.colours import colour_rule
 from matloom.author.edit.conditions import amount_rule
 from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
 from matloom.author.edit.lexicon import (
-    WIDTH_UP,
-    WIDTH_WORDS,
     EditWords,
     edit_words,
     split_words,
@@ -227,9 +225,9 @@ def _zoom(c: Context, bigger: bool) -> Plan:
 def _scale(c: Context) -> Plan | None:
     ws = set(c.words)
     ew = c.ew
-    if ws & ew["bigger"] or ws & ew["sparser"] or ws & WIDTH_UP:
+    if ws & ew["bigger"] or ws & ew["sparser"] or ws & ew["width_up"]:
         bigger = True
-    elif ws & ew["smaller"] or ws & ew["denser"] or ws & WIDTH_WORDS:
+    elif ws & ew["smaller"] or ws & ew["denser"] or ws & ew["width"]:
         bigger = False
     else:
         return None
@@ -240,7 +238,7 @@ def _scale(c: Context) -> Plan | None:
         for p in c.params
         if p.kind in ("size", "frequency") and not any(k in p.address.lower() for k in joint)
     ]
-    skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | WIDTH_WORDS
+    skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | ew["width"]
     skip |= {"feature", "features", "pattern", "scale", "size"}
     nouns = [t for t in c.nouns if t not in skip]
     # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else

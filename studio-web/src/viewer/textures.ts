@@ -21,6 +21,7 @@ import {
   type Texture,
   type Wrapping,
 } from "three";
+import { PREVIEW_SIZE } from "../live";
 
 /** Fill `dst` (RGBA, rows flipped) from a source of `channels` bytes per pixel. */
 export function packRgba(src: Uint8Array, channels: number, w: number, h: number, dst: Uint8Array): void {
@@ -115,8 +116,6 @@ export function rangeF32(src: Float32Array): Range {
   return { min, max, mean: sum / src.length };
 }
 
-/** The largest first-pass size (live.ts PREVIEW_SIZE): textures up to it get no mipmaps. */
-const FIRST_PASS_MAX = 256;
 
 export class TexturePool {
   private readonly byName = new Map<string, DataTexture[]>();
@@ -190,7 +189,7 @@ export class TexturePool {
     tex.magFilter = LinearFilter;
     // The quick first pass (<= 256 px) skips mipmaps: building them on every update costs more
     // than the draw under software GL, and the full pass that follows has them.
-    const mips = Math.max(w, h) > FIRST_PASS_MAX;
+    const mips = Math.max(w, h) > PREVIEW_SIZE;
     tex.minFilter = mips ? LinearMipmapLinearFilter : LinearFilter;
     tex.generateMipmaps = mips;
     tex.anisotropy = this.maxAnisotropy;
