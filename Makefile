@@ -113,8 +113,8 @@ $(BLENDER_VENV)/.installed:
 	$(BLENDER_VENV)/bin/pip install --quiet bpy==$(BPY_VERSION)
 	touch $@
 
-test-blender: $(VENV)/.installed-fast,llm,test $(BLENDER_VENV)/.installed
-	MATLOOM_BLENDER_PYTHON=$(abspath $(BLENDER_VENV))/bin/python $(PY) -m pytest -q -p no:cacheprovider -m blender tests/blender
+test-blender: $(VENV)/.installed-fast,llm,test,studio $(BLENDER_VENV)/.installed
+	MATLOOM_BLENDER_PYTHON=$(abspath $(BLENDER_VENV))/bin/python $(PY) -m pytest -q -p no:cacheprovider -m blender tests/blender tests/studio/test_api_blender.py
 
 clean:
 	rm -rf $(VENV) $(CLIP_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info
