@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from matloom.lang import ast as A
 from matloom.lang.lexer import as_float
-from matloom.lang.static import is_static, static_number
+from matloom.lang.static import static_number
 from matloom.vocab import CONSTANTS, FUNCTIONS, Kind, ParamSpec, PrintStyle
 from matloom.vocab.spec import format_default
 
@@ -63,7 +63,7 @@ def _static_text(node: A.Node | None, p: ParamSpec) -> str:
         return f'"{node.value}"'
     if isinstance(node, A.Lit):
         return format_expr(node)
-    if p.field and not is_static(node):  # a field expression (X()/Y() included)
+    if p.field and _static_number(node) is None:  # a field expression
         return format_expr(node)
     v = _static_number(node)
     if p.field and v is not None and not math.isfinite(v):  # e.g. Sqrt(-1): keep it parseable
