@@ -51,6 +51,14 @@ def inline_defines(program: A.Program, program_seed: int = 0) -> A.Program:
     for d in program.defines:
         resolved[d.name] = map_expr(d.expr, sub)
     pinned = _pinned_defines(program, sub)
+    if pinned:
+        # A pinned Define stays a reference everywhere, in other Defines' bodies too: written
+        # out in a field parameter there, its X()/Y() would mean the origin value, not a field.
+        resolved.clear()
+        for d in program.defines:
+            resolved[d.name] = map_expr(
+                d.expr, lambda n: n if isinstance(n, A.Ref) and n.name in pinned else sub(n)
+            )
     kept_defines = tuple(
         replace(d, expr=resolved[d.name]) for d in program.defines if d.name in pinned
     )

@@ -316,3 +316,25 @@ def test_inliner_keeps_defines_that_field_parameters_need_per_sample() -> None:
     a = matloom.evaluate(text, 32, 32, backend="numpy").height
     b = matloom.evaluate(out, 32, 32, backend="numpy").height
     assert np.array_equal(a, b)
+
+
+def test_pinned_define_stays_a_reference_inside_other_defines() -> None:
+    """A Define kept for a field parameter stays a reference in other Defines' bodies too:
+    written out inside ``Scale``'s sy there, its Y() would mean the origin value (found by the
+    generated-program property test, seed 5332, and in 16 library entries)."""
+    import numpy as np
+
+    text = (
+        "Define(row, Y())\nDefine(wavy, Scale(Bricks(), 1, row))\n"
+        "Material(Layer(1).height(wavy + Translate(X(), row, 0)))"
+    )
+    inlined = inline_defines(matloom.parse(text))
+    assert [d.name for d in inlined.defines] == ["row"]
+    out = format_program(inlined)
+    assert "Scale(Bricks(), 1, row)" in out
+    a = matloom.evaluate(text, 32, 32, backend="numpy").height
+    b = matloom.evaluate(out, 32, 32, backend="numpy").height
+    assert np.array_equal(a, b)
+    generated = matloom.parse(random_program(5332))
+    inlined = inline_defines(generated)
+    assert matloom.parse(format_program(inlined)) == inlined
