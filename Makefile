@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip tools interop-venv test-interop blender-venv test-blender
+.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics tools interop-venv test-interop blender-venv test-blender
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -20,7 +20,7 @@ demo: $(VENV)/.installed-fast,llm
 studio: $(VENV)/.installed-fast,llm,studio
 	$(VENV)/bin/matloom studio
 
-test: $(VENV)/.installed-fast,llm,test,studio tools
+test: $(VENV)/.installed-fast,llm,test,studio,bench tools
 	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser"
 
 # Rebuild the studio's front end (studio-web/, TypeScript) into matloom/studio/static/ with the
@@ -85,6 +85,22 @@ $(CLIP_VENV)/.installed: pyproject.toml
 test-clip: $(CLIP_VENV)/.installed
 	HF_HUB_OFFLINE=1 $(CLIP_VENV)/bin/python -m pytest -q -p no:cacheprovider -m clip tests/author
 
+# The learned text-image metrics (CLIPScore, BLIPScore, VQAScore): the clip extra plus
+# transformers in one heavy venv, which also runs the clip tests (CI builds only this one).
+METRICS_VENV ?= .venv-metrics
+
+metrics-venv: $(METRICS_VENV)/.installed
+
+$(METRICS_VENV)/.installed: pyproject.toml
+	$(PYTHON) -m venv $(METRICS_VENV)
+	$(METRICS_VENV)/bin/pip install --quiet --upgrade pip
+	$(METRICS_VENV)/bin/pip install --quiet $(TORCH_PINS)
+	$(METRICS_VENV)/bin/pip install --quiet -e ".[fast,llm,test,metrics]" $(TORCH_PINS)
+	touch $@
+
+test-metrics: $(METRICS_VENV)/.installed
+	HF_HUB_OFFLINE=1 TRANSFORMERS_OFFLINE=1 $(METRICS_VENV)/bin/python -m pytest -q -p no:cacheprovider -m "metrics or clip" tests/evaluation tests/author
+
 # Optional interop extra (MaterialX + usd-core): its own venv; `make test` skips these tests.
 INTEROP_VENV ?= .venv-interop
 
@@ -117,4 +133,4 @@ test-blender: $(VENV)/.installed-fast,llm,test,studio $(BLENDER_VENV)/.installed
 	MATLOOM_BLENDER_PYTHON=$(abspath $(BLENDER_VENV))/bin/python $(PY) -m pytest -q -p no:cacheprovider -m blender tests/blender tests/studio/test_api_blender.py
 
 clean:
-	rm -rf $(VENV) $(CLIP_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info
+	rm -rf $(VENV) $(CLIP_VENV) $(METRICS_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info

@@ -24,9 +24,7 @@ import statistics
 from collections import defaultdict
 from pathlib import Path
 
-import numpy as np
-from PIL import Image, ImageDraw
-
+from matloom.evaluation.blind import contact_sheet as _sheet
 from matloom.library import author, load_library
 from matloom.render.api import preview
 
@@ -43,20 +41,6 @@ def _prompts(path: Path) -> list[tuple[str, str, str]]:
         else:
             out.append((item["id"], item.get("source", path.stem), item["text"]))
     return out
-
-
-def _sheet(images: list[np.ndarray], labels: list[str]) -> Image.Image:
-    """Two previews a row, each with its id in a strip above it."""
-    h, w = images[0].shape[:2]
-    strip = 18
-    rows = -(-len(images) // 2)
-    sheet = Image.new("RGB", (2 * w + 8, rows * (h + strip)), (24, 24, 24))
-    draw = ImageDraw.Draw(sheet)
-    for n, (img, label) in enumerate(zip(images, labels, strict=True)):
-        x, y = (n % 2) * (w + 8), (n // 2) * (h + strip)
-        draw.text((x + 4, y + 3), label, fill=(240, 240, 240))
-        sheet.paste(Image.fromarray(img), (x, y + strip))
-    return sheet
 
 
 def pack(out: Path, files: list[Path], size: int, shuffle_seed: int) -> None:

@@ -9,7 +9,7 @@ import json
 import os
 import shutil
 import uuid
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -46,3 +46,21 @@ def commit_cell(root: Path, key: str, write: Callable[[Path], dict[str, Any]]) -
     finally:
         if stage.exists():
             shutil.rmtree(stage, ignore_errors=True)
+
+
+def remove_stale_stages(root: Path, keys: Sequence[str]) -> list[str]:
+    """Remove the staging folders of ``keys`` under ``root`` that attempts which died left
+    behind (a killed worker's half-written cell); return their names. Call it only when no
+    attempt at those keys can still be running (after a run)."""
+    root = Path(root)
+    if not root.is_dir():
+        return []
+    wanted = {f".stage-{key}-" for key in keys}
+    removed = []
+    for child in sorted(root.iterdir()):
+        name = child.name
+        if name.startswith(".stage-") and name[: -8] in wanted and child.is_dir():
+            if not child.is_symlink():
+                shutil.rmtree(child, ignore_errors=True)
+                removed.append(name)
+    return removed

@@ -4,8 +4,8 @@ A metric scores a batch of :class:`Sample` objects and returns, per sample, a ma
 values (one metric may report several: ``seam_ratio.base_color``, ``seam_ratio.max``). Text-image
 metrics report on [0, 100]; material metrics report in their own units (docs/evaluation.md).
 
-Metrics are found by name. Built-ins register themselves when their module is imported
-(:func:`load_builtin_metrics`); other packages add metrics through the entry-point group
+Metrics are found by name (:mod:`.registry`: ``get_metric``, ``metric_names``). Built-ins
+register themselves when their module is imported (``registry.load_builtin_metrics``); other packages add metrics through the entry-point group
 ``matloom.metrics`` whose objects are factories ``factory(name: str, options: dict) -> Metric``.
 A name may carry options after a colon (``clip:ViT-B-32:/path/weights.bin``): the factory of
 the part before the first colon receives the whole name.
@@ -15,11 +15,12 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from importlib import metadata
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
 ENTRY_POINT_GROUP = "matloom.metrics"
+#: family -> factory; filled by :func:`register_metric` (the built-ins at import, as the scorers do).
+FACTORIES: dict[str, MetricFactory] = {}
 
 
 class MetricUnavailableError(RuntimeError):
@@ -64,42 +65,10 @@ class Metric(Protocol):
 
 
 MetricFactory = Callable[[str, Mapping[str, Any]], Metric]
-_FACTORIES: dict[str, MetricFactory] = {}
-_LOADED = False
 
 
 def register_metric(family: str, factory: MetricFactory) -> None:
     """Register ``factory`` for ``family`` and every ``family:...`` name."""
     if not family or ":" in family:
         raise ValueError(f"a metric family is a plain name, not {family!r}")
-    _FACTORIES[family] = factory
-
-
-def load_builtin_metrics() -> None:
-    """Import the built-in metric modules (they register themselves) and the entry points."""
-    global _LOADED  # noqa: PLW0603 - the registry is loaded once per process, like the scorers'
-    if _LOADED:
-        return
-    _LOADED = True
-    from matloom.evaluation.metrics import builtin  # noqa: F401  (registers the built-ins)
-
-    for ep in metadata.entry_points(group=ENTRY_POINT_GROUP):
-        if ep.name not in _FACTORIES:
-            _FACTORIES[ep.name] = ep.load()
-
-
-def metric_names() -> list[str]:
-    """Registered metric families."""
-    load_builtin_metrics()
-    return sorted(_FACTORIES)
-
-
-def get_metric(name: str, options: Mapping[str, Any] | None = None) -> Metric:
-    """A new metric for ``name`` (``family`` or ``family:options``)."""
-    load_builtin_metrics()
-    family = name.split(":", 1)[0]
-    factory = _FACTORIES.get(family)
-    if factory is None:
-        known = ", ".join(sorted(_FACTORIES)) or "none"
-        raise MetricUnavailableError(f"unknown metric {name!r} (metrics: {known})")
-    return factory(name, dict(options or {}))
+    FACTORIES[family] = factory
