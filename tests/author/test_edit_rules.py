@@ -41,6 +41,15 @@ PROGRAMS = {
     "delft": lambda: _entry("delft-blue-tiles-tulip"),
     "concrete": lambda: _entry("polished-concrete"),
     "cobble": lambda: _entry("cobblestone-fan-pattern"),
+    "zellige": lambda: _entry("zellige-glazed-tiles"),
+    "teak": lambda: _entry("teak-deck-caulked"),
+    "flag": lambda: _entry("flagstone"),
+    "copper": lambda: _entry("copper-patina"),
+    "toy": lambda: _entry("toy-brick-stud-baseplate"),
+    "mud": lambda: _entry("muddy-field-puddles"),
+    "croc": lambda: _entry("crocodile"),
+    "hazard": lambda: _entry("hazard-stripes-painted-steel"),
+    "sidewalk": lambda: _entry("sidewalk-slabs-expansion-joints"),
 }
 
 _cache: dict[str, str] = {}
@@ -172,6 +181,58 @@ TABLE: list[tuple[str, str, dict[str, object], dict[str, object]]] = [
     ("brickwall", "3 ft wide", {}, {"unit_m": 0.2286}),
     # unit_m known (0.23 m per unit, 4 units): the window grows x3 (whole, so it still tiles)
     ("rustymoss", "make it 3 m wide", {}, {"window": [0.13, 0.13, 12.13, 12.13]}),
+    # third round (classes of the v3 "no"s): the new colour of a swap, not the old one
+    (
+        "zellige",
+        "swap the emerald glaze for a deep cobalt blue",
+        {"define:glaze": (11, 42, 110)},
+        {},
+    ),
+    # what a clause keeps ("don't touch the glaze") is not edited
+    (
+        "zellige",
+        "take only the grout down to a warm mid grey; don't touch the glaze",
+        {"define:grout": (138, 128, 113)},
+        {},
+    ),
+    # "scale ... up", "double": x2, the tiles' own pattern (whole cells: it tiles)
+    (
+        "zellige",
+        "scale the tiles up, double their size",
+        {"define:tile_edge.Bricks.brick_width": 2.0, "define:pick.Bricks.brick_height": 2.0},
+        {},
+    ),
+    # a colour word on the joint is no colour request when a width word is there; a wider
+    # joint is at least 3.5 pixels of a 192-pixel preview (View 2 units: 0.0365)
+    ("teak", "widen the black caulking seams", {"define:strip.Bricks.mortar": 0.0364583}, {}),
+    ("croc", "widen the grooves between the scales", {"define:bellyEdge.Bricks.mortar": 0.044}, {}),
+    # a noun naming a layer's coverage ("the slabs") recolours that layer's colours
+    ("flag", "make the slabs a cool blue-grey", {"define:base": (87, 101, 165)}, {}),
+    # no parameter draws the flagstones: the View zooms (a material noun, not refused)
+    ("flag", "smaller flagstones", {}, {"window": [0.0, 0.0, 6.0, 6.0]}),
+    ("hazard", "wider stripes", {}, {"window": [0.8, 0.55, 1.3, 1.05]}),
+    # "pull X back": less of the condition (the overlay's cover), not the metal's colour
+    ("copper", "pull the verdigris back", {"define:cover": 0.42}, {}),
+    # the material's own noun ("the baseplate", "the leather", "the mud") is its main colour
+    ("toy", "make the baseplate bright red", {"define:plastic": (249, 17, 23)}, {}),
+    ("croc", "dye the leather oxblood red", {"define:base": (140, 30, 32)}, {}),
+    ("mud", "make the mud a reddish clay brown", {"define:mud": (140, 65, 40)}, {}),
+    # a condition's noun qualified by a property is not "more of it"
+    ("mud", "push the boot prints deeper into the mud", {"define:relief": 2.0}, {}),
+    ("toy", "taller studs", {"define:relief": 2.0}, {}),
+    # a swap's old colour selects the part ("the yellow stripes"); "keep the black" is kept
+    (
+        "hazard",
+        "swap only the yellow stripes for safety orange, keep the black",
+        {"define:yellow": (232, 118, 30)},
+        {},
+    ),
+    (
+        "sidewalk",
+        "lighten the concrete but keep the joints dark",
+        {"define:concrete": (214, 210, 203)},
+        {},
+    ),
 ]
 
 REFUSED: list[tuple[str, str, str]] = [
@@ -237,6 +298,30 @@ def test_already_at_limit_is_refused_not_a_noop() -> None:
     text = program("quick").replace("roughness(0.5)", "roughness(1)")
     with pytest.raises(EditRefused, match="already at the limit"):
         edit_offline(text, "rougher", size=32)
+
+
+@pytest.mark.parametrize(
+    ("name", "request_", "line"),
+    [
+        # no parameter draws the lead came: the edges of its distance threshold move
+        ("leaded", "thicker lead came between the diamonds", "define:came"),
+        # "more flecks": the measured coverage of the flecks' layer
+        ("tweed", "pack in more of the coloured flecks", "define:flecks"),
+    ],
+)
+def test_coverage_by_threshold_edges(name: str, request_: str, line: str) -> None:
+    text = {"leaded": "leaded-diamond-quarry-window", "tweed": "herringbone-tweed"}[name]
+    result = edit_offline(_entry(text), request_, size=32)
+    assert list(result.report.plan["replace"]) == [line]
+    assert result.report.ok and not result.report.plan["assignments"]
+
+
+@pytest.mark.parametrize(
+    "request_", ["drier mud, kill most of the wet shine", "make the mud a reddish clay brown"]
+)
+def test_a_condition_noun_naming_the_material_adds_no_overlay(request_: str) -> None:
+    result = edit_offline(program("mud"), request_, size=32)
+    assert "add" not in result.report.plan and result.report.plan["rule"] != "overlay"
 
 
 def test_physical_size_changes_no_map() -> None:

@@ -20,7 +20,15 @@ from collections.abc import Sequence
 
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
-from matloom.author.edit.targets import main_colour, matching, overlaps, param_words, wanted
+from matloom.author.edit.targets import (
+    layer_colours,
+    main_colour,
+    matching,
+    material_noun,
+    overlaps,
+    param_words,
+    wanted,
+)
 from matloom.lang import ast as A
 from matloom.lang.constants import constant_defines
 from matloom.lang.params import Param
@@ -107,35 +115,77 @@ _OPPOSITE = {"dark": "lighter", "light": "darker", "pale": "richer", "bright": "
 
 
 # ---- reading the request ---------------------------------------------------------------------
-def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]]:
+def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
+    """The named colours of the request: (index, word count, colour, an ``-ish`` form)."""
+    w = c.vocabulary
+    ws = c.words
+    out: list[tuple[int, int, RGB, bool]] = []
+    taken: set[int] = set()
+    for n in (3, 2):
+        for i in range(len(ws) - n + 1):
+            span = set(range(i, i + n))
+            if not span & taken and " ".join(ws[i : i + n]) in w.phrases:
+                out.append((i, n, w.phrases[" ".join(ws[i : i + n])], False))
+                taken |= span
+    for i, t in enumerate(ws):
+        if i in taken:
+            continue
+        word = w.ish.get(t, t) if t.endswith("ish") else t
+        if word in w.named and word not in c.ew.conditions and word not in _NOT_COLOURS:
+            out.append((i, 1, w.named[word], word != t))
+    return sorted(out)
+
+
+#: Material words that are also colour names: a noun before a colour, not the colour.
+_NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
+#: Words after which a colour is the new one ("swap the emerald glaze for cobalt"), and before
+#: which it is the old one ("instead of charcoal").
+_TO_WORDS = frozenset({"for", "with", "to", "into"})
+
+
+def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
+    la, lb = to_lab(a), to_lab(b)
+    return from_lab(tuple(x + (y - x) * t for x, y in zip(la, lb, strict=True)))  # type: ignore[arg-type]
+
+
+def _colour_in(
+    c: Context,
+) -> tuple[RGB | None, str | None, str | None, set[int], RGB | None]:
     """The named colour, the tone word (``tone`` an absolute tone of the library, a comparative
-    of ``words.toml``) and the word indices used."""
+    of ``words.toml``), the word indices used, and the old colour a swap names ("swap the
+    yellow for orange", "navy instead of charcoal": it selects the part to recolour)."""
     w = c.vocabulary
     ws = c.words
     used: set[int] = set()
     rgb: RGB | None = None
-    for n in (3, 2):
-        for i in range(len(ws) - n + 1):
-            phrase = " ".join(ws[i : i + n])
-            if rgb is None and phrase in w.phrases:
-                rgb, used = w.phrases[phrase], set(range(i, i + n))
-    if rgb is None:
-        for i, t in enumerate(ws):
-            if (
-                t in w.named
-                and t not in c.ew.conditions
-                and t not in ("sand", "stone", "slate", "metal")
-            ):
-                if flipped(ws, i, c.ew["flip"]):  # "less beige": not a colour to paint
-                    used.add(i)
-                    continue
-                rgb, used = w.named[t], used | {i}
-                nxt = ws[i + 1] if i + 1 < len(ws) else ""
-                if nxt in w.named and nxt not in c.ew.conditions:  # "purple brown": the mix
-                    a, b = to_lab(rgb), to_lab(w.named[nxt])
-                    rgb = from_lab(tuple((x + y) / 2 for x, y in zip(a, b, strict=True)))  # type: ignore[arg-type]
-                    used.add(i + 1)
-                break
+    source: RGB | None = None
+    found = []
+    for i, n, value, ish in _named_at(c):
+        if flipped(ws, i, c.ew["flip"]):  # "less beige": not a colour to paint
+            used.add(i)
+            continue
+        found.append((i, n, value, ish))
+    if found:
+        # a colour before "for/with/to/into" or after "instead of" is the one to replace
+        old = [
+            f
+            for f in found
+            if (f[0] >= 2 and ws[f[0] - 2 : f[0]] == ["instead", "of"])
+            or any(t in _TO_WORDS for t in ws[f[0] + f[1] :])
+            and any(g[0] > f[0] and set(ws[f[0] + f[1] : g[0]]) & _TO_WORDS for g in found)
+        ]
+        new = [f for f in found if f not in old] or found
+        if old and new is not found:
+            source = old[0][2]
+            for f in old:
+                used |= set(range(f[0], f[0] + f[1]))
+        i, n, rgb, ish = new[0]
+        used |= set(range(i, i + n))
+        rest = [f for f in new[1:] if f[0] <= i + n + 2]
+        if rest and rest[0][0] == i + n or (ish and rest):  # "purple brown", "reddish clay
+            j, m, other, _ = rest[0]  # brown": the mix (an -ish colour a third of it)
+            rgb = _mix(rgb, other, 0.67 if ish else 0.5)
+            used |= set(range(j, j + m))
     tone: str | None = None
     comparative_word: str | None = None
     for i, t in enumerate(ws):
@@ -157,7 +207,7 @@ def _colour_in(c: Context) -> tuple[RGB | None, str | None, str | None, set[int]
             tone = t
             used.add(i)
             break
-    return rgb, tone, comparative_word, used
+    return rgb, tone, comparative_word, used, source
 
 
 #: Address prefix of a derived colour slot (:func:`_derived`): set by rewriting its lines.
@@ -211,6 +261,14 @@ def _targets(
     derived = _derived(c, nouns)
     if derived:
         return derived
+    if nouns and comparative_all and material_noun(c, nouns):  # "greyer gravel": the material
+        joint = c.ew.nouns["joint"]  # itself, every colour but the joints'
+        return [p for p in colours if not overlaps(param_words(p, c.program, c.ew), joint)]
+    layered = layer_colours(c, colours, nouns)
+    if layered:  # "the slabs": the colours of the layer the slab mask draws
+        return layered
+    if material_noun(c, nouns):  # "dye the leather", "the baseplate": the material itself
+        return [main_colour(colours, c.program, c.ew)]
     named_elsewhere = matching(c.params, nouns, c.program, c.ew) if nouns else []
     if named_elsewhere or any(n in c.vocabulary.roles for n in nouns):
         raise c.refuse(f"no colour parameter named like {' '.join(nouns)!r}", colours)
@@ -244,7 +302,7 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
 
 
 def colour_rule(c: Context) -> Plan | None:
-    rgb, tone, comp, used = _colour_in(c)
+    rgb, tone, comp, used, source = _colour_in(c)
     if rgb is None and tone is None and comp is None:
         return None
     colours = [p for p in c.params if p.kind == "colour"]
@@ -265,6 +323,9 @@ def colour_rule(c: Context) -> Plan | None:
             targets = chosen[:1] if not nouns else chosen
         else:
             targets = _targets(c, colours, nouns)
+    elif source is not None and not matching(colours, nouns, c.program, c.ew):
+        # "swap the yellow for orange": the part that is yellow now
+        targets = _select(c, source, colours)[:1] or _targets(c, colours, nouns)
     else:
         targets = _targets(c, colours, nouns, comparative_all=rgb is None and step is not None)
     primary = targets[0]

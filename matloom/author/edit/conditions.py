@@ -21,7 +21,7 @@ from __future__ import annotations
 import functools
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -163,13 +163,26 @@ def _shift(c: Context, cand: _Candidate, mask: A.Node, now: float, goal: float):
     return best
 
 
-def _measured(c: Context, index: int, more: bool, word: str) -> Plan | None:
+def _measured(
+    c: Context,
+    index: int,
+    more: bool,
+    word: str,
+    grow: tuple[float, float] | None = None,
+    prefer: Sequence[str] = (),
+) -> Plan | None:
+    """The coverage of layer ``index`` grown (or shrunk) to its goal by moving a parameter it
+    depends on, else by shifting the edges of a ``Smoothstep`` of numbers in a Define it reads
+    (those named like ``prefer`` first: "thicker came" moves ``came``'s threshold). ``joint``:
+    ``grow``: the coverage factor and least change when not a condition's (a joint's width
+    x1.6, at least +0.03; more of a part x2, at least +0.05)."""
     mask = c.program.layers[index].alpha
     assert mask is not None
     now = _coverage(c.program, mask)
     k = c.k
+    factor, least = grow or (c.ew.f("cover_more"), c.ew.f("cover_min"))
     if more:
-        goal = min(0.95, max(now * c.ew.f("cover_more") ** k, now + c.ew.f("cover_min") * k))
+        goal = min(0.95, max(now * factor**k, now + least * k))
         if now >= 0.93:
             raise c.refuse(f"the {word} covers {now:.0%} already")
     else:
@@ -182,6 +195,86 @@ def _measured(c: Context, index: int, more: bool, word: str) -> Plan | None:
             note = f"{'more' if more else 'less'} {word}: coverage {now:.0%} -> {best[1]:.0%}"
             new: dict[Param, Value] = dict(zip(cand.params, best[0], strict=True))
             return assign(c, "amount", note, new, affects(cand.params), graded=True)
+    for name, lines in _edge_shifts(c, index, prefer):
+        best_lines = None
+        for text in lines:
+            try:
+                program = parse_program(apply_edit(c.program, {}, None, text)[0])
+                cov = _coverage(program, mask)
+            except ValueError:
+                continue
+            if (cov - now) * (goal - now) > 0 and (
+                best_lines is None or abs(cov - goal) < abs(best_lines[1] - goal)
+            ):
+                best_lines = (text, cov)
+        if best_lines is not None and abs(best_lines[1] - now) >= 0.5 * abs(goal - now):
+            note = (
+                f"{'more' if more else 'less'} {word}: coverage {now:.0%} -> {best_lines[1]:.0%}"
+                f" (the edges of {name}'s threshold moved)"
+            )
+            # a coverage moves every channel the layer writes
+            return Plan("amount", note, lines=best_lines[0], intended=("alpha",), graded=False)
+    return None
+
+
+def _number(v: float) -> A.Node:
+    v = float(f"{v:.4g}")
+    return A.Num(v) if v >= 0 else A.Neg(A.Num(-v))
+
+
+def _edge_shifts(
+    c: Context, index: int, prefer: Sequence[str]
+) -> list[tuple[str, list[dict[str, str]]]]:
+    """For each Define the layer's coverage reads that is a ``Smoothstep`` with two number
+    edges (named like ``prefer`` first): the line rewritten with both edges shifted, by a
+    growing share of their scale each way."""
+    closure = define_closure(c.program)
+    names = refs_of(c.program.layers[index].alpha, closure)
+    want = {stem(w) for w in prefer}
+    out = []
+    for d in c.program.defines:
+        e = d.expr
+        if d.name not in names or not (isinstance(e, A.Call) and e.func == "Smoothstep"):
+            continue
+        edges = [a.value for a in e.args[:2]]
+        if len(e.args) < 3 or not all(isinstance(x, A.Num) for x in edges):
+            continue
+        lo, hi = (float(x.value) for x in edges)  # type: ignore[union-attr]
+        span = max(abs(hi - lo) * 2, 0.5 * max(abs(lo), abs(hi)), 0.01)
+        variants = []
+        for f in (0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0):
+            for sign in (1, -1):
+                dv = sign * f * span
+                args = (
+                    replace(e.args[0], value=_number(lo + dv)),
+                    replace(e.args[1], value=_number(hi + dv)),
+                    *e.args[2:],
+                )
+                variants.append(
+                    {f"define:{d.name}": f"Define({d.name}, {format_expr(replace(e, args=args))})"}
+                )
+        out.append((d.name, variants))
+    out.sort(key=lambda x: not (split_words(x[0]) & want))
+    return out
+
+
+def measured_layer(
+    c: Context, nouns: Sequence[str], more: bool, joint: bool = False
+) -> Plan | None:
+    """More or less of the layer (above the first) whose coverage a noun names ("more flecks",
+    "thicker came"), measured."""
+    want = {stem(n) for n in nouns}
+    if not want:
+        return None
+    for i, layer in enumerate(c.program.layers):
+        if i == 0 or layer.alpha is None:
+            continue
+        names = [n for n in mask_names(layer.alpha) if split_words(n) & want]
+        if names:
+            grow = (1.6, 0.03) if joint else (2.0, 0.05)
+            plan = _measured(c, i, more, names[0], grow, prefer=names)
+            if plan is not None:
+                return plan
     return None
 
 
@@ -315,9 +408,14 @@ def amount_rule(c: Context) -> Plan | None:
     else:
         found = _trigger_word(c)
         if found is None:
-            return None
+            return _more_of_layer(c)
         word, stems = found
-    more = bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
+    asked = _direction(c, word)
+    if asked is None and _property_word(c, word):
+        # "drier mud", "a reddish mud", "prints deeper into the mud": the condition's noun
+        # names the material (or a part) whose property changes, not more of the condition
+        return None
+    more = asked if asked is not None else bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
     found = _labelled(c, stems) or _overlay_covers(c, stems)
     if found:
         step = c.ew.f("amount_step") * c.k * (1 if more else -1)
@@ -342,3 +440,52 @@ def amount_rule(c: Context) -> Plan | None:
     if plan is None:
         raise c.refuse(f"no {word} amount in this program and no library overlay for it")
     return plan
+
+
+def _direction(c: Context, word: str) -> bool | None:
+    """More (True) or less (False) when a direction word stands just before the condition's
+    word ("less verdigris", "add some moss", "heavier grime"), else None."""
+    ws = c.words
+    i = ws.index(word)
+    near = ws[max(0, i - 3) : i]
+    for t in reversed(near):
+        if _is_property(c, t):
+            return None  # "more purple-brown patina": "more" of a colour
+        if t in c.ew["less"]:
+            return False
+        if t in c.ew["more"] or t in c.vocabulary.amounts:
+            return True
+    return None
+
+
+def _property_word(c: Context, word: str) -> bool:
+    """Whether the request names a property of something (a colour, a finish, a relief), other
+    than the condition's word itself."""
+    return any(t != word and _is_property(c, t) for t in c.words)
+
+
+def _is_property(c: Context, t: str) -> bool:
+    w = c.vocabulary
+    base = w.ish.get(t, t) if t.endswith("ish") else t
+    return (
+        base in w.named
+        or t in c.ew.comparative
+        or t in c.ew.towards
+        or t in c.ew.finish
+        or t in c.ew.relief
+        or t in ("colour", "color", "hue", "tint")
+    )
+
+
+def _more_of_layer(c: Context) -> Plan | None:
+    """ "more flecks", "fewer gum spots": the measured coverage of the layer a noun names."""
+    ws = set(c.words)
+    more = bool(ws & (c.ew["more"] | {"pack"}))
+    less = bool(ws & (c.ew["less"] | c.ew["sparser"]))
+    if more == less or _property_word(c, "") or any(c.ew.channel_of(t) for t in ws):
+        return None  # "less shiny tiles", "more blue", "more sheen": another rule's
+    if ws & (set(c.ew.relief_nouns) | set(c.ew.relief) | {"rough", "roughness", "gloss"}):
+        return None
+    skip = c.ew["more"] | c.ew["less"] | set(c.ew.relief_nouns) | set(c.ew.channels)
+    nouns = [t for t in c.nouns if t not in skip and t not in c.ew.finish]
+    return measured_layer(c, nouns, more)

@@ -36,7 +36,7 @@ from collections.abc import Callable, Sequence
 
 from matloom.author.edit.apply import apply_edit, parse_program
 from matloom.author.edit.colours import colour_rule
-from matloom.author.edit.conditions import amount_rule
+from matloom.author.edit.conditions import amount_rule, measured_layer
 from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
 from matloom.author.edit.lexicon import (
     EditWords,
@@ -56,6 +56,7 @@ from matloom.author.edit.plan import (
 )
 from matloom.author.edit.targets import (
     coverage_params,
+    material_noun,
     named_in_program,
     overlaps,
     own_words,
@@ -150,6 +151,13 @@ def _physical(c: Context) -> Plan | None:
 
 
 # ---- joints ----------------------------------------------------------------------------------
+#: Words that ask for a width whatever colour the joint is ("widen the black seams").
+_WIDTH_VERBS = frozenset(
+    {"widen", "wider", "broaden", "broader", "thicken", "thicker", "narrow", "narrower", "thin",
+     "thinner", "tighten", "tighter"}
+)  # fmt: skip
+
+
 def _joint_params(c: Context) -> list[Param]:
     found = [
         p
@@ -182,12 +190,18 @@ def _joints(c: Context) -> Plan | None:
     size = _SIZE_RE.search(c.request.lower())
     if not (c.ew["joint"] & ws) or not ((c.ew["wider"] | c.ew["narrower"]) & ws or size):
         return None
-    if ws & set(c.ew.comparative) or any(t in c.vocabulary.named for t in ws):
-        return None  # "darker grout", "white mortar": a colour
-    if ws & (set(c.ew.relief_nouns) | set(c.ew.relief)):
+    if ws & set(c.ew.comparative):
+        return None  # "darker grout": a colour
+    if any(t in c.vocabulary.named for t in ws) and not ws & _WIDTH_VERBS:
+        return None  # "white mortar" is a colour; "widen the black seams" a width
+    if ws & ((set(c.ew.relief_nouns) - c.ew["joint"]) | set(c.ew.relief)):
         return None  # "stones further out from the mortar, more relief": the relief
     found = _joint_params(c)
     if not found:
+        wider = bool(c.ew["wider"] & ws)
+        plan = measured_layer(c, [t for t in c.words if t in c.ew["joint"]], wider, joint=True)
+        if plan is not None:  # lead came drawn by a distance threshold: its coverage
+            return plan
         raise c.refuse("no joint (mortar, grout, gap) width parameter")
     unit_m = c.program.unit_m
     if size is not None and unit_m:  # "5 mm grout": the width itself, in the View's units
@@ -199,6 +213,10 @@ def _joints(c: Context) -> Plan | None:
     wider = bool(c.ew["wider"] & ws)
     factor = c.ew.f("joint") ** (c.k if wider else -c.k)
     new = {p: scaled(p, factor) for p in found}
+    if wider:  # at least a few preview pixels wide, or a thin joint still reads as a line
+        x1, _, x2, _ = _window(c.program)
+        least = c.ew.f("joint_px") * c.k * abs(x2 - x1) / c.ew.f("preview_px")
+        new = {p: clamp(p, max(float(v), least)) if p.kind == "size" else v for p, v in new.items()}
     word = "wider" if wider else "narrower"
     return assign(c, "joints", f"joints {word} (x{factor:.3g})", new, affects(found))
 
@@ -231,7 +249,9 @@ def _scale(c: Context) -> Plan | None:
         bigger = False
     else:
         return None
-    size_f = ew.f("size") ** (c.k if bigger else -c.k)
+    # "double their size", "twice as wide", "half the width": x2 (else the words' step)
+    step = 2.0 if ws & {"double", "twice", "half", "halve", "doubled"} else ew.f("size")
+    size_f = step ** (c.k if bigger else -c.k)
     joint = ("mortar", "grout", "gap", "joint", "feather", "seam", "gutter")
     scalable = [
         p
@@ -252,7 +272,7 @@ def _scale(c: Context) -> Plan | None:
             f"no parameter draws the {' '.join(nouns)} (their number cannot change without "
             "changing their size)"
         )
-    if not targets and nouns and not _drawn(c, nouns):
+    if not targets and nouns and not _drawn(c, nouns) and not _known(c, nouns):
         raise c.refuse(f"nothing in the program is named like {' '.join(nouns)!r}")
     if not targets:
         # no parameter draws the named feature (hexagons drawn from constants), or no noun:
@@ -273,6 +293,12 @@ def _drawn(c: Context, nouns: Sequence[str]) -> bool:
         return True
     called = {n.func for d in c.program.defines for n in A.walk(d.expr) if isinstance(n, A.Call)}
     return any(overlaps(split_words(f), wanted(nouns, c.ew)) for f in called)
+
+
+def _known(c: Context, nouns: Sequence[str]) -> bool:
+    """Whether a noun names the material or a feature of a pattern (a material word, a noun
+    family, a part role such as "stripes"): with no parameter for it, the View zooms."""
+    return material_noun(c, nouns) or any(n in c.vocabulary.roles for n in nouns)
 
 
 def _with_copies(targets: list[Param], scalable: Sequence[Param]) -> list[Param]:
@@ -315,10 +341,32 @@ def _tiling_sizes(c: Context, targets: list[Param], size_f: float) -> dict[Param
     return at(size_f)
 
 
-#: A clause naming what an edit must leave alone ("but keep the tiles white").
+#: A clause naming what an edit must leave alone ("but keep the tiles white", "don't touch
+#: the glaze", "except the joints").
 _KEEP_RE = re.compile(
-    r"[,;]?\s*\b(?:but|while|and)?\s*(?:keep|keeping|leave|leaving)\b.*$", re.IGNORECASE
+    r"[,;:]?\s*\b(?:but|while|and)?\s*(?:keep|keeping|leave|leaving|don'?t\s+touch|"
+    r"do\s+not\s+touch|without\s+touching|not\s+touching|except)\b.*$",
+    re.IGNORECASE,
 )
+
+#: Phrasal verbs read as the rules' words: "pull the verdigris back" is less verdigris, "scale
+#: the tiles up" bigger tiles.
+_PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+    (re.compile(r"\b(?:pull|cut|dial|roll|hold|push)\s+((?:the\s+)?\w+)\s+back\b"), r"less \1"),
+    (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?up\b"), r"bigger \1"),
+    (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?down\b"), r"smaller \1"),
+    (re.compile(r"\bscale\s+up\b"), "bigger"),
+    (re.compile(r"\bscale\s+down\b"), "smaller"),
+)
+
+
+def normalise(request: str) -> str:
+    """The request with what it keeps cut off and its phrasal verbs read as plain words."""
+    asked = _KEEP_RE.sub("", request) or request
+    asked = asked.lower()
+    for pattern, repl in _PHRASES:
+        asked = pattern.sub(repl, asked)
+    return asked
 
 
 #: The rules, in the order they are tried.
@@ -345,7 +393,7 @@ def plan_edit(
     """The offline plan for ``request`` on ``program`` (its parameter list ``params``), its
     steps times ``strength``. Raises :class:`EditRefused` when no rule maps the request."""
     # "charcoal grout but keep the tiles white": what is to be kept is not what is to change
-    asked = _KEEP_RE.sub("", request) or request
+    asked = normalise(request)
     c = Context(
         request, tokens(asked), list(params), program, words(), strength, ew or edit_words()
     )

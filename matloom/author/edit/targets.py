@@ -9,11 +9,15 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 from matloom.author.edit.lexicon import EditWords, split_words, stem
 from matloom.lang import ast as A
 from matloom.lang.params import Param
 from matloom.vocab import FUNCTIONS
+
+if TYPE_CHECKING:
+    from matloom.author.edit.plan import Context
 
 #: Address parts that are structure, not names.
 _STRUCTURAL = frozenset({"define", "layer", "colour"})
@@ -253,3 +257,42 @@ def main_colour(colours: Sequence[Param], program: A.Program, ew: EditWords) -> 
         if n and n <= len(program.layers) and isinstance(program.layers[n - 1].alpha, A.Ref):
             return p
     return plain[0]
+
+
+def layer_colours(c: Context, colours: Sequence[Param], nouns: Sequence[str]) -> list[Param]:
+    """The colours of the layers (above the first) whose coverage a noun names ("the slabs" is
+    the layer ``Layer(slab)``): those that feed the layer's channels, not the joints'."""
+    want = wanted(nouns, c.ew)
+    if not want:
+        return []
+    layers = {
+        i
+        for i in range(1, len(c.program.layers))
+        if overlaps(
+            {w for n in mask_names(c.program.layers[i].alpha) for w in split_words(n)}, want
+        )
+    }
+    if not layers:
+        return []
+    joint = c.ew.nouns["joint"]
+    return [
+        p
+        for p in colours
+        if param_layers(p, c.program) & layers
+        and not overlaps(param_words(p, c.program, c.ew), joint)
+    ]
+
+
+#: Names a material's main part goes by ("the baseplate", "the body").
+_MAIN_PARTS = ("base", "body", "main", "ground")
+
+
+def material_noun(c: Context, nouns: Sequence[str]) -> bool:
+    """Whether a noun names the material itself (a material word of the library, a noun
+    family of ``words.toml`` but the joints', "base..."), not a part it may lack ("the
+    hinges", "the topstitching")."""
+    materials = {stem(m) for m in c.vocabulary.materials}
+    families = set().union(*(v for k, v in c.ew.nouns.items() if k != "joint"))
+    return any(
+        stem(n) in materials or stem(n) in families or n.startswith(_MAIN_PARTS) for n in nouns
+    )
