@@ -116,6 +116,10 @@ class AuthorConfig(BaseModel):
     #: Take the N-th candidate of the library's ranking (1 = the best) instead of the best,
     #: wherever the library writes P0 (``--pick``); ``None`` takes the best.
     pick: int | None = Field(None, ge=1)
+    #: User library folders (resolved paths, a later one wins) whose entries the library
+    #: ranks with its own wherever it writes P0 (``--library``, ``$MATLOOM_LIBRARY_PATH``;
+    #: :func:`matloom.library.user.library_for`); empty: the built-in entries only.
+    library_dirs: tuple[str, ...] = ()
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS

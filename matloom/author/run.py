@@ -437,11 +437,13 @@ def append_library_program(run: Run) -> ProgramRecord:
     from matloom.lang.printer import format_program
     from matloom.lang.seeds import canonicalize_seeds
     from matloom.library import author
+    from matloom.library.user import library_for
 
     start = time.perf_counter()
+    lib = library_for(run.config.library_dirs)  # a bad user entry: LibraryError, one line
     try:
         result = author(
-            run.record.prompt, seed=run.config.seed, pick=run.config.pick, tileable=True
+            run.record.prompt, seed=run.config.seed, pick=run.config.pick, tileable=True, lib=lib
         )
     except ValueError as err:  # only a pick past the candidates
         raise PickError(str(err)) from None

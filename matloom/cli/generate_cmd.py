@@ -130,8 +130,11 @@ def generate_cmd(
         if prompt is not None:
             check_prompt(prompt)
         base = _resumed_settings(out_dir) if resume and not prompts_file else None
-        config = build_config(ctx.params, given, base, trust_record=trust_record)
+        config = build_config(
+            ctx.params, given, base, trust_record=trust_record, library_env=_library_env()
+        )
         check_sizes(config)
+        _user_library(config)
     except (ConfigError, ValueError) as err:
         raise click.ClickException(one_line(err)) from None
     if prompt is None and prompts_file is None and base is None:
@@ -191,13 +194,30 @@ def _say_model_access(
         click.echo(f"matloom: {describe_access('critic', config.critic)}", err=True)
 
 
+def _library_env() -> str | None:
+    """``$MATLOOM_LIBRARY_PATH`` (read here, once, and passed down)."""
+    import os
+
+    from matloom.library.user import ENV
+
+    return os.environ.get(ENV)
+
+
+def _user_library(config: AuthorConfig) -> Any:
+    """The library the run draws from (with the user folders' entries), read before anything
+    is written: a bad user entry is a one-line error naming its file."""
+    from matloom.library.user import library_for
+
+    return library_for(config.library_dirs)
+
+
 def _check_pick(prompt: str, config: AuthorConfig) -> None:
     """Refuse a --pick past the library's candidates before anything is written."""
     if config.pick is None or (config.generator is not None and config.start != "library"):
         return
     from matloom.library import search
 
-    count = len(search(prompt))
+    count = len(search(prompt, _user_library(config)))
     if config.pick > count:
         found = f"only {count} candidate{'s' if count != 1 else ''}" if count else "no entry"
         raise click.ClickException(

@@ -151,11 +151,14 @@ def build_config(
     base: AuthorConfig | None = None,
     *,
     trust_record: bool = False,
+    library_env: str | None = None,
 ) -> AuthorConfig:
     """The frozen config: the defaults (or ``base``, a resumed run's settings), then the
     settings preset (``--settings`` or matloom.toml's default), then the explicit flags; model
     access comes from the profile and model flags, and from ``base`` only as far as the user
-    confirms it (:func:`matloom.author.resume.resumed_access`)."""
+    confirms it (:func:`matloom.author.resume.resumed_access`). The user library folders are
+    ``library_env``'s (the value of ``$MATLOOM_LIBRARY_PATH``, for a new run) then ``--library``'s;
+    a resumed run keeps its recorded ones unless ``--library`` is given."""
     from matloom.author.resume import AccessFlags, resumed_access
 
     recorded = base
@@ -164,6 +167,11 @@ def build_config(
     update: dict[str, Any] = {
         field: params[flag] for flag, field in _CONFIG_FLAGS.items() if flag in given
     }
+    if "library_dirs" in given or (recorded is None and library_env):
+        from matloom.library.user import library_dirs
+
+        env = library_env if recorded is None else None
+        update["library_dirs"] = tuple(str(d) for d in library_dirs(params["library_dirs"], env))
     generator = _generator_settings(params, given, base.generator)
     critic = _critic_settings(params, given, generator, base.critic)
     data = {**base.model_dump(), **preset, **update, "generator": generator, "critic": critic}
@@ -246,6 +254,15 @@ def pipeline_options(f: Any) -> Any:
             default=None,
             help="Take the N-th library candidate instead of the best (see --explain for the "
             "ranking); wherever the library writes the program.",
+        ),
+        click.option(
+            "--library",
+            "library_dirs",
+            multiple=True,
+            type=click.Path(file_okay=False),
+            help="A user library folder (repeatable), after those of $MATLOOM_LIBRARY_PATH: "
+            "its entries are ranked with the built-in ones wherever the library writes the "
+            "program (docs/library.md).",
         ),
         click.option("--rounds", type=int, default=d.rounds, show_default=True),
         click.option(

@@ -155,8 +155,16 @@ def author(
         overlay_notes=[u.note for u in composed.overlays],
         absorbed=[f"{n} (amount {a:g})" for n, a in fitted.absorbed],
         ignored=_ignored(reading, used, w.stop_words) + [*adapted.unused, *fitted.foreign],
-        notes=[*choice.notes, *fitted.notes, *tiling.notes, *composed.notes],
+        notes=[*_origin(lib, entry.name), *choice.notes, *fitted.notes, *tiling.notes]
+        + list(composed.notes),
     )
+
+
+def _origin(lib: Library, name: str) -> list[str]:
+    """Where a user library's entry came from (nothing for a built-in one)."""
+    if name not in lib.sources:
+        return []
+    return [f"entry from the user library {lib.sources[name]}"]
 
 
 def _ignored(req: Request, used: set[int], stop: frozenset[str]) -> list[str]:

@@ -21,6 +21,8 @@ from matloom.library.overlay import OVERLAY_DIR, Overlay, load_overlay
 from matloom.library.retrieval import Index
 
 ENTRY_DIR = Path(__file__).resolve().parent / "entries"
+#: :meth:`Library.source` of the installed entries
+BUILTIN = "built-in"
 
 
 @dataclass
@@ -30,6 +32,17 @@ class Library:
     entries: dict[str, Entry]
     overlays: dict[str, Overlay]
     _asts: dict[str, A.Program] = field(default_factory=dict, repr=False)
+    #: entry name -> the user library folder it came from (built-in entries are not listed;
+    #: :mod:`matloom.library.user`)
+    sources: dict[str, str] = field(default_factory=dict)
+    #: entry name -> the file of the entry it replaced (a built-in or an earlier folder's)
+    replaced: dict[str, str] = field(default_factory=dict)
+    #: what a user library folder held that was not read, one line each (symlinks out of it)
+    skipped: tuple[str, ...] = ()
+
+    def source(self, name: str) -> str:
+        """Where entry ``name`` came from: ``built-in`` or its user library folder."""
+        return self.sources.get(name, BUILTIN)
 
     def entry(self, name: str) -> Entry:
         """The entry called ``name``; KeyError naming close matches when there is none."""
