@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics tools interop-venv test-interop blender-venv test-blender
+.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics dask-venv test-dask tools interop-venv test-interop blender-venv test-blender
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -101,6 +101,21 @@ $(METRICS_VENV)/.installed: pyproject.toml
 test-metrics: $(METRICS_VENV)/.installed
 	HF_HUB_OFFLINE=1 TRANSFORMERS_OFFLINE=1 $(METRICS_VENV)/bin/python -m pytest -q -p no:cacheprovider -m "metrics or clip" tests/evaluation tests/author
 
+# Optional dask extra (dask.distributed + pyarrow): `matloom dataset` and `bench` on a Dask
+# cluster, tested on a real LocalCluster in its own venv; `make test` skips these tests.
+DASK_VENV ?= .venv-dask
+
+dask-venv: $(DASK_VENV)/.installed
+
+$(DASK_VENV)/.installed: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
+	$(PYTHON) -m venv $(DASK_VENV)
+	$(DASK_VENV)/bin/pip install --quiet --upgrade pip
+	$(DASK_VENV)/bin/pip install --quiet -e ".[fast,llm,test,dask]"
+	touch $@
+
+test-dask: $(DASK_VENV)/.installed
+	$(DASK_VENV)/bin/python -m pytest -q -p no:cacheprovider -m dask tests/evaluation
+
 # Optional interop extra (MaterialX + usd-core): its own venv; `make test` skips these tests.
 INTEROP_VENV ?= .venv-interop
 
@@ -133,4 +148,4 @@ test-blender: $(VENV)/.installed-fast,llm,test,studio $(BLENDER_VENV)/.installed
 	MATLOOM_BLENDER_PYTHON=$(abspath $(BLENDER_VENV))/bin/python $(PY) -m pytest -q -p no:cacheprovider -m blender tests/blender tests/studio/test_api_blender.py
 
 clean:
-	rm -rf $(VENV) $(CLIP_VENV) $(METRICS_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info
+	rm -rf $(VENV) $(CLIP_VENV) $(METRICS_VENV) $(DASK_VENV) $(INTEROP_VENV) $(BLENDER_VENV) $(TOOLS) $(DEMO_OUT) build *.egg-info

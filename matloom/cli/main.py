@@ -28,6 +28,7 @@ COMMANDS: dict[str, str] = {
     "blender": "matloom.cli.blender_cmd:blender_cmd",
     "library": "matloom.cli.library_cmd:library_cmd",
     "studio": "matloom.cli.studio_cmd:studio_cmd",
+    "dataset": "matloom.cli.dataset_cmd:dataset_cmd",
     "bench": "matloom.cli.bench_cmd:bench_cmd",
 }
 
@@ -44,6 +45,8 @@ EXTRAS: dict[str, str] = {
     "open_clip": "clip",
     "starlette": "studio",
     "uvicorn": "studio",
+    "distributed": "dask",
+    "pyarrow": "dask",
     "scipy": "bench",
     "matplotlib": "bench",
 }

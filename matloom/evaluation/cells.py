@@ -59,7 +59,7 @@ def remove_stale_stages(root: Path, keys: Sequence[str]) -> list[str]:
     removed = []
     for child in sorted(root.iterdir()):
         name = child.name
-        if name.startswith(".stage-") and name[: -8] in wanted and child.is_dir():
+        if name.startswith(".stage-") and name[:-8] in wanted and child.is_dir():
             if not child.is_symlink():
                 shutil.rmtree(child, ignore_errors=True)
                 removed.append(name)

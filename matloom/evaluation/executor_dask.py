@@ -62,6 +62,7 @@ class DaskExecutor:
         *,
         retries: int = DEFAULT_RETRIES,
         memory_limit: str | int | None = "auto",
+        quiet: bool = True,
     ) -> None:
         if scheduler != "local" and not scheduler.startswith(("tcp://", "tls://")):
             raise ValueError(
@@ -72,6 +73,8 @@ class DaskExecutor:
         self.llm_slots = max(1, llm_slots)
         self.retries = max(0, retries)
         self.memory_limit = memory_limit
+        #: Only errors from the embedded cluster's logs (a killed worker is expected, not news).
+        self.quiet = quiet
         self._cluster: LocalCluster | None = None
         self._client: Client | None = None
         self._sem: Semaphore | None = None
@@ -89,7 +92,7 @@ class DaskExecutor:
                     dashboard_address=None,  # no dashboard; its bare HTTP server on loopback:
                     scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
                     memory_limit=self.memory_limit,
-                    silence_logs=40,  # logging.ERROR: a killed worker is expected, not news
+                    silence_logs=40 if self.quiet else 20,  # logging.ERROR or INFO
                 )
                 self._client = Client(self._cluster)
             else:

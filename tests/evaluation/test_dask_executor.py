@@ -14,68 +14,31 @@ import pytest
 
 pytest.importorskip("distributed", reason="needs the dask extra (make test-dask)")
 
-import cloudpickle  # noqa: E402  (a dependency of distributed)
-
-from matloom.evaluation.cells import commit_cell  # noqa: E402
 from matloom.evaluation.executor import Task, make_executor  # noqa: E402
 from matloom.evaluation.executor_dask import DaskExecutor  # noqa: E402
 
 pytestmark = pytest.mark.dask
 
-# The workers are other processes: ship this module's task functions by value.
-cloudpickle.register_pickle_by_value(sys.modules[__name__])
-
-
-def _log(path: Path, line: str) -> None:
-    with open(path, "a", encoding="utf-8") as handle:
-        handle.write(line + "\n")
-
-
-def write_cell(root: str, key: str, value: int, log: str) -> dict:
-    """A task: one cell holding ``value``; every attempt logged."""
-    _log(Path(log), f"{key} {os.getpid()}")
-
-    def write(stage: Path) -> dict:
-        (stage / "value.txt").write_text(str(value))
-        return {"value": value, "pid": os.getpid()}
-
-    return commit_cell(Path(root), key, write)
-
-
-def fail(message: str) -> dict:
-    raise ValueError(message + "\nsecond line")
-
-
-def die_once_mid_write(root: str, key: str, marker: str, log: str) -> dict:
-    """A task that kills its own worker process half-way through its first attempt."""
-    _log(Path(log), f"{key} {os.getpid()}")
-
-    def write(stage: Path) -> dict:
-        (stage / "part1.txt").write_text("half")
-        if not Path(marker).exists():
-            Path(marker).write_text(str(os.getpid()))
-            os._exit(17)  # the worker process dies with a staged, half-written cell
-        (stage / "part2.txt").write_text("whole")
-        return {"pid": os.getpid()}
-
-    return commit_cell(Path(root), key, write)
-
-
-def timed_llm_call(folder: str, name: str) -> dict:
-    """A model-using task: records when it held its slot."""
-    start = time.time()
-    time.sleep(0.4)
-    end = time.time()
-    Path(folder, f"{name}.json").write_text(json.dumps([start, end, os.getpid()]))
-    return {"pid": os.getpid()}
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from dask_tasks import die_once_mid_write, fail, timed_llm_call, write_cell  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def executor():
+    """A 2-worker LocalCluster whose workers (restarted ones too) import ``dask_tasks``."""
+    old = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (str(HERE), old) if p)
     ex = DaskExecutor("local", workers=2, llm_slots=1)
-    assert ex.worker_count() == 2
-    yield ex
-    ex.close()
+    try:
+        assert ex.worker_count() == 2
+        yield ex
+    finally:
+        ex.close()
+        if old is None:
+            os.environ.pop("PYTHONPATH", None)
+        else:
+            os.environ["PYTHONPATH"] = old
 
 
 def test_runs_skips_and_reports_failures(executor: DaskExecutor, tmp_path: Path) -> None:

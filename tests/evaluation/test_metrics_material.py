@@ -321,3 +321,14 @@ def test_entry_points_add_metrics(monkeypatch: pytest.MonkeyPatch) -> None:
     assert metric.score([sample(GREY)]) == [{"const.value": 7.0}]
     # a built-in keeps its name: the entry point called "seams" does not replace it
     assert isinstance(get_metric("seams"), MaterialMetric)
+
+
+def test_maps_carried_by_the_sample_are_used_at_their_size() -> None:
+    """``matloom dataset`` hands its rendered maps over: the metric measures them, not the text
+    (here the text is a seamless grey and the maps a seamed ramp); at another size it evaluates."""
+    ramp = evaluate(RAMP, 32, 32, backend="numpy")
+    carried = get_metric("seams", {"tileable": "false"}).score([sample(GREY, 32, maps=ramp)])[0]
+    assert carried == values("seams", RAMP, 32, tileable="false")
+    assert carried["seam_ratio.max"] > 2
+    other_size = get_metric("seams", {"tileable": "false", "size": 16})
+    assert other_size.score([sample(GREY, 32, maps=ramp)])[0]["seam_ratio.max"] <= 1.01

@@ -43,6 +43,9 @@ class Sample:
     images: Mapping[str, Path] = field(default_factory=dict)
     size: int = 256
     record: Mapping[str, Any] = field(default_factory=dict)
+    #: The program's maps at ``size`` when the caller has them already (``matloom dataset``
+    #: renders each sample once); material metrics use them instead of evaluating again.
+    maps: Any = field(default=None, compare=False, repr=False)
 
 
 @runtime_checkable

@@ -117,8 +117,11 @@ class MaterialMetric:
         return ()
 
     def maps_of(self, sample: Sample) -> MaterialMaps:
-        """The sample's maps at its size (or the ``size`` option), evaluated as configured."""
+        """The sample's maps at its size (or the ``size`` option), evaluated as configured; the
+        sample's own ``maps`` when it carries them at that size."""
         side = self.size or sample.size
+        if sample.maps is not None and side == sample.size:
+            return sample.maps
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the numbers say what the warnings would
             return evaluate(
