@@ -110,7 +110,7 @@ dask-venv: $(DASK_VENV)/.installed
 $(DASK_VENV)/.installed: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(DASK_VENV)
 	$(DASK_VENV)/bin/pip install --quiet --upgrade pip
-	$(DASK_VENV)/bin/pip install --quiet -e ".[fast,llm,test,dask]"
+	$(DASK_VENV)/bin/pip install --quiet -e ".[fast,llm,test,bench,dask]"
 	touch $@
 
 test-dask: $(DASK_VENV)/.installed
