@@ -9,6 +9,7 @@ from typing import Any
 import click
 
 from matloom.cli import params
+from matloom.cli.library_opts import library_option, load_library
 
 
 def _csv(text: str | None) -> list[str]:
@@ -48,7 +49,8 @@ def _default_scheduler() -> str:
     type=click.Path(file_okay=False),
     help="Dataset folder (made if missing; continued with --resume).",
 )
-@click.option("--library", "all_entries", is_flag=True, help="Every library entry.")
+@click.option("--all-entries", "all_entries", is_flag=True, help="Every library entry.")
+@library_option
 @click.option("--entries", default=None, help="Library entries, comma-separated.")
 @click.option("--tags", default=None, help="Library entries with any of these tags.")
 @click.option(
@@ -135,6 +137,7 @@ def _default_scheduler() -> str:
 def dataset_cmd(  # noqa: PLR0913 - one flag each
     out_dir: str,
     all_entries: bool,
+    library_dirs: tuple[str, ...],
     entries: str | None,
     tags: str | None,
     programs_dir: str | None,
@@ -183,7 +186,7 @@ def dataset_cmd(  # noqa: PLR0913 - one flag each
     except (FilterError, ValueError, ExecutorUnavailableError) as err:
         raise click.ClickException(str(err)) from None
     try:
-        sources = _sources(all_entries, entries, tags, programs_dir)
+        sources = _sources(all_entries, entries, tags, programs_dir, library_dirs)
         if prompts_file:
             sources += _prompt_sources(prompts_file, profile, executor, out_dir, llm_slots)
         summary = build_dataset(
@@ -210,12 +213,19 @@ def dataset_cmd(  # noqa: PLR0913 - one flag each
         sys.exit(1)
 
 
-def _sources(all_entries: bool, entries: str | None, tags: str | None, programs: str | None):  # noqa: ANN202
+def _sources(  # noqa: ANN202
+    all_entries: bool,
+    entries: str | None,
+    tags: str | None,
+    programs: str | None,
+    library_dirs: tuple[str, ...] = (),
+):
     from matloom.evaluation.dataset_sources import folder_sources, library_sources
 
     out = []
     if all_entries or entries or tags:
-        out += library_sources(_csv(entries) or None, _csv(tags) or None)
+        lib = load_library(library_dirs)
+        out += library_sources(_csv(entries) or None, _csv(tags) or None, lib)
     if programs:
         out += folder_sources(programs)
     return out

@@ -37,15 +37,18 @@ class SourceProgram:
 
 
 def library_sources(
-    entries: Sequence[str] | None = None, tags: Sequence[str] | None = None
+    entries: Sequence[str] | None = None,
+    tags: Sequence[str] | None = None,
+    lib: Any = None,
 ) -> list[SourceProgram]:
     """The library's entries (all, the named ones, or those with any of ``tags``), sorted by
-    category then name; each at its physical size (``size_m`` over the View's width)."""
+    category then name; each at its physical size (``size_m`` over the View's width). ``lib``:
+    a :class:`~matloom.library.Library` with user entries (default: the built-in one)."""
     from matloom.library import library
     from matloom.library.labels import entry_labels
     from matloom.library.overlay import view_width
 
-    lib = library()
+    lib = lib if lib is not None else library()
     if entries:
         try:
             chosen = [lib.entry(name) for name in entries]

@@ -265,3 +265,25 @@ def test_cli_dataset_inline(tmp_path: Path) -> None:
         res = CliRunner().invoke(cli, bad)
         assert res.exit_code != 0 and message in res.output, res.output
         assert "Traceback" not in res.output
+
+
+def test_dataset_takes_entries_from_a_user_library(tmp_path: Path) -> None:
+    """``--library DIR`` adds a user library's entries to the sources, as for ``generate``."""
+    program = tmp_path / "teal.mat"
+    program.write_text("Material(Layer(1).basecolor(20, 128, 128).roughness(0.3))\n")
+    mine = tmp_path / "mine"
+    added = CliRunner().invoke(
+        cli,
+        ["library", "add", str(program), "--name", "house-teal", "--tags", "teal,plastic",
+         "--description", "house teal plastic", "--to", str(mine)],
+    )  # fmt: skip
+    assert added.exit_code == 0, added.output
+    out = tmp_path / "ds"
+    args = ["dataset", "--entries", "house-teal", "--size", "16", "--scheduler", "inline"]
+    res = CliRunner().invoke(cli, [*args, "-o", str(out)])
+    assert res.exit_code != 0 and "house-teal" in res.output  # not in the built-in library
+    res = CliRunner().invoke(cli, [*args, "--library", str(mine), "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    rows = _rows(out / "metadata.jsonl")
+    assert [r["entry"] for r in rows] == ["house-teal"]
+    assert "basecolor(20, 128, 128)" in (out / rows[0]["path"] / "material.mat").read_text()
