@@ -25,6 +25,7 @@ from matloom.author.edit.targets import (
     main_colour,
     matching,
     material_noun,
+    named_in_program,
     overlaps,
     param_words,
     wanted,
@@ -115,24 +116,35 @@ _OPPOSITE = {"dark": "lighter", "light": "darker", "pale": "richer", "bright": "
 
 
 # ---- reading the request ---------------------------------------------------------------------
+def _tables(c: Context) -> tuple[dict[str, RGB], dict[str, RGB]]:
+    """The named colours (single words, phrases): the library's, with ``[colours]`` of
+    ``words.toml`` over them."""
+    named, phrases = dict(c.vocabulary.named), dict(c.vocabulary.phrases)
+    for k, v in c.ew.colours.items():
+        rgb: RGB = tuple(int(round(x)) for x in v)  # type: ignore[assignment]
+        (phrases if " " in k else named)[k] = rgb
+    return named, phrases
+
+
 def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     """The named colours of the request: (index, word count, colour, an ``-ish`` form)."""
     w = c.vocabulary
+    named, phrases = _tables(c)
     ws = c.words
     out: list[tuple[int, int, RGB, bool]] = []
     taken: set[int] = set()
     for n in (3, 2):
         for i in range(len(ws) - n + 1):
             span = set(range(i, i + n))
-            if not span & taken and " ".join(ws[i : i + n]) in w.phrases:
-                out.append((i, n, w.phrases[" ".join(ws[i : i + n])], False))
+            if not span & taken and " ".join(ws[i : i + n]) in phrases:
+                out.append((i, n, phrases[" ".join(ws[i : i + n])], False))
                 taken |= span
     for i, t in enumerate(ws):
         if i in taken:
             continue
         word = w.ish.get(t, t) if t.endswith("ish") else t
-        if word in w.named and word not in c.ew.conditions and word not in _NOT_COLOURS:
-            out.append((i, 1, w.named[word], word != t))
+        if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
+            out.append((i, 1, named[word], word != t))
     return sorted(out)
 
 
@@ -146,6 +158,31 @@ _TO_WORDS = frozenset({"for", "with", "to", "into"})
 def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
     la, lb = to_lab(a), to_lab(b)
     return from_lab(tuple(x + (y - x) * t for x, y in zip(la, lb, strict=True)))  # type: ignore[arg-type]
+
+
+def _after_instead_of(c: Context, k: int) -> bool:
+    """Whether the word at ``k`` follows "instead of" or "rather than" (with only filler and
+    tones between: "instead of the pale blue")."""
+    ws = c.words
+    for j in range(k, max(0, k - 4), -1):
+        if j >= 2 and ws[j - 2 : j] in (["instead", "of"], ["rather", "than"]):
+            return True
+        if not (ws[j - 1] in c.ew["filler"] or ws[j - 1] in c.vocabulary.tones):
+            return False
+    return False
+
+
+def _names_part(c: Context, k: int) -> bool:
+    """Whether the word at ``k`` is a noun naming a part of the program (a Define, a layer or
+    a parameter): a colour before it says which part ("the red panes")."""
+    if k >= len(c.words):
+        return False
+    word = c.words[k]
+    if word in c.ew["filler"] or word in c.vocabulary.tones or word in c.vocabulary.named:
+        return False
+    return named_in_program(c.program, [word], c.ew) or bool(
+        matching(c.params, [word], c.program, c.ew)
+    )
 
 
 def _colour_in(
@@ -170,15 +207,28 @@ def _colour_in(
         old = [
             f
             for f in found
-            if (f[0] >= 2 and ws[f[0] - 2 : f[0]] == ["instead", "of"])
+            if _after_instead_of(c, f[0])
             or any(t in _TO_WORDS for t in ws[f[0] + f[1] :])
             and any(g[0] > f[0] and set(ws[f[0] + f[1] : g[0]]) & _TO_WORDS for g in found)
+        ]
+        # a colour naming a part ("the red panes ... purple"): the part to recolour
+        old += [
+            f
+            for f in found
+            if f not in old
+            and not f[3]
+            and _names_part(c, f[0] + f[1])
+            and any(g[0] > f[0] and g not in old for g in found)
         ]
         new = [f for f in found if f not in old] or found
         if old and new is not found:
             source = old[0][2]
             for f in old:
                 used |= set(range(f[0], f[0] + f[1]))
+            j = old[0][0] - 1  # "the pale blue": the old colour's tone is the old colour's
+            if j >= 0 and ws[j] in w.tones and j not in used:
+                source = apply_tone(source, ws[j], w.tones[ws[j]])
+                used.add(j)
         i, n, rgb, ish = new[0]
         used |= set(range(i, i + n))
         rest = [f for f in new[1:] if f[0] <= i + n + 2]
@@ -290,6 +340,41 @@ def _value(p: Param) -> tuple[float, float, float]:
     return tuple(float(x) for x in p.value)  # type: ignore[return-value,union-attr]
 
 
+def hue_distance(a: Sequence[float], b: Sequence[float]) -> float:
+    """CIELAB distance with lightness at half weight: a colour word names a hue family more
+    than a lightness ("the orange bricks" are a dark orange)."""
+    la, lb = to_lab(a), to_lab(b)
+    return math.sqrt((0.5 * (la[0] - lb[0])) ** 2 + (la[1] - lb[1]) ** 2 + (la[2] - lb[2]) ** 2)
+
+
+def by_colour(c: Context, rgb: RGB, colours: list[Param], nouns: list[str]) -> list[Param]:
+    """The colour parameters of the part a colour names ("the red panes"): the nearest to it
+    (hue first) and every other as near (within ``part_de`` more), when the nearest is within
+    ``part_max_de``; among those the nouns name, when they name any of them."""
+    near = sorted((hue_distance(_value(p), rgb), i, p) for i, p in enumerate(colours))
+    if not near or near[0][0] > c.ew.f("part_max_de"):
+        return []
+    part = [p for d, _, p in near if d <= near[0][0] + c.ew.f("part_de")]
+    named = [p for p in part if p in matching(colours, nouns, c.program, c.ew)] if nouns else []
+    return named or part
+
+
+def _whole_material(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
+    """ "the whole wall", "all the bricks": every colour of the material but the joints' and
+    the conditions' (moss, rust), the main colour first; none when the request does not say
+    so."""
+    if not ({"whole", "entire", "all", "everything"} & set(c.words)):
+        return []
+    if nouns and not material_noun(c, nouns):
+        return []
+    skip = set(c.ew.nouns["joint"]) | {s for v in c.ew.conditions.values() for s in v}
+    out = [p for p in colours if not overlaps(param_words(p, c.program, c.ew), skip)]
+    if len(out) < 2:
+        return []
+    main = main_colour(colours, c.program, c.ew)
+    return sorted(out, key=lambda p: p is not main)
+
+
 def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
     """The candidates already close to the named colour (nearest first)."""
     limit = c.ew.f("select_de")
@@ -323,11 +408,14 @@ def colour_rule(c: Context) -> Plan | None:
             targets = chosen[:1] if not nouns else chosen
         else:
             targets = _targets(c, colours, nouns)
-    elif source is not None and not matching(colours, nouns, c.program, c.ew):
-        # "swap the yellow for orange": the part that is yellow now
-        targets = _select(c, source, colours)[:1] or _targets(c, colours, nouns)
+    elif source is not None:
+        # "swap the yellow for orange", "just the red panes": the part that is that colour now
+        targets = by_colour(c, source, colours, nouns) or _targets(c, colours, nouns)
     else:
-        targets = _targets(c, colours, nouns, comparative_all=rgb is None and step is not None)
+        targets = _whole_material(c, colours, nouns) if rgb is not None else []
+        targets = targets or _targets(
+            c, colours, nouns, comparative_all=rgb is None and step is not None
+        )
     primary = targets[0]
     base_lab = to_lab(_value(primary))
     new: dict[Param, Value] = {}
@@ -354,7 +442,14 @@ def colour_rule(c: Context) -> Plan | None:
     graded = step is not None and rgb is None
     if any(p.address.startswith(DERIVED) for p in new):
         return _derived_plan(c, what, new, graded)
-    return assign(c, "colour", what, new, ("basecolor",), graded=graded, exact=not graded)
+    return assign(c, "colour", what, new, _channels(new), graded=graded, exact=not graded)
+
+
+def _channels(new: dict[Param, Value]) -> tuple[str, ...]:
+    """The colour channels the edit changes: the base colour, and the emissive colour where a
+    changed colour feeds it too (a stained glass's glow is its glass colour)."""
+    glow = any("emissive" in p.affects for p in new)
+    return ("basecolor", "emissive") if glow else ("basecolor",)
 
 
 def _derived_plan(c: Context, what: str, new: dict[Param, Value], graded: bool) -> Plan:
@@ -364,7 +459,7 @@ def _derived_plan(c: Context, what: str, new: dict[Param, Value], graded: bool) 
         base = p.address.removeprefix(DERIVED)
         for k, x in zip("rgb", v, strict=True):  # type: ignore[arg-type]
             lines[f"define:{base}_{k}"] = f"Define({base}_{k}, {round(float(x))})"
-    return Plan("colour", what, lines=lines, intended=("basecolor",), graded=graded)
+    return Plan("colour", what, lines=lines, intended=_channels(new), graded=graded)
 
 
 def _towards(c: Context, colours: list[Param], nouns: list[str], word: str) -> Plan:
@@ -377,4 +472,4 @@ def _towards(c: Context, colours: list[Param], nouns: list[str], word: str) -> P
         lab = (L + (goal[0] - L) * t / 3, a + (goal[1] - a) * t, b + (goal[2] - b) * t)
         new[p] = tuple(float(x) for x in from_lab(lab))  # type: ignore[assignment]
     what = ", ".join(f"{p.address} -> {tuple(int(x) for x in v)}" for p, v in new.items())  # type: ignore[union-attr]
-    return assign(c, "colour", f"{word}: {what}", new, ("basecolor",))
+    return assign(c, "colour", f"{word}: {what}", new, _channels(new))

@@ -4,6 +4,7 @@ word before it ("less shiny", "too glossy")."""
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import re
 import tomllib
@@ -28,6 +29,9 @@ class EditWords:
     comparative: dict[str, tuple[float, float, float]]
     towards: dict[str, str]
     factors: dict[str, float]
+    #: named colours the library's colour table lacks ("olive drab"), or has too far from
+    #: their usual value; these win over the library's
+    colours: dict[str, tuple[float, float, float]] = dataclasses.field(default_factory=dict)
 
     def __getitem__(self, key: str) -> frozenset[str]:
         return self.words[key]
@@ -76,6 +80,9 @@ def edit_words() -> EditWords:
         },
         towards={k: str(v) for k, v in raw["towards"].items()},
         factors={k: float(v) for k, v in raw["factors"].items()},
+        colours={
+            k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw.get("colours", {}).items()
+        },
     )
 
 

@@ -8,8 +8,9 @@ holds the edit to them). Steps are sized to be seen in a lit preview (``words.to
 rules, in the order they are tried:
 
 * **tileable** ("make it tileable", "seamless"): ``View(..., tileable=True)``;
-* **physical size** ("1 m wide", "make it 50 cm across"): with the View's ``unit_m`` known, the
-  window grows or shrinks to span it (features keep their size); else ``unit_m`` is set;
+* **physical size** ("1 m wide", "pennies 3 cm across"; :mod:`~matloom.author.edit.physical`):
+  the whole material's spans the View; a feature's sets ``unit_m`` from the feature's
+  measured size in units;
 * **joints** ("wider grout", "narrower mortar joints"): size parameters of mortar, grout, gaps;
 * **conditions** ("more rust", "less moss", "add dirt"; :mod:`~matloom.author.edit.conditions`):
   an amount parameter, the measured coverage of the condition's layer, or the library's overlay
@@ -33,6 +34,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 
 from matloom.author.edit.apply import apply_edit, parse_program
 from matloom.author.edit.colours import colour_rule
@@ -44,6 +46,8 @@ from matloom.author.edit.lexicon import (
     split_words,
     tokens,
 )
+from matloom.author.edit.physical import SIZE_RE as _SIZE_RE
+from matloom.author.edit.physical import physical_rule, tiles, window, zoomed
 from matloom.author.edit.plan import (
     Context,
     EditRefused,
@@ -84,69 +88,6 @@ def _tileable(c: Context) -> Plan | None:
         raise c.refuse("the program is tileable already")
     return Plan(
         "tileable", "View(..., tileable=True)", view={"tileable": True}, intended=("alpha",)
-    )
-
-
-_SIZE_RE = re.compile(
-    r"(\d+(?:\.\d+)?)\s*(mm|millimet(?:er|re)s?|cm|centimet(?:er|re)s?|m|met(?:er|re)s?|"
-    r"in|inch(?:es)?|ft|foot|feet)\b"
-)
-
-
-def _window(program: A.Program) -> tuple[float, float, float, float]:
-    return program.view_tuple
-
-
-def _tiles(c: Context, window: Sequence[float]) -> bool:
-    """Whether the program still tiles (when it did) with the View's window ``window``."""
-    if not c.program.tileable:
-        return True
-    from dataclasses import replace
-
-    assert c.program.view is not None
-    x1, y1, x2, y2 = window
-    moved = replace(c.program, view=replace(c.program.view, x1=x1, y1=y1, x2=x2, y2=y2))
-    return len(tileable_warnings(moved)) <= len(tileable_warnings(c.program))
-
-
-def _zoomed(c: Context, ratio: float) -> list[float]:
-    x1, y1, x2, y2 = _window(c.program)
-    return [x1, y1, float(f"{x1 + (x2 - x1) * ratio:.6g}"), float(f"{y1 + (y2 - y1) * ratio:.6g}")]
-
-
-def _physical(c: Context) -> Plan | None:
-    m = _SIZE_RE.search(c.request.lower())
-    if not m or c.ew["joint"] & set(c.words):
-        return None
-    metres = float(m.group(1)) * c.vocabulary.units[m.group(2)]
-    if metres <= 0:
-        raise c.refuse("a physical size must be positive")
-    x1, _, x2, _ = _window(c.program)
-    side = abs(x2 - x1) or 1.0
-    unit_m = c.program.unit_m
-    if unit_m:  # the scale is known: the window spans the size, features keep theirs
-        ratio = metres / unit_m / side
-        options = [ratio]
-        if c.program.tileable:  # the nearest whole or unit-fraction ratio that still tiles
-            options = [float(round(ratio))] if ratio >= 1 else [1 / round(1 / ratio)]
-        for r in options:
-            if r > 0 and abs(r - 1) > 1e-9 and _tiles(c, _zoomed(c, r)):
-                span = side * r * unit_m
-                return Plan(
-                    "physical size",
-                    f"the View spans {span:g} m (unit_m {unit_m:g} kept): window x{r:.4g}",
-                    view={"window": _zoomed(c, r)},
-                    intended=("alpha",),
-                )
-        raise c.refuse(
-            f"the View spans {side * unit_m:g} m already (or cannot tile at {metres:g} m)"
-        )
-    unit_m = float(f"{metres / side:.6g}")
-    return Plan(
-        "physical size",
-        f"the View spans {metres:g} m: unit_m = {unit_m:g}",
-        view={"unit_m": unit_m},
-        intended=(),
     )
 
 
@@ -214,7 +155,7 @@ def _joints(c: Context) -> Plan | None:
     factor = c.ew.f("joint") ** (c.k if wider else -c.k)
     new = {p: scaled(p, factor) for p in found}
     if wider:  # at least a few preview pixels wide, or a thin joint still reads as a line
-        x1, _, x2, _ = _window(c.program)
+        x1, _, x2, _ = window(c.program)
         least = c.ew.f("joint_px") * c.k * abs(x2 - x1) / c.ew.f("preview_px")
         new = {p: clamp(p, max(float(v), least)) if p.kind == "size" else v for p, v in new.items()}
     word = "wider" if wider else "narrower"
@@ -227,15 +168,15 @@ def _zoom(c: Context, bigger: bool) -> Plan:
     program tiles, so the repeat stays whole)."""
     f = c.ew.f("size") if not c.program.tileable else 2.0
     ratio = 1 / f if bigger else f
-    window = _zoomed(c, ratio)
-    if not _tiles(c, window):
+    win = zoomed(c, ratio)
+    if not tiles(c, win):
         raise c.refuse("no size parameter of it, and zooming the View would break the tiling")
     word = "bigger" if bigger else "smaller"
     return Plan(
         "scale",
         f"every feature {word}: the View's window x{ratio:.3g} (no parameter draws a named "
         "feature)",
-        view={"window": window},
+        view={"window": win},
         intended=("alpha",),
     )
 
@@ -360,19 +301,66 @@ _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
 )
 
 
+#: A clause that says a part stays as it is ("chips unchanged", "the rest as it is").
+_AS_IS_RE = re.compile(
+    r"[,;]\s*[^,;]*\b(?:unchanged|untouched|as\s+(?:is|it\s+is|they\s+are))\b[^,;]*",
+    re.IGNORECASE,
+)
+
+
 def normalise(request: str) -> str:
     """The request with what it keeps cut off and its phrasal verbs read as plain words."""
     asked = _KEEP_RE.sub("", request) or request
+    asked = _AS_IS_RE.sub("", asked) or asked
     asked = asked.lower()
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
     return asked
 
 
+#: Rules whose plans two clauses of one request may join ("olive drab, satin finish").
+_JOINABLE = frozenset({"colour", "roughness", "channel"})
+
+
+def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
+    """``plan`` and the plan of another clause of the request (split at commas and
+    semicolons) by another joinable rule that changes other parameters: "paint the panels
+    olive drab, satin finish" is a colour and a roughness."""
+    clauses = [s for s in re.split(r"[,;]", asked) if s.strip()]
+    if plan.rule not in _JOINABLE or len(clauses) < 2 or plan.view or plan.add:
+        return plan
+    for clause in clauses:
+        sub = replace(c, words=tokens(clause))
+        try:
+            other = next((p for rule in RULES if (p := rule(sub)) is not None), None)
+        except EditRefused:
+            continue
+        if (
+            other is None
+            or other.rule not in _JOINABLE
+            or other.rule == plan.rule
+            or other.view
+            or other.add
+            or set(other.assignments) & set(plan.assignments)
+            or set(other.lines) & set(plan.lines)
+        ):
+            continue
+        plan = Plan(
+            f"{plan.rule}+{other.rule}",
+            f"{plan.note}; {other.note}",
+            assignments={**plan.assignments, **other.assignments},
+            intended=tuple(dict.fromkeys(plan.intended + other.intended)),
+            lines={**plan.lines, **other.lines},
+            graded=plan.graded and other.graded,
+            exact=plan.exact or other.exact,
+        )
+    return plan
+
+
 #: The rules, in the order they are tried.
 RULES: tuple[Callable[[Context], Plan | None], ...] = (
     _tileable,
-    _physical,
+    physical_rule,
     _joints,
     amount_rule,
     roughness_rule,
@@ -400,7 +388,7 @@ def plan_edit(
     for rule in RULES:
         plan = rule(c)
         if plan is not None:
-            return plan
+            return _with_clauses(c, asked, plan)
     raise EditRefused(
         request,
         "no offline rule understands it (colours, rougher/glossier, sheen, clearcoat, metallic, "
