@@ -91,6 +91,12 @@ def _metric_options(given: tuple[str, ...]) -> dict[str, dict[str, str]]:
 @click.option(
     "--blender-size", type=int, default=512, show_default=True, help="Blender render size."
 )
+@click.option(
+    "--blender-samples",
+    type=click.IntRange(1, 4096),
+    default=None,
+    help="Cycles samples per Blender render (default: the paper's, 64 flat and 160 staged).",
+)
 @click.option("--blender", "blender_path", help="Blender executable or a Python with bpy.")
 @click.option("--profile", help="Model profile for a SPEC that names only a preset.")
 @click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Config file.")
@@ -123,6 +129,7 @@ def run_cmd(prompts: str | None, out: str, quiet: bool, **kw: Any) -> None:
         llm_slots=kw["llm_slots"],
         size=kw["size"],
         blender_size=kw["blender_size"],
+        blender_samples=kw["blender_samples"],
         blender=kw["blender_path"],
         config_file=kw["config_file"],
         profile=kw["profile"],

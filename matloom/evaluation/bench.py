@@ -68,6 +68,8 @@ class BenchOptions:
     llm_slots: int = 4
     size: int = 512
     blender_size: int = 512
+    #: Cycles samples per Blender render (None: each layout's own, the paper's 64 flat, 160 staged).
+    blender_samples: int | None = None
     blender: str | None = None
     config_file: str | None = None
     profile: str | None = None
@@ -288,14 +290,21 @@ def _render(
         return [note]
     from matloom.evaluation.bench_cells import render_cell
 
+    samples = f"s{opts.blender_samples}" if opts.blender_samples else ""
     tasks = [
         Task(
-            f"{o.key}.{layout}{opts.blender_size}",
+            f"{o.key}.{layout}{opts.blender_size}{samples}",
             render_cell,
             (
                 str(root / RENDERS_DIR),
-                f"{o.key}.{layout}{opts.blender_size}",
-                RenderSpec(str(root / CELLS_DIR / o.key), layout, opts.blender_size, opts.blender),
+                f"{o.key}.{layout}{opts.blender_size}{samples}",
+                RenderSpec(
+                    str(root / CELLS_DIR / o.key),
+                    layout,
+                    opts.blender_size,
+                    opts.blender,
+                    opts.blender_samples,
+                ),
             ),
         )
         for o in done

@@ -47,6 +47,7 @@ class RenderSpec:
     layout: str
     size: int
     blender: str | None = None
+    samples: int | None = None
 
 
 class CountingModel:
@@ -164,7 +165,7 @@ def _write_render(stage: Path, job: RenderSpec) -> dict[str, Any]:
 
     start = time.perf_counter()
     target = stage / f"{job.layout}.png"
-    options = RenderOptions(layouts=(job.layout,), size=job.size)
+    options = RenderOptions(layouts=(job.layout,), size=job.size, samples=job.samples)
     program = str(Path(job.cell_dir) / PROGRAM_NAME)
     render_to_file(program, options, target, find_blender(job.blender))
     return {

@@ -291,6 +291,14 @@ def test_blender_layouts_render_per_cell_and_reach_the_metrics(
     renders = sorted(p.name.split(".")[1] for p in (setup["out"] / "renders").iterdir())
     assert renders == ["flat16", "flat16", "staged16", "staged16"]
     assert all(len(s) == 3 for s in LAYOUTS_SEEN[-2:])  # quick, flat and staged reached it
+    # other Cycles samples are other renders; the cells themselves are not authored again
+    result = CliRunner().invoke(cli, [*args, "--blender-samples", "3"])
+    assert result.exit_code == 0, result.output
+    renders = sorted(p.name.split(".")[1] for p in (setup["out"] / "renders").iterdir())
+    assert (
+        renders
+        == ["flat16", "flat16", "flat16s3", "flat16s3"] + ["staged16"] * 2 + ["staged16s3"] * 2
+    )
 
 
 def test_without_blender_the_layouts_are_skipped_once(
