@@ -37,6 +37,7 @@ from matloom.engine.session import Session, default_session, running
 from matloom.lang import ast as A
 from matloom.lang.api import parse
 from matloom.lang.constants import resolve_static
+from matloom.lang.macros import expand_program
 from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 
 __all__ = [
@@ -70,11 +71,13 @@ def prepare(
 
 
 def _with_seeds(program: A.Program, program_seed: int) -> A.Program:
-    """Omitted seeds made explicit and named static values (``Bricks(mortar=grout)``) written
-    out (:mod:`matloom.lang.constants`), as the interpreter reads them."""
+    """Omitted seeds made explicit, parameterised Defines expanded (:mod:`matloom.lang.macros`:
+    after the seeds, so every use of one shares its body's seeds, as the canonical text says)
+    and named static values (``Bricks(mortar=grout)``) written out
+    (:mod:`matloom.lang.constants`), as the interpreter reads them."""
     if has_seedless_noise(program):
         program = canonicalize_seeds(program, program_seed)
-    return resolve_static(program)
+    return resolve_static(expand_program(program))
 
 
 def evaluate(

@@ -108,6 +108,9 @@ class Evaluator:
         self.frame_table = FrameTable()
         #: frames of coordinates passed in by a caller: (ids of x, y) -> (frame, coordinates)
         self._foreign: dict[tuple[int, int], tuple[int, Coords]] = {}
+        #: frames made by a non-affine transform (Quantize) and the transforms inside it:
+        #: their periods come from the period rules (:meth:`_nonaffine_periods`)
+        self.nonaffine: set[int] = set()
         self.stats = EvalStats()
 
     # ---------------------------------------------------------------- public
@@ -160,7 +163,11 @@ class Evaluator:
         if op.kind is Kind.FIELD:
             return op.numpy(self, call, c)
         args = [self.eval(call.arg(name), c) for name in operand_names(call.func)]  # type: ignore[arg-type]
-        return self.operate(op, args, self.params(call))
+        params = self.params(call)
+        out = self.operate(op, args, params)
+        for extra in call.extra:  # Min(a, b, c, ...): the binary op folded left
+            out = self.operate(op, [out, self.eval(extra, c)], params)
+        return out
 
     def operate(self, op: Op, args: list[Field], params: dict[str, Any]) -> Field:
         """An element-wise op: counts zero divisors, then :meth:`apply`."""
@@ -252,8 +259,27 @@ class Evaluator:
         if warped:
             return self.warp(call, c, warped)
         a, b = transform_values(call)
-        new = _transform(call.func).coords(c[0], c[1], a, b)
-        return Frame(*new, self.frame_table.child(self._frame_id(c), call.func, (a, b)))
+        rule = _transform(call.func)
+        new = rule.coords(c[0], c[1], a, b)
+        parent = self._frame_id(c)
+        fid = self.frame_table.child(parent, call.func, (a, b))
+        if not rule.affine or parent in self.nonaffine:
+            self.nonaffine.add(fid)
+            if self.periods is not None and fid not in self.frame_table.warped:
+                self._nonaffine_periods(call, c, fid)
+        return Frame(*new, fid)
+
+    def _nonaffine_periods(self, call: A.Call, c: Coords, fid: int) -> None:
+        """The periods of the frame ``fid`` that a non-affine transform (Quantize), or a
+        transform inside one, made from ``c``: its period rule's (``Op.period.frame``), kept with the warps' frames so that
+        :meth:`periods_of` finds them; none when ``c`` has none or the rule breaks them."""
+        parent = self.periods_of(c, call.func)
+        rule = OPS[call.func].period.frame
+        if parent is None or rule is None:
+            return
+        inner = rule(call.func, lambda name: param_value(call, name), parent)
+        if not isinstance(inner, str):
+            self.frame_table.warped[fid] = inner
 
     def warp(self, call: A.Call, c: Coords, warped: tuple[str, ...]) -> Coords:
         """A domain warp: the field parameters evaluated at the samples' coordinates ``c``,

@@ -148,8 +148,8 @@ def _coeffs(
         return (0.0, 0.0) if periodic_wrap(node, defines, periods) else None
     if own_frames(node.func):
         return (0.0, 0.0)  # their operands are checked in their own frames
-    for arg in node.args:
-        if coord_coeffs(arg.value, defines, periods, depth + 1, memo) != (0.0, 0.0):
+    for value in A.children(node):  # operands, and Min(a, b, c, ...)'s extra ones
+        if coord_coeffs(value, defines, periods, depth + 1, memo) != (0.0, 0.0):
             return None
     return (0.0, 0.0)
 

@@ -154,6 +154,11 @@ class Define:
     span: Span = _span()
     name_span: Span = _span()
     comments: tuple[Comment, ...] = _comments()
+    #: Language 3: ``Define(name(a, b), expr)``, a parameterised Define, used as ``name(x, y)``
+    #: (a :class:`Call` whose ``func`` is the Define's name and whose args bind the parameters
+    #: by name); ``expr`` refers to a parameter as a :class:`Ref`. Empty for a plain Define.
+    #: :mod:`matloom.lang.macros` expands the uses before checking and evaluation.
+    params: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

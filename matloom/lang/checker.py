@@ -280,6 +280,11 @@ class Checker(Reporter):
                     arg.span,
                     hint=f"write {p.needs}=... or remove {p.name} (fmt drops it)",
                 )
+        if spec.nary:  # Min(a, b, c, ...): more field operands
+            for k, extra in enumerate(node.extra, start=3):
+                self.field(extra, f"{spec.name}: operand {k}")
+            self._frequency_rule(node)
+            return
         for seg in node.extra:
             seg_spec = FUNCTIONS.get(seg.func) if isinstance(seg, A.Call) else None
             if seg_spec is None or seg_spec.returns is not Returns.SEGMENT:
@@ -498,4 +503,32 @@ def _describe(v: A.Node) -> str:
 
 
 def check_program(program: A.Program, source: str) -> list[Diagnostic]:
+    """Every diagnostic of the checks; a program with parameterised Defines is checked
+    expanded (:mod:`matloom.lang.macros`), after its expanded size is known to be bounded."""
+    from matloom.lang.macros import (
+        MAX_EXPANDED_TREE,
+        ExpansionTooLarge,
+        expand_program,
+        expanded_size,
+        has_macros,
+    )
+
+    if has_macros(program):
+        try:
+            expanded = expand_program(program)
+            size = expanded_size(expanded)
+        except ExpansionTooLarge:
+            expanded, size = program, MAX_EXPANDED_TREE + 1
+        if size > MAX_EXPANDED_TREE:
+            return [
+                Code.SIZE_LIMIT.diagnostic(
+                    "the uses of parameterised Defines expand to more than "
+                    f"{MAX_EXPANDED_TREE:,} expression nodes, the limit",
+                    program.span,
+                    expected=f"at most {MAX_EXPANDED_TREE:,} nodes once expanded",
+                    hint="each use of Define(name(a, b), ...) is a copy of its body: nest fewer "
+                    "uses, or use a plain Define for a shared sub-expression",
+                )
+            ]
+        program = expanded
     return Checker(source).check(program)

@@ -254,6 +254,21 @@ class Code(enum.Enum):
         "a Define used before its definition, or by itself",
         "Defines form an acyclic graph: move the Define above its first use",
     )
+    DEFINE_ARGUMENTS = CodeInfo(
+        "E062",
+        _E,
+        "a parameterised Define used without its arguments or with the wrong number of them, "
+        "or a plain Define called with arguments",
+        "call Define(name(a, b), ...) as name(x, y), and use a Define without parameters by "
+        "its bare name",
+    )
+    DEFINE_PARAMETER = CodeInfo(
+        "E063",
+        _E,
+        "a bad parameter name in Define(name(a, b), ...): repeated, or the name of a "
+        "function, constant, keyword or earlier Define",
+        "give each parameter its own new name, e.g. Define(stripe(width, phase), ...)",
+    )
     BAD_VIEW = CodeInfo(
         "E061",
         _E,

@@ -23,6 +23,7 @@ from typing import Any
 
 from matloom.lang import ast as A
 from matloom.lang.constants import resolve_static
+from matloom.lang.macros import expand_program
 from matloom.lang.static import COORDINATES, is_static, param_value, static_number
 from matloom.ops import OPS
 from matloom.ops.transform import Transform
@@ -75,6 +76,8 @@ def _rule(func: str) -> Transform:
 def compose(frame: Affine, func: str, values: tuple[float, float]) -> Affine | None:
     """The frame reached by applying transform ``func`` with ``values`` in ``frame`` (float64
     arithmetic); None when it is not finite (or a scale is 0): such a frame equals no other."""
+    if not _rule(func).affine:
+        return None  # Quantize: its frames equal no other (but repeat calls share them)
     try:
         t0, t1, t2, t3, t4, t5 = _rule(func).matrix(float(values[0]), float(values[1]))
     except (ValueError, OverflowError, ZeroDivisionError, TypeError):
@@ -192,7 +195,8 @@ def _field_children(node: A.Node) -> tuple[A.Node, ...]:
     if spec is None:
         return A.children(node)
     fields = {p.name for p in spec.params if p.kind is Kind.EXPR} | set(field_params(node))
-    return tuple(a.value for a in node.args if a.param in fields)
+    extra = node.extra if spec.nary else ()  # Min(a, b, c, ...): one more op per operand
+    return tuple(a.value for a in node.args if a.param in fields) + extra
 
 
 def op_work(call: A.Call) -> int:
@@ -213,6 +217,8 @@ def call_work(call: A.Call) -> int:
     """:func:`op_work` of ``call``, with a Fill/Stroke's shape and its path segments (each
     segment's edges are drawn on every sample)."""
     work = op_work(call)
+    if call.extra and _nary(call):  # Min(a, b, c, ...): one binary op per further operand
+        work += op_work(call) * len(call.extra)
     shape = call.arg("shape") if call.func in _SHAPED else None
     if isinstance(shape, A.Call):
         work += op_work(shape)
@@ -277,7 +283,16 @@ def _info(node: A.Node, constants: dict[int, bool]) -> _Info:
 def _arrays(node: A.Node) -> int:
     """Field-sized arrays one evaluation of ``node`` allocates (the op table's ``arrays``)."""
     op = OPS.get(node.func) if isinstance(node, A.Call) else None
-    return op.arrays if op is not None else 1
+    arrays = op.arrays if op is not None else 1
+    if isinstance(node, A.Call) and node.extra and _nary(node):
+        arrays *= 1 + len(node.extra)  # Min(a, b, c, ...): one array per binary op
+    return arrays
+
+
+def _nary(call: A.Call) -> bool:
+    """``call`` takes extra field operands (``FunctionSpec.nary``: Min, Max)."""
+    spec = FUNCTIONS.get(call.func)
+    return spec is not None and spec.nary
 
 
 def _roots(program: A.Program) -> list[A.Node]:
@@ -353,7 +368,7 @@ def expanded_cost(
     ``batched``: ids of nodes (e.g. the seed-dependent ones of a sweep) whose array visits are
     also counted apart. Named static values are read as the evaluator reads them
     (:func:`~matloom.lang.constants.resolve_static`)."""
-    program = resolve_static(program)
+    program = resolve_static(expand_program(program))
     roots = _roots(program)
     walk = _Walk(program)
     walk.batched = batched

@@ -10,6 +10,7 @@ from matloom.lang.checker import MAX_NODES
 from matloom.lang.codes import Code
 from matloom.lang.cost import field_params
 from matloom.lang.diagnostics import ProgramError
+from matloom.lang.macros import ExpansionTooLarge, expand_program, expanded_size, has_macros
 from matloom.lang.rewrite import map_expr, map_program
 from matloom.lang.seeds import canonicalize_seeds, has_seedless_noise
 from matloom.lang.static import static_number
@@ -31,7 +32,17 @@ def inline_defines(program: A.Program, program_seed: int = 0) -> A.Program:
     Raises :class:`ProgramError` (E070) if the result would exceed the node limit: Defines that
     reuse each other can grow exponentially when written out.
     """
-    size = inlined_size(program)
+    size = 0
+    if has_macros(program):  # language 3: parameterised Defines are written out first
+        if has_seedless_noise(program):
+            program = canonicalize_seeds(program, program_seed)
+        try:
+            program = expand_program(program)
+            size = expanded_size(program)  # bounded before walking the (maybe huge) tree
+        except ExpansionTooLarge:
+            size = MAX_NODES + 1
+    if size <= MAX_NODES:
+        size = inlined_size(program)
     if size > MAX_NODES:
         message = f"inlining gives {size} expression nodes, more than the limit of {MAX_NODES}"
         hint = "keep the Defines: the program is valid as written"

@@ -45,6 +45,10 @@ class ParserBase(Reporter):
         self.all_define_names: set[str] = set()
         self.broken_defines: set[str] = set()
         self.current_define: str | None = None
+        #: Language 3: the parameterised Defines parsed so far (name -> parameters) and the
+        #: parameters of the Define whose expression is being parsed.
+        self.macros: dict[str, tuple[str, ...]] = {}
+        self.params: tuple[str, ...] = ()
         self.material_started = False
         self._brackets: Brackets | None = None
 

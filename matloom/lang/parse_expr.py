@@ -195,6 +195,17 @@ class ExpressionParser(ParserBase):
                 expected=f"{name}(...)",
             )
             return A.Ref(name, tok.span)
+        if name in self.params:  # a parameter of the Define being parsed
+            return A.Ref(name, tok.span)
+        if name in self.macros:
+            params = ", ".join(self.macros[name])
+            self.diag(
+                Code.DEFINE_ARGUMENTS,
+                f"Define '{name}' takes parameters ({params}): call it as {name}(...)",
+                tok.span,
+                expected=f"{name}({params})",
+            )
+            return A.Ref(name, tok.span)
         if name in self.defined or name in self.broken_defines:
             return A.Ref(name, tok.span)
         if name == self.current_define:
@@ -247,7 +258,80 @@ class ExpressionParser(ParserBase):
                 break
         self.expect(")", f"to close {name_tok.text}(...)")
         span = self.span_from(name_tok.span)
+        if name_tok.text not in FUNCTIONS and self._define_call(name_tok):
+            if name_tok.text not in self.macros:  # reported: read as the bare name
+                return A.Ref(name_tok.text, span)
+            return self._bind_define(name_tok, raw, span)
         return bind_call(self, name_tok, raw, span)
+
+    def _define_call(self, name_tok: Token) -> bool:
+        """``name(...)`` names a Define (language 3): a parameterised one is bound by
+        :meth:`_bind_define`; any other is reported here (and read as a bare name)."""
+        name = name_tok.text
+        if name in self.macros:
+            return True
+        if name in self.defined or name in self.params:
+            self.diag(
+                Code.DEFINE_ARGUMENTS,
+                f"'{name}' takes no arguments: it is "
+                + ("a parameter" if name in self.params else "a Define without parameters"),
+                name_tok.span,
+                expected=name,
+                hint=f"use it by its bare name, or write Define({name}(a, ...), ...) to give "
+                "it parameters",
+            )
+            return True
+        if name == self.current_define or name in self.all_define_names:
+            where = "refers to itself" if name == self.current_define else "is used before it"
+            self.diag(
+                Code.DEFINE_ORDER,
+                f"Define '{name}' {where}",
+                name_tok.span,
+                expected="only earlier Defines",
+                hint="Defines form an acyclic graph: no recursion, move the Define above its "
+                "first use",
+            )
+            return True
+        return False
+
+    def _bind_define(
+        self, name_tok: Token, raw: list[tuple[Token | None, A.Node, Span]], span: Span
+    ) -> A.Node:
+        """A use ``name(x, y)`` of a parameterised Define: a Call whose args bind its
+        parameters (positionally or by name), each exactly once."""
+        name = name_tok.text
+        params = self.macros.get(name, ())
+        bound: dict[str, A.Arg] = {}
+        pos = 0
+        for key, value, aspan in raw:
+            if key is None:
+                pname = params[pos] if pos < len(params) else None
+                pos += 1
+            else:
+                pname = key.text if key.text in params else None
+            if pname is None or pname in bound:
+                what = "too many arguments" if key is None else f"no parameter '{key.text}'"
+                if pname is not None:
+                    what = f"'{pname}' given twice"
+                self.diag(
+                    Code.DEFINE_ARGUMENTS,
+                    f"{name}(...): {what}",
+                    aspan,
+                    expected=f"{name}({', '.join(params)})",
+                )
+                continue
+            bound[pname] = A.Arg(pname, value, key is not None, aspan)
+        missing = [p for p in params if p not in bound]
+        if missing and name in self.macros:
+            self.diag(
+                Code.DEFINE_ARGUMENTS,
+                f"{name}(...) is missing argument{'s' if len(missing) > 1 else ''}: "
+                + ", ".join(missing),
+                span,
+                expected=f"{name}({', '.join(params)})",
+            )
+        args = tuple(bound[p] for p in params if p in bound)
+        return A.Call(name, args, (), span)
 
     def trailing_comma(self, comma: Token, expected: str) -> Bail:
         """E013 at ``comma``, the token before the current ``)``."""

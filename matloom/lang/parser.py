@@ -217,12 +217,15 @@ class Parser(ExpressionParser):
                 expected="Define(name, expression)",
             )
         self.next()
+        params = self._define_params(name_tok) if self.at("(") else ()
         self.expect(",", "after the Define name")
         self.current_define = name_tok.text
+        self.params = params
         try:
             expr = self.parse_expr()
         finally:
             self.current_define = None
+            self.params = ()
         if self.at(","):
             raise self.fail(
                 Code.ARGUMENT_COUNT,
@@ -248,7 +251,48 @@ class Parser(ExpressionParser):
                 hint="choose another name",
             )
         self.defined[name] = None
-        return A.Define(name, expr, self.span_from(kw.span), name_tok.span)
+        if params:
+            self.macros[name] = params
+        return A.Define(name, expr, self.span_from(kw.span), name_tok.span, params=params)
+
+    def _define_params(self, name_tok: Token) -> tuple[str, ...]:
+        """The parameter list of ``Define(name(a, b), ...)`` (language 3), from its ``(``."""
+        self.next()  # '('
+        names: list[str] = []
+        while True:
+            tok = self.peek()
+            if tok.kind != "IDENT":
+                raise self.fail(
+                    Code.EXPECTED_TOKEN,
+                    f"expected a parameter name of Define '{name_tok.text}' but found "
+                    f"{tok.describe()}",
+                    tok.span,
+                    expected=f"Define({name_tok.text}(a, b), expression)",
+                )
+            self.next()
+            problem = None
+            if tok.text in names:
+                problem = "is repeated"
+            elif tok.text in FUNCTIONS or tok.text in CONSTANTS or tok.text in LITERALS:
+                problem = "is a built-in name"
+            elif tok.text in KEYWORDS:
+                problem = "is a keyword"
+            elif tok.text in self.defined or tok.text == name_tok.text:
+                problem = "is the name of a Define"
+            if problem is not None:
+                self.diag(
+                    Code.DEFINE_PARAMETER,
+                    f"parameter '{tok.text}' of Define '{name_tok.text}' {problem}",
+                    tok.span,
+                    expected="a new name for each parameter",
+                    hint="rename the parameter (parameters may not shadow Defines or built-ins)",
+                )
+            names.append(tok.text)
+            if self.at(","):
+                self.next()
+                continue
+            self.expect(")", f"to close the parameters of Define '{name_tok.text}'")
+            return tuple(names)
 
     # ---------------------------------------------------------------- material / layers
     def parse_material(self) -> tuple[A.Layer, ...]:

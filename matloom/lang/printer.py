@@ -310,7 +310,8 @@ def format_program(program: A.Program, *, comments: bool = False) -> str:
             tiled += f", unit_m={fmt_num(program.view.unit_m)}"
         out.code("", f"View({corners}{tiled})", program.view)
     for d in program.defines:
-        out.code("", f"Define({d.name}, {format_expr(d.expr)})", d)
+        head = f"{d.name}({', '.join(d.params)})" if d.params else d.name
+        out.code("", f"Define({head}, {format_expr(d.expr)})", d)
     if not program.layers:
         out.own("", program)
         out.own("", program, "footer")

@@ -285,7 +285,7 @@ class _Generator:
         if spec.print_style is PrintStyle.OPERATOR and spec.operator is not None:
             return A.BinOp(spec.operator, args[0].value, args[1].value)
         extra: tuple[A.Node, ...] = ()
-        if spec.variadic is not None:
+        if spec.variadic is not None and spec.variadic.kind is Kind.SEGMENT:
             lo = max(1, spec.min_variadic)
             n = self.rng.randint(lo, max(lo, self.cfg.max_path_segments))
             extra = tuple(self.call(self.rng.choice(self.segments), 0) for _ in range(n))
@@ -322,7 +322,7 @@ class _Generator:
     def value(self, spec: FunctionSpec, p: ParamSpec) -> A.Node:
         """A literal satisfying ``p``'s kind and constraints."""
         if p.kind is Kind.ENUM:
-            return A.Str(self.rng.choice(p.choices))
+            return A.Str(self.rng.choice(p.choices_in(self.cfg.language)))
         if p.kind is Kind.BOOL:
             return A.Lit(self.rng.random() < 0.5)
         draw = self._int if p.kind is Kind.INT else self._float

@@ -83,6 +83,7 @@ def _call(node: A.Call, strict: bool) -> float | int | None:
     if op is None:
         return None
     vals = [_eval(a.value, strict) for a in node.args]
+    vals += [_eval(e, strict) for e in node.extra if FUNCTIONS[node.func].nary]
     if any(v is None for v in vals):
         return None
     return op.static(vals, strict)  # type: ignore[no-any-return]

@@ -141,6 +141,9 @@ class _Walker:
             coords_ok = coords_ok or self.wrapper(node, frame, period)
         for arg in node.args:
             self.walk(arg.value, frame, coords_ok)
+        if spec is not None and spec.nary:  # Min(a, b, c, ...)
+            for extra in node.extra:
+                self.walk(extra, frame, coords_ok)
 
     def transform(self, node: A.Call, frame: Frame, period: Period) -> None:
         """Walk a transform: its field parameters in ``frame``, its operand in the frame its

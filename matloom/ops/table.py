@@ -27,11 +27,13 @@ from matloom.ops.op import (
     unbounded,
 )
 from matloom.ops.table_math import MATH_V2_ENTRIES
+from matloom.ops.table_quantize import QUANTIZE_ENTRIES
 from matloom.vocab import FUNCTIONS
 
 _MATHOPS = "matloom.engine.kernels.mathops:"
 _FIELDS = "matloom.engine.rules.fields:"
 _SUPPORT = "matloom.engine.rules.support:"
+_INSTANCING = "matloom.engine.rules.instancing:"
 _UNION = Ref(_SUPPORT + "union")
 _MOVED = Ref(_SUPPORT + "transformed")
 
@@ -47,6 +49,21 @@ def _unary(fn: Callable[[Any], Any]) -> Callable[[list[Any], bool], Any]:
 def _binary(fn: Callable[[Any, Any], Any]) -> Callable[[list[Any], bool], Any]:
     def rule(values: list[Any], strict: bool) -> Any:
         return fn(values[0], values[1]) if len(values) == 2 else None
+
+    return rule
+
+
+def _fold(fn: Callable[[Any, Any], Any]) -> Callable[[list[Any], bool], Any]:
+    """Min, Max of two or more values: the binary rule folded left, as the engine computes
+    ``Min(a, b, c)`` (``Min(Min(a, b), c)``)."""
+
+    def rule(values: list[Any], strict: bool) -> Any:
+        if len(values) < 2:
+            return None
+        out = fn(values[0], values[1])
+        for v in values[2:]:
+            out = fn(out, v)
+        return out
 
     return rule
 
@@ -135,12 +152,12 @@ def _div_bounds(a: Interval, b: Interval) -> Bounds:
     return (min(quotients), max(quotients))
 
 
-def _min_bounds(a: Interval, b: Interval) -> Bounds:
-    return (min(a[0], b[0]), min(a[1], b[1]))
+def _min_bounds(*operands: Interval) -> Bounds:
+    return (min(iv[0] for iv in operands), min(iv[1] for iv in operands))
 
 
-def _max_bounds(a: Interval, b: Interval) -> Bounds:
-    return (max(a[0], b[0]), max(a[1], b[1]))
+def _max_bounds(*operands: Interval) -> Bounds:
+    return (max(iv[0] for iv in operands), max(iv[1] for iv in operands))
 
 
 def _abs_bounds(a: Interval) -> Bounds:
@@ -262,7 +279,7 @@ _ENTRIES: tuple[Op, ...] = (
     _math(
         "Min",
         _MATHOPS + "minimum",
-        lambda v, s: min(v) if len(v) == 2 else None,
+        _fold(min),
         _min_bounds,
         "min",
         support=_UNION,
@@ -270,7 +287,7 @@ _ENTRIES: tuple[Op, ...] = (
     _math(
         "Max",
         _MATHOPS + "maximum",
-        lambda v, s: max(v) if len(v) == 2 else None,
+        _fold(max),
         _max_bounds,
         "max",
         support=_UNION,
@@ -376,6 +393,17 @@ _ENTRIES: tuple[Op, ...] = (
     # instancing: the operand in 9 neighbouring instance frames (the registry's instances),
     # which repeat with the instances; its own period: the cells
     _field("Tile", "tile", P.own(PR.tile), arrays=6, work=W.tile_work(9)),
+    # language 3: a per-sample choice between fields (operands materialised, numpy selection)
+    Op(
+        "Choose",
+        Kind.FIELD,
+        Ref(_INSTANCING + "choose"),
+        Ref(_INSTANCING + "choose_static"),
+        unbounded,
+        NUMPY,
+        arrays=3,
+        work=W.CHOOSE,
+    ),
     # geometry (arguments of Fill/Stroke; not fields)
     _geometry("Rect", "rect"),
     _geometry("Ellipse", "ellipse"),
@@ -385,7 +413,7 @@ _ENTRIES: tuple[Op, ...] = (
 )
 
 #: Every registry function's :class:`Op`, by function name.
-OPS: dict[str, Op] = {op.name: op for op in (*_ENTRIES, *MATH_V2_ENTRIES)}
+OPS: dict[str, Op] = {op.name: op for op in (*_ENTRIES, *MATH_V2_ENTRIES, *QUANTIZE_ENTRIES)}
 
 
 def operator_ops() -> dict[str, Op]:

@@ -41,6 +41,10 @@ class Transform:
     matrix: Callable[[float, float], Affine]
     warp: Callable[[list[Any]], tuple[Any, Any]]
     back: Callable[[float, float, float, float], tuple[float, float]]
+    #: The map is affine (``matrix`` gives it). False (Quantize's cell centres): its frames
+    #: equal no affine frame, and the interpreter gives them the periods of the op's period
+    #: rule (:mod:`.period`) instead of reading them off a matrix.
+    affine: bool = True
 
 
 def pair(values: list[Any]) -> tuple[Any, Any]:

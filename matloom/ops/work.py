@@ -34,6 +34,8 @@ FBM_BASE = 4
 #: border distance, which searches further.
 WORLEY = 128
 WORLEY_EDGE = 320
+#: Worley(smoothness > 0): the 25 distances twice and a portable exp per feature point.
+WORLEY_SMOOTH = 640
 #: Bricks and Weave's closed-form outputs, and Weave(output="along")'s fixed part (the
 #: distinct draft places present).
 BRICKS = 8
@@ -50,6 +52,8 @@ PATH_EDGE = 6
 CUBIC_EDGES = 16
 #: Tile: per instance (9 per texel), the cell hash, jitter, rotation, scale and the maximum.
 TILE_INSTANCE = 24
+#: Choose: the index, a comparison and a copy per option (counted again per further option).
+CHOOSE = 8
 
 
 def fbm(param: Param) -> float:
@@ -58,7 +62,9 @@ def fbm(param: Param) -> float:
 
 
 def worley(param: Param) -> float:
-    return WORLEY_EDGE if param("output") == "edge" else WORLEY
+    if param("output") == "edge":
+        return WORLEY_EDGE
+    return WORLEY_SMOOTH if float(param("smoothness") or 0.0) > 0 else WORLEY
 
 
 def weave(param: Param) -> float:

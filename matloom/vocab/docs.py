@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from matloom.vocab import CHANNELS, FUNCTIONS
+from matloom.vocab.docs_lang3 import language3_examples
 from matloom.vocab.spec import Kind, format_default
 
 _FAMILIES = (
@@ -110,6 +111,7 @@ def render_language_reference() -> str:
         "Operators: `+ - * / **` (`**` is right-associative; unary minus binds looser "
         "than `**`, so `-2 ** 2 = -4`). Constants: `pi`, `e`.",
         "",
+        *language3_examples(),
     ]
     for family, title in _FAMILIES:
         specs = [f for f in FUNCTIONS.values() if f.family == family]
@@ -128,9 +130,8 @@ def render_language_reference() -> str:
                 else:
                     out.append(_param_line(p))
             if f.variadic is not None:
-                out.append(
-                    f"  - `{f.variadic.name}...` (at least {f.min_variadic}): {f.variadic.doc}"
-                )
+                least = f"at least {f.min_variadic}" if f.min_variadic else "optional"
+                out.append(f"  - `{f.variadic.name}...` ({least}): {f.variadic.doc}")
             out += ["", f"Example: `{f.example}`", ""]
     return "\n".join(out).rstrip() + "\n"
 

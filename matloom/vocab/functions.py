@@ -6,31 +6,17 @@ import math
 
 from matloom.vocab.functions_math import math_v2_specs
 from matloom.vocab.instancing import instancing_specs
+from matloom.vocab.patterns import freq_param as _freq
+from matloom.vocab.patterns import pattern_specs
+from matloom.vocab.quantize import quantize_specs
 from matloom.vocab.spec import FunctionSpec, Kind, ParamSpec, PrintStyle, Returns
 
 P = ParamSpec
-_FREQ_SEARCH = (0.1, 50.0)
 _COORD_SEARCH = (0.0, 5.0)
 
 
 def _expr(name: str, doc: str) -> ParamSpec:
     return P(name, Kind.EXPR, doc)
-
-
-def _freq(name: str, doc: str, default: float | None, positive: bool) -> ParamSpec:
-    return P(
-        name,
-        Kind.FLOAT,
-        doc,
-        default=default,
-        nullable=True,
-        lo=0.0 if positive else None,
-        lo_open=positive,
-        nonzero=not positive,
-        is_frequency=True,
-        search=_FREQ_SEARCH,
-        search_log=True,
-    )
 
 
 def _seed() -> ParamSpec:
@@ -110,13 +96,16 @@ def _math_specs() -> list[FunctionSpec]:
         ("Min", "element-wise minimum (mask intersection)"),
         ("Max", "element-wise maximum (mask union)"),
     ):
+        more = "the smallest" if name == "Min" else "the largest"
         specs.append(
             FunctionSpec(
                 name,
                 "math",
-                doc,
-                f"{name}(X(), Y())",
+                f"{doc}; takes two or more fields (language 3: {name}(a, b, c, ...) is "
+                f"{more} of them, {name}({name}(a, b), c) ...)",
+                f"{name}(X(), Y(), 0.5)",
                 (_expr("expr1", "first field"), _expr("expr2", "second field")),
+                variadic=P("exprs", Kind.EXPR, "more fields (language 3)", since=3),
             )
         )
     for name, (op, pnames, doc) in _BINARY.items():
@@ -222,176 +211,26 @@ def _noise_specs() -> list[FunctionSpec]:
                 choices=("distance", "cell_value", "edge"),
                 since=2,
             ),
+            P(
+                "smoothness",
+                Kind.FLOAT,
+                "rounded cells (language 3): s > 0 replaces F1 by the smooth minimum F1 - s * "
+                "ln(sum over the feature points of exp(-(d - F1) / s)), in cell units: "
+                "dimples and pebbles without creases at the cell borders, at most F1 and at "
+                "least F1 - 3.2 s (0 near a feature point, after the clamp at 0); F2 is "
+                'unchanged, and so are output="cell_value" and "edge"; 0 = the exact F1; '
+                "above about 0.25 faint steps can appear where a far feature point enters the "
+                "searched 5 x 5 cells",
+                0.0,
+                lo=0,
+                hi=0.5,
+                search=(0.0, 0.3),
+                since=3,
+            ),
         ),
         print_style=PrintStyle.WRITTEN_KEYWORDS,
     )
     return [fbm, worley]
-
-
-def _pattern_specs() -> list[FunctionSpec]:
-    feather = P(
-        "feather", Kind.FLOAT, "edge softening width (0 = hard edge)", 0.0, lo=0, search=(0.0, 0.2)
-    )
-    bricks = FunctionSpec(
-        "Bricks",
-        "pattern",
-        "brick/tile pattern: a mask (1 on bricks, 0 in mortar), a random value per brick, the "
-        "position inside the brick or the distance to its border (see output); rows start at "
-        "the origin",
-        "Bricks(brick_width=0.5, brick_height=0.25, mortar=0.02)",
-        (
-            P(
-                "brick_width",
-                Kind.FLOAT,
-                "brick size along x",
-                1.0,
-                lo=0,
-                lo_open=True,
-                search=(0.05, 5),
-            ),
-            P(
-                "brick_height",
-                Kind.FLOAT,
-                "brick size along y",
-                0.5,
-                lo=0,
-                lo_open=True,
-                search=(0.05, 5),
-            ),
-            P(
-                "offset",
-                Kind.FLOAT,
-                "shift of each successive row (column) in brick widths; 0 = stacked",
-                0.5,
-                search=(0.0, 1.0),
-            ),
-            P("mortar", Kind.FLOAT, "gap width between bricks", 0.05, lo=0, search=(0.0, 1.0)),
-            P(
-                "axis",
-                Kind.ENUM,
-                "courses run along rows or columns",
-                "row",
-                choices=("row", "column"),
-            ),
-            feather,
-            P(
-                "output",
-                Kind.ENUM,
-                '"mask": 1 on bricks, 0 in mortar (feather softens the edge; the other outputs '
-                'ignore feather); "cell_value": a uniform random value in [0, 1) per brick, '
-                'constant over the brick and the half mortar around it, set by seed; "u" / '
-                '"v": the position inside the brick\'s cell (brick_width x brick_height: the '
-                "brick and half the mortar on each side) along x / y, from 0 at its left / "
-                'bottom side to 1 at its right / top side; "edge": the distance, in coordinate '
-                "units, from the sample to the brick's border (the nearest of its four sides), "
-                "0 in the mortar",
-                "mask",
-                choices=("mask", "cell_value", "u", "v", "edge"),
-                since=2,
-            ),
-            P(
-                "seed",
-                Kind.INT,
-                'random seed of output="cell_value" (integer >= 0; made explicit by '
-                "canonicalisation when omitted); the other outputs ignore it and get none",
-                default=None,
-                nullable=True,
-                lo=0,
-                is_seed=True,
-                since=2,
-                used_when=("output", ("cell_value",)),
-            ),
-        ),
-        print_style=PrintStyle.NONDEFAULT_KEYWORDS,
-    )
-    weave = FunctionSpec(
-        "Weave",
-        "pattern",
-        "woven threads: a mask (1 on whichever thread is on top, 0 in the gaps), the warp or "
-        "weft part of it, or the position along / across the thread on top (see output)",
-        "Weave(over=2, under=1, base_freq=16, warp_width=0.8, feather=0.1)",
-        (
-            P("over", Kind.INT, "cells the warp passes over", 1, lo=1, search=(1, 4)),
-            P("under", Kind.INT, "cells the warp passes under", 1, lo=1, search=(1, 4)),
-            P("shift", Kind.INT, "step of the draft per row (twill diagonal)", 1, search=(0, 3)),
-            _freq("base_freq", "thread cells per coordinate unit", 8.0, True),
-            _freq("base_freq_x", "per-axis cell frequency along x", None, True),
-            _freq("base_freq_y", "per-axis cell frequency along y", None, True),
-            P(
-                "warp_width",
-                Kind.FLOAT,
-                "thread width as a fraction of the cell",
-                0.5,
-                lo=0,
-                lo_open=True,
-                hi=1,
-                search=(0.05, 1.0),
-            ),
-            feather,
-            P(
-                "output",
-                Kind.ENUM,
-                '"mask": 1 on whichever thread is on top, 0 in the gaps; "warp" / "weft": the '
-                "mask where the warp (vertical) / weft (horizontal) thread is on top, 0 elsewhere "
-                '(warp + weft = mask); "along": the position along the visible float of the '
-                "thread on top (its run of consecutive cells), from 0 at its start (bottom end "
-                "of a warp float, left end of a weft float) to 1 at its end; a float that never "
-                "ends (a warp column always on top, e.g. shift=0) restarts in every cell; "
-                '"across": the position across the thread on top, from 0 at its left (warp) / '
-                "bottom (weft) edge to 1 at its other edge, 0 or 1 in the gaps beside it. "
-                "along and across ignore feather",
-                "mask",
-                choices=("mask", "warp", "weft", "along", "across"),
-                since=2,
-            ),
-        ),
-        print_style=PrintStyle.NONDEFAULT_KEYWORDS,
-    )
-    threshold = FunctionSpec(
-        "Threshold",
-        "mask",
-        "clamp or binarise a field: values >= above_at become above_to, values <= below_at become "
-        "below_to; values in between pass through unchanged, except inside the transition ramps "
-        "(with transition_width w > 0: in [above_at - w, above_at] the value blends smoothly "
-        "into above_to, in [below_at, below_at + w] from below_to). So below_at=0.4, "
-        "below_to=0, above_at=0.6, above_to=1 keeps the input itself between 0.4 and 0.6 (a "
-        "jump at each cutoff), not a 0-to-1 ramp: use Smoothstep(0.4, 0.6, f) for a soft mask. "
-        "Binarise with below_at = above_at = t: below_to at and under t, above_to above",
-        "Threshold(fBm(to_01=True, seed=1), below_at=0.5, below_to=0, above_at=0.5, above_to=1)",
-        (
-            _expr("expr", "input field"),
-            P("below_at", Kind.FLOAT, "lower cutoff", None, nullable=True, search=(0.0, 1.0)),
-            P(
-                "below_to",
-                Kind.FLOAT,
-                "value below the lower cutoff (default: below_at; no effect without below_at)",
-                None,
-                nullable=True,
-                search=(0.0, 1.0),
-                needs="below_at",
-            ),
-            P("above_at", Kind.FLOAT, "upper cutoff", None, nullable=True, search=(0.0, 1.0)),
-            P(
-                "above_to",
-                Kind.FLOAT,
-                "value above the upper cutoff (default: above_at; no effect without above_at)",
-                None,
-                nullable=True,
-                search=(0.0, 1.0),
-                needs="above_at",
-            ),
-            P(
-                "transition_width",
-                Kind.FLOAT,
-                "width of the smooth ramp inside the band",
-                0.0,
-                lo=0,
-                search=(0.0, 1.0),
-            ),
-        ),
-        print_style=PrintStyle.THRESHOLD,
-    )
-    return [bricks, weave, threshold]
 
 
 def _transform_specs() -> list[FunctionSpec]:
@@ -571,11 +410,12 @@ FUNCTIONS: dict[str, FunctionSpec] = {
     for spec in (
         *_math_specs(),
         *_noise_specs(),
-        *_pattern_specs(),
+        *pattern_specs(),
         *_transform_specs(),
         *_shape_specs(),
         *math_v2_specs(),
         *instancing_specs(),
+        *quantize_specs(),
     )
 }
 """Name -> spec for every callable of the language."""

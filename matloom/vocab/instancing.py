@@ -1,4 +1,5 @@
-"""Registry entry of ``Tile``: instancing of a motif over a grid of cells (language 2).
+"""Registry entries of ``Tile``: instancing of a motif over a grid of cells (language 2), and
+``Choose``: a per-sample choice between fields, e.g. by a per-instance value (language 3).
 
 They join :data:`matloom.vocab.functions.FUNCTIONS`; the engine's rule is
 :func:`matloom.engine.rules.fields.tile` and the per-instance geometry lives in
@@ -13,7 +14,7 @@ P = ParamSpec
 
 
 def instancing_specs() -> list[FunctionSpec]:
-    """``Tile`` (``since=2``)."""
+    """``Tile`` (``since=2``, its ``output`` ``since=3``) and ``Choose`` (``since=3``)."""
     positive = dict(lo=0.0, lo_open=True)
     return [
         FunctionSpec(
@@ -93,9 +94,49 @@ def instancing_specs() -> list[FunctionSpec]:
                     lo=0,
                     is_seed=True,
                 ),
+                P(
+                    "output",
+                    Kind.ENUM,
+                    '"mask": the maximum of the instances\' motifs (the default); the other '
+                    "outputs give, at each sample, a value of the instance whose motif is largest "
+                    "there (the instance you see; among the kept instances whose motif is > 0, "
+                    "0 where there is none): "
+                    '"instance_value": a uniform random value in [0, 1) per instance, set by seed '
+                    '(colour or vary each instance, or pick a motif with Choose); "row" / "column": '
+                    "the integer row / column index of the instance's cell (row = Floor(y / "
+                    "height) before jitter; in a tileable output both wrap to 0 .. count per View "
+                    'period - 1); "angle": the instance\'s random rotation in degrees, '
+                    'counter-clockwise, in [-rotate, rotate]; "u" / "v": the sample\'s x / y in '
+                    "the instance's frame, where the motif is evaluated (origin at the instance "
+                    "centre, rotated and scaled with it)",
+                    "mask",
+                    choices=("mask", "instance_value", "row", "column", "angle", "u", "v"),
+                    since=3,
+                ),
             ),
             print_style=PrintStyle.NONDEFAULT_KEYWORDS,
             since=2,
             instances=9,
-        )
+        ),
+        FunctionSpec(
+            "Choose",
+            "math",
+            "one of two or more fields, picked per sample by index in [0, 1): with n options "
+            "the option number Floor(index * n) (clamped to 0 .. n - 1; a, b, then the further "
+            "options in order); NaN where index is NaN. Give it a per-cell random value to pick "
+            'a motif, colour or height per cell: Worley(output="cell_value"), '
+            'Bricks(output="cell_value"), Hash(...), or per Tile instance '
+            'Tile(M, ..., output="instance_value") with the option Tiles on the same grid, '
+            "jitter, rotate, scale, probability, offset and seed, M covering every option's "
+            "motif (e.g. their Max), and instances that do not overlap (each sample then "
+            "shows one instance, whose value picks the option)",
+            "Choose(Hash(X() * 4, Y() * 4, seed=2), 0.2, 0.5, 0.9)",
+            (
+                P("index", Kind.EXPR, "the choice, in [0, 1)"),
+                P("a", Kind.EXPR, "option 0"),
+                P("b", Kind.EXPR, "option 1"),
+            ),
+            variadic=P("options", Kind.EXPR, "further options (option 2, 3, ...)"),
+            since=3,
+        ),
     ]

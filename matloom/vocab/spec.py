@@ -106,10 +106,19 @@ class ParamSpec:
     #: periodic. The op table's period rules read it (:mod:`matloom.ops.period`): an argument
     #: with a cycle repeats with the View where it advances by whole cycles per View period.
     cycle: float | str | None = None
+    #: Enum choices added by a later language than the parameter's own ``since`` (choice ->
+    #: version, e.g. Bricks' ``output="row"`` in language 3): ``matloom random --language N``
+    #: draws only :meth:`choices_in` N.
+    choice_since: tuple[tuple[str, int], ...] = ()
 
     @property
     def required(self) -> bool:
         return self.default is REQUIRED
+
+    def choices_in(self, language: int) -> tuple[str, ...]:
+        """The choices of language ``language`` (see ``choice_since``)."""
+        later = dict(self.choice_since)
+        return tuple(c for c in self.choices if later.get(c, self.since) <= language)
 
     def constraint_text(self) -> str:
         """Human-readable constraint, e.g. ``> 0``, ``in [0, 1]``, ``one of "row", "column"``."""
@@ -169,6 +178,12 @@ class FunctionSpec:
     @property
     def param_names(self) -> tuple[str, ...]:
         return tuple(p.name for p in self.params)
+
+    @property
+    def nary(self) -> bool:
+        """Takes more field operands than its parameters (language 3: ``Min(a, b, c, ...)``),
+        held in ``Call.extra`` and folded left by the engine (``Min(Min(a, b), c)``)."""
+        return self.variadic is not None and self.variadic.kind is Kind.EXPR
 
     @property
     def is_noise(self) -> bool:
@@ -246,4 +261,4 @@ def format_default(v: Any) -> str:
 
 
 #: The current language version (``FunctionSpec.since`` and friends are at most this).
-LANGUAGE_VERSION = 2
+LANGUAGE_VERSION = 3

@@ -9,7 +9,8 @@ export const PREVIEW_SIZE = 256;
 export const FULL_SIZE = 512;
 /** Debounce of editor typing; panel drags and layer toggles go at once. */
 const TYPING_DEBOUNCE_MS = 30;
-/** When the last full pass came back faster than this, the first pass is skipped. */
+/** When the last full pass came back faster than this, the first pass is skipped (except for a
+ * slider drag: its first pass is a quarter of the work and what the 3D view shows first). */
 const FAST_FULL_MS = 70;
 /** After a panel edit the structure is refreshed once no further panel edit came for this long. */
 const PANEL_STRUCTURE_MS = 350;
@@ -25,6 +26,8 @@ export function previewSize(lastFullMs: number): number {
 }
 
 interface Job {
+  /** A slider step: always send the quick first pass (the 3D view shows it while dragging). */
+  drag: boolean;
   text: string;
   hidden: number[];
   solo: number | null;
@@ -95,7 +98,7 @@ export class Live {
       else if (source === "panel") {
         // A drag: evaluate at once, refresh the structure only once the drag pauses, so the
         // structure request does not compete with the evaluation for the server's cores.
-        this.kick(false);
+        this.kick(false, true);
         clearTimeout(this.structureTimer);
         this.structureTimer = setTimeout(() => this.structurer.push(store.text), PANEL_STRUCTURE_MS);
       } else this.kick(true);
@@ -108,10 +111,10 @@ export class Live {
   }
 
   /** Evaluate the current program now (and refresh the structure when `structure`). */
-  kick(structure = true): void {
+  kick(structure = true, drag = false): void {
     const { store } = this.ctx;
     this.ctx.store.emit("status", { state: "busy" });
-    this.evaluator.push({ text: store.text, hidden: [...store.hidden], solo: store.solo });
+    this.evaluator.push({ drag, text: store.text, hidden: [...store.hidden], solo: store.solo });
     if (structure) this.structurer.push(store.text);
   }
 
@@ -120,7 +123,7 @@ export class Live {
   }
 
   private async evaluate(job: Job, superseded: () => boolean): Promise<void> {
-    const skipPreview = this.lastFullMs < FAST_FULL_MS;
+    const skipPreview = this.lastFullMs < FAST_FULL_MS && !job.drag;
     const passes: ("preview" | "full")[] = skipPreview ? ["full"] : ["preview", "full"];
     for (const pass of passes) {
       if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits

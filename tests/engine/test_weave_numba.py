@@ -31,6 +31,8 @@ def test_weave_kernel_matches_numpy(dtype, output):
             warp_width=float(rng.uniform(0.05, 1)),
             feather=float(rng.choice([0.0, rng.uniform(0, 0.5)])),
         )
+        if output == "thread_value":  # language 3: a seed, a weft width and wrapped threads
+            kw.update(seed=trial, weft_width=0.3, wrap=(trial % 3 * 7, trial % 2 * 5))
         want = patterns.weave(x, y, output=output, **kw)
         got = W.weave(x, y, output=output, **kw)
         assert got.dtype == np.float64

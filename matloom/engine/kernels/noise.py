@@ -332,6 +332,9 @@ class WorleyPlan:
     output: int = 0
     #: Tileable plans: cells per period (nx, ny); the loops hash cell (cx mod nx, cy mod ny).
     wrap: tuple[int, int] | None = None
+    #: Language 3: > 0 replaces F1 by a smooth minimum of the distances (output 0 only; the
+    #: loops at the end of :mod:`.noise_numpy` and :mod:`.noise_numba_worley`).
+    smoothness: float = 0.0
 
     @property
     def shape2d(self) -> tuple[int, int]:
@@ -365,6 +368,7 @@ def plan_worley(
     to_01: bool,
     output: str = "distance",
     period: tuple[float, float] | None = None,
+    smoothness: float = 0.0,
 ) -> WorleyPlan:
     """The :class:`WorleyPlan` of a Worley call on the broadcast of x and y; with ``period``
     (Px, Py) the frequencies are snapped to whole numbers of cells per period and the cells
@@ -382,6 +386,9 @@ def plan_worley(
     plan = WorleyPlan(metric, combo, float(norm), bool(to_01), freq_x, freq_y, lay)
     plan.wrap = wrap
     plan.output = WORLEY_OUTPUTS[output]
+    if not float(smoothness) >= 0.0:
+        raise ValueError(f"Worley smoothness must be >= 0, got {smoothness!r}")
+    plan.smoothness = float(smoothness) if plan.output == 0 else 0.0
     if lay.separable:
         plan.u_axis = lay.x_axis.astype(np.float64) * freq_x
         plan.v_axis = lay.y_axis.astype(np.float64) * freq_y

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import prange
 
+from matloom.engine.kernels.mathops_numba import exp
 from matloom.engine.kernels.noise import WORLEY_EDGE_SEARCH, WorleyLoops, WorleyPlan
 from matloom.engine.kernels.noise_numba_cells import (
     cells_batch_kernel,
@@ -323,6 +324,9 @@ def _fill_wrapped(
 def _dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
     """Worley noise into ``out`` (H, W): feature table (when small enough), then row ranges
     on threads."""
+    if plan.output == 0 and plan.smoothness > 0:  # language 3: a smooth F1
+        smooth_dense(plan, seed, out)
+        return
     seed_term = worley_seed_term(seed)
     coords, box = _prepare(plan)
     cx0, cy0, nx, ny = box
@@ -354,8 +358,8 @@ def _seed_batch(plan: WorleyPlan, seeds: list[int]) -> np.ndarray | None:
     rebuilt.  Parallel over seeds.
     """
     height, width = plan.shape2d
-    if plan.wrap is not None:  # the batch kernel's tables are not wrapped: per-seed calls
-        return None
+    if plan.wrap is not None or plan.smoothness > 0:  # per-seed calls (wrapped tables, or
+        return None  # the smooth loops)
     coords, box = _prepare(plan)
     cx0, cy0, nx, ny = box
     if nx == 0 or height * width == 0:
@@ -372,3 +376,77 @@ def _seed_batch(plan: WorleyPlan, seeds: list[int]) -> np.ndarray | None:
 
 #: The numba Worley loops (with a seed-batch kernel).
 WORLEY_LOOPS = WorleyLoops("numba", dense=_dense, seed_batch=_seed_batch)
+
+
+# ------------------------------------------------------------- Worley's smooth F1 (language 3)
+# numba loops of Worley's smooth F1 (see the end of :mod:`.noise_numpy`): per texel, F1, F2 and the sum
+# of ``exp(-(d_k - F1) / s)`` over the 5 x 5 feature points, with the operations of the numpy
+# loops in the same order (cells hashed per texel, wrapped in tileable plans); the finish (log,
+# combination) is the shared numpy code, so the backends give the same bits.
+
+
+@jit_kernel()
+def _smooth_kernel(
+    u: np.ndarray,
+    v: np.ndarray,
+    metric: int,
+    s: float,
+    seed_term: int,
+    nx: int,
+    ny: int,
+    f1s: np.ndarray,
+    f2s: np.ndarray,
+    totals: np.ndarray,
+    first: int,
+    last: int,
+) -> None:
+    """Rows ``first``..``last - 1`` of the (H, W) outputs; u, v float64 (H, W); nx, ny the
+    wrap's cell counts (0: no wrap)."""
+    for i in range(first, last):
+        for j in range(u.shape[1]):
+            uu, vv = u[i, j], v[i, j]
+            if not (np.isfinite(uu) and np.isfinite(vv)):
+                f1s[i, j] = np.inf
+                f2s[i, j] = np.inf
+                totals[i, j] = np.nan
+                continue
+            cu, cv = np.int64(np.floor(uu)), np.int64(np.floor(vv))
+            f1 = np.inf
+            f2 = np.inf
+            for ox in range(-2, 3):
+                for oy in range(-2, 3):
+                    cx, cy = cu + ox, cv + oy
+                    hx, hy = (cx % nx, cy % ny) if nx > 0 else (cx, cy)
+                    dx = uu - (cx + worley_hash(hx, hy, seed_term, 0))
+                    dy = vv - (cy + worley_hash(hx, hy, seed_term, 1))
+                    f1, f2 = update(f1, f2, final_length(metric_key(dx, dy, metric), metric))
+            total = 0.0
+            for ox in range(-2, 3):
+                for oy in range(-2, 3):
+                    cx, cy = cu + ox, cv + oy
+                    hx, hy = (cx % nx, cy % ny) if nx > 0 else (cx, cy)
+                    dx = uu - (cx + worley_hash(hx, hy, seed_term, 0))
+                    dy = vv - (cy + worley_hash(hx, hy, seed_term, 1))
+                    d = final_length(metric_key(dx, dy, metric), metric)
+                    total = total + exp(-(d - f1) / s)
+            f1s[i, j] = f1
+            f2s[i, j] = f2
+            totals[i, j] = total
+
+
+def smooth_dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
+    """The smooth-F1 Worley of ``plan`` into ``out`` (H, W)."""
+    from matloom.engine.kernels.noise_numpy import finish
+
+    height, width = out.shape
+    if plan.layout.separable:
+        u_axis, v_axis = plan.scaled()
+        u = np.ascontiguousarray(np.broadcast_to(u_axis[None, :], (height, width)))
+        v = np.ascontiguousarray(np.broadcast_to(v_axis[:, None], (height, width)))
+    else:
+        u, v = (np.ascontiguousarray(a.reshape(height, width)) for a in plan.scaled(0, None))
+    f1s, f2s, totals = (np.empty((height, width)) for _ in range(3))
+    nx, ny = plan.wrap or (0, 0)
+    args = (u, v, plan.metric, float(plan.smoothness), int(worley_seed_term(seed)), nx, ny)
+    parallel_rows(height, width, lambda a, b: _smooth_kernel(*args, f1s, f2s, totals, a, b))
+    out[...] = finish(f1s, f2s, totals, plan)

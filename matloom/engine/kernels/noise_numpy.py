@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from matloom.engine.kernels.mathops import exp_
 from matloom.engine.kernels.noise import (
     WORLEY_CELL_SALT,
     WORLEY_EDGE_SEARCH,
@@ -38,6 +39,7 @@ from matloom.engine.kernels.opensimplex import (
     scale_grid,
     worley_seed_term,
 )
+from matloom.ops import portable_math
 from matloom.ops.periodic import SQUISH_CONSTANT2, STRETCH_CONSTANT2
 
 __all__ = ["FBM_LOOPS", "WORLEY_LOOPS", "fbm_tiled", "noise2", "noise2_tiled", "worley_hash"]
@@ -449,6 +451,8 @@ def _worley_values(
     """The plan's output at flat float64 u, v."""
     if plan.output != 0:
         return _cells(u, v, seed_term, plan)
+    if plan.smoothness > 0:  # language 3: a smooth F1
+        return smooth_values(u, v, seed_term, plan)
     f1, f2 = _worley_points(u, v, seed_term, plan.metric, plan.wrap)
     return _combine(f1, f2, plan.combo, plan.norm, plan.to_01)
 
@@ -471,3 +475,64 @@ def _worley_dense(plan: WorleyPlan, seed: int, out: np.ndarray) -> None:
 
 #: The numpy Worley loops.
 WORLEY_LOOPS = WorleyLoops("numpy", dense=_worley_dense)
+
+
+# ------------------------------------------------------------- Worley's smooth F1 (language 3)
+# Worley's smooth F1 (language 3, ``Worley(smoothness=s)``), numpy loops and the shared finish.
+#
+# F1 is replaced by the smooth minimum of the distances ``d_k`` to the 25 feature points of the
+# 5 x 5 cell block (the points Worley searches)::
+#
+#     F1_s = F1 - s * ln(sum_k exp(-(d_k - F1) / s))
+#
+# (log-sum-exp, shifted by F1 so that every term is in (0, 1] and the sum in [1, 25]): rounded
+# cells, smooth across the Voronoi borders, at most F1 and at least F1 - s ln 25, and F1 itself
+# where no other point is within a few s. Points outside the block are at least 2 cells away, so
+# leaving them out changes the value by less than ``s * 25 * exp(-(2 - F1) / s)`` (below 1e-3
+# for s <= 0.25 wherever F1 < 0.8, i.e. almost everywhere). F2 is unchanged; the combination,
+# to_01 and the clamp at 0 then apply as usual.
+#
+# Bit-identical on every backend: the distances are the Worley loops' (the same operations), the
+# sum runs in the same order (x offset outer, y offset inner), ``exp`` is the portable
+# :func:`~matloom.engine.kernels.mathops.exp_` (``mathops_numba.exp`` in the numba loops of
+# :mod:`.noise_numba_worley`) and the finish (:func:`finish`, with the portable log) is this
+# module's numpy code on both.
+
+
+def smooth_values(
+    u: np.ndarray, v: np.ndarray, seed_term: np.int64, plan: WorleyPlan
+) -> np.ndarray:
+    """The plan's smooth-F1 output at flat float64 u, v (numpy loops)."""
+    f1, f2 = _worley_points(u, v, seed_term, plan.metric, plan.wrap)
+    s = plan.smoothness
+    finite = np.isfinite(u) & np.isfinite(v)
+    cu = np.floor(np.where(finite, u, 0.0)).astype(np.int64)
+    cv = np.floor(np.where(finite, v, 0.0)).astype(np.int64)
+    total = np.zeros(u.shape)
+    with np.errstate(all="ignore"):
+        for off_x in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+            cx = cu + off_x
+            for off_y in range(-WORLEY_SEARCH, WORLEY_SEARCH + 1):
+                cy = cv + off_y
+                hx, hy = (cx, cy) if plan.wrap is None else _wrap(cx, cy, plan.wrap)
+                px = cx + worley_hash(hx, hy, seed_term, 0)
+                py = cy + worley_hash(hx, hy, seed_term, 1)
+                d = _metric(u - px, v - py, plan.metric)
+                total = total + exp_(-(d - f1) / s)
+    total = np.where(finite, total, np.nan)
+    return finish(f1, f2, total, plan)
+
+
+def _wrap(cx: np.ndarray, cy: np.ndarray, wrap: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    return np.mod(cx, np.int64(wrap[0])), np.mod(cy, np.int64(wrap[1]))
+
+
+def finish(f1: np.ndarray, f2: np.ndarray, total: np.ndarray, plan: WorleyPlan) -> np.ndarray:
+    """Combine F1_s (from F1 and the sum; F1 itself where the sum is not finite: non-finite
+    coordinates, as the exact loops give them) and F2 as Worley does (both backends)."""
+    f1 = np.asarray(f1, np.float64)
+    ok = np.isfinite(total)
+    with np.errstate(all="ignore"):
+        log = portable_math.log(np.where(ok, total, 1.0))
+        smooth = np.where(ok, f1 - plan.smoothness * log, f1)
+    return _combine(smooth, np.asarray(f2, np.float64), plan.combo, plan.norm, plan.to_01)

@@ -20,12 +20,17 @@ from matloom.engine.kernels.opensimplex import worley_seed_term
 
 BRICK_AXES: tuple[str, ...] = ("row", "column")
 #: Bricks' ``output`` values; the numba kernels take their index.
-BRICK_OUTPUTS: tuple[str, ...] = ("mask", "cell_value", "u", "v", "edge")
+BRICK_OUTPUTS: tuple[str, ...] = ("mask", "cell_value", "u", "v", "edge", "row", "column")
+#: Bricks' outputs that are the brick's indices (wrapped in tileable output, as cell values).
+BRICK_INDEX_OUTPUTS: tuple[str, ...] = ("row", "column")
 #: ``which`` of the (Worley) cell hash for the bricks' cell values.
 BRICK_CELL_SALT = 3
 #: Brick indices are clamped to +-2**62 before they are hashed (both backends).
 CELL_INDEX_LIMIT = float(2**62)
-WEAVE_OUTPUTS: tuple[str, ...] = ("mask", "warp", "weft", "along", "across")
+WEAVE_OUTPUTS: tuple[str, ...] = ("mask", "warp", "weft", "along", "across", "thread_value")
+#: ``which`` of the (Worley) cell hash for the warp's and the weft's thread values.
+WARP_SALT = 4
+WEFT_SALT = 5
 
 
 def smooth_coverage(s: np.ndarray, feather: float) -> np.ndarray:
@@ -92,10 +97,11 @@ def bricks(
     the position in the brick's cell (the floor-mods of the mask); ``edge`` the inset where it
     is >= 0, else 0 (inside a rectangle the min of the four side distances is the exact distance
     to its border); ``cell_value`` the Worley cell hash (salt :data:`BRICK_CELL_SALT`) of the
-    brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN; with
-    ``wrap`` (tileable output: bricks along a course, courses, and the bricks the course shift
-    adds over them, :func:`~matloom.ops.periodic.course_wrap`) the indices are
-    wrapped first, as Tile's cells are.
+    brick's (column, row) indices (clamped to +-2**62), NaN where an index is NaN; ``row`` /
+    ``column`` the indices themselves (as float64). With ``wrap`` (tileable output: bricks
+    along a course, courses, and the bricks the course shift adds over them,
+    :func:`~matloom.ops.periodic.course_wrap`) the indices are wrapped first, as Tile's cells
+    are.
     """
     check_bricks(axis, output, seed)
     bw, bh = float(brick_width), float(brick_height)
@@ -149,6 +155,8 @@ def _brick_output(
             row, col = wrap_cell(row, col, across, along, k)
         else:
             col, row = wrap_cell(col, row, across, along, k)
+    if output in BRICK_INDEX_OUTPUTS:
+        return (row if output == "row" else col).astype(np.float64)
     value = worley_hash(
         _cell_int(col), _cell_int(row), worley_seed_term(int(seed or 0)), BRICK_CELL_SALT
     )
@@ -207,35 +215,50 @@ def weave(
     warp_width: float,
     feather: float,
     output: str = "mask",
+    weft_width: float | None = None,
+    seed: int | None = None,
+    wrap: tuple[int, int] | None = None,
 ) -> np.ndarray:
     """Woven thread mask: 1 on whichever thread is on top, 0 in the gaps (spec §2.6).
 
     Cell (col, row) = floor of (x * freq_x, y * freq_y). The warp (a vertical band centred
     in the cell) is on top where ``(col - row * shift) mod (over + under) < over``; otherwise
-    the weft (a horizontal band). Band half-width is ``warp_width / 2`` in cell units and the
-    feather is in cell-fraction units. Warp and weft both give 1.
+    the weft (a horizontal band). Band half-widths are ``warp_width / 2`` and ``weft_width /
+    2`` (None: the warp's) in cell units and the feather is in cell-fraction units. Warp and
+    weft both give 1.
 
     ``output="warp"``/``"weft"``: the mask where that thread is on top, else 0; ``"across"``:
-    ``clip(((u - col) - 0.5 + warp_width / 2) / warp_width, 0, 1)`` for the warp (v and row
-    for the weft); ``"along"``: see :func:`.patterns_weave.along`.
+    ``clip(((u - col) - 0.5 + warp_width / 2) / warp_width, 0, 1)`` for the warp (v, row and
+    weft_width for the weft); ``"along"``: see :func:`.patterns_weave.along`;
+    ``"thread_value"``: the Worley cell hash of the thread on top, ``(col, 0)`` with salt
+    :data:`WARP_SALT` for the warp and ``(0, row)`` with :data:`WEFT_SALT` for the weft (the
+    index clamped to +-2**62, NaN where it is NaN); with ``wrap`` (tileable output: columns and
+    rows per period, 0 for an axis that does not wrap) the index is taken modulo it first.
     """
     if output not in WEAVE_OUTPUTS:
         raise ValueError(f"output must be one of {WEAVE_OUTPUTS}, got {output!r}")
+    if output == "thread_value" and seed is None:
+        raise ValueError('Weave(output="thread_value") has no seed; canonicalise the program first')
+    weft = warp_width if weft_width is None else weft_width
     x, y = np.asarray(x), np.asarray(y)
     shape = _grid_shape(x, y)
     with np.errstate(all="ignore"):  # non-finite coordinates give NaN quietly
         u, v = x * freq_x, y * freq_y
         cells = weave_cells(u, v, over, under, shift)
         if output in ("mask", "warp", "weft"):
-            inset = _weave_inset(u, v, cells, warp_width / 2)
+            inset = _weave_inset(u, v, cells, warp_width / 2, weft / 2)
             coverage = smooth_coverage(inset, feather)
             if output != "mask":
                 coverage = np.where(cells[3] == (output == "warp"), coverage, 0.0)
             return _full_float64(coverage, shape)
         col, row, _, warp_on_top = cells
         if output == "across":
-            a = np.where(warp_on_top, u - col, v - row)
-            return _full_float64(np.clip((a - 0.5 + warp_width / 2) / warp_width, 0.0, 1.0), shape)
+            warp_a = np.clip((u - col - 0.5 + warp_width / 2) / warp_width, 0.0, 1.0)
+            weft_a = np.clip((v - row - 0.5 + weft / 2) / weft, 0.0, 1.0)
+            return _full_float64(np.where(warp_on_top, warp_a, weft_a), shape)
+        if output == "thread_value":
+            value = thread_value(col, row, warp_on_top, int(seed), wrap or (0, 0))  # type: ignore[arg-type]
+            return _full_float64(value, shape)
         from matloom.engine.kernels.patterns_weave import along
 
         return _full_float64(along(u, v, cells, int(over), int(under), int(shift)), shape)
@@ -253,9 +276,28 @@ def weave_cells(
     return col, row, w, w < int(over)
 
 
-def _weave_inset(u: np.ndarray, v: np.ndarray, cells: tuple, half: float) -> np.ndarray:
+def thread_value(
+    col: np.ndarray, row: np.ndarray, warp_on_top: np.ndarray, seed: int, wrap: tuple[int, int]
+) -> np.ndarray:
+    """The random value of the thread on top (see :func:`weave`), float64."""
+    ncols, nrows = (float(n) for n in wrap)
+    if ncols:
+        col = floor_mod(col, ncols)
+    if nrows:
+        row = floor_mod(row, nrows)
+    term = worley_seed_term(int(seed))
+    zero = np.zeros((), dtype=np.int64)
+    warp = worley_hash(_cell_int(col), zero, term, WARP_SALT)
+    weft = worley_hash(zero, _cell_int(row), term, WEFT_SALT)
+    value = np.where(warp_on_top, warp, weft)
+    return np.where(np.isnan(np.where(warp_on_top, col, row)), np.nan, value)
+
+
+def _weave_inset(
+    u: np.ndarray, v: np.ndarray, cells: tuple, half: float, weft_half: float
+) -> np.ndarray:
     """Signed inset into the thread on top at cell coordinates (u, v)."""
     col, row, _, warp_on_top = cells
     warp_inset = half - np.abs((u - col) - 0.5)
-    weft_inset = half - np.abs((v - row) - 0.5)
+    weft_inset = weft_half - np.abs((v - row) - 0.5)
     return np.where(warp_on_top, warp_inset, weft_inset)

@@ -111,7 +111,8 @@ def _bricks_out_kernel(
     first: int,
     last: int,
 ) -> None:
-    """Output ``output`` (index in ``patterns.BRICK_OUTPUTS``: 1 cell value, 2 u, 3 v, 4 edge)
+    """Output ``output`` (index in ``patterns.BRICK_OUTPUTS``: 1 cell value, 2 u, 3 v, 4 edge,
+    5 row, 6 column)
     of rows ``first``..``last - 1``; consts as :func:`_bricks_kernel`'s, then the index limit
     2**62."""
     bw, bh, offset, half = consts[0], consts[1], consts[2], consts[3]
@@ -142,6 +143,10 @@ def _bricks_out_kernel(
                 out_row[j] = lx / bw
             elif output == 3:
                 out_row[j] = ly / bh
+            elif output == 5:
+                out_row[j] = np.float64(row)
+            elif output == 6:
+                out_row[j] = np.float64(col)
             else:
                 inset = _nan_min(_nan_min(lx - half, bw_in - lx), _nan_min(ly - half, bh_in - ly))
                 out_row[j] = zero if inset < zero else inset

@@ -33,6 +33,12 @@ _GOLDEN = np.uint64(0x9E3779B97F4A7C15)
 _M1 = np.uint64(0xBF58476D1CE4E5B9)
 _M2 = np.uint64(0x94D049BB133111EB)
 _STREAMS = 5
+#: Tile's outputs (language 3): the motif's maximum over the instances ("mask"), or a value of
+#: the instance whose motif is largest at the sample (:func:`attribute`, ``u``/``v``: its local
+#: coordinates).
+TILE_OUTPUTS: tuple[str, ...] = ("mask", "instance_value", "row", "column", "angle", "u", "v")
+#: Hash stream of the instance values (after the 5 streams of the instance geometry).
+VALUE_STREAM = 5
 
 
 @dataclass(frozen=True)
@@ -161,6 +167,34 @@ def instance_parts(
         scale = smin + srange * u[3]
         theta = (2.0 * u[2] - 1.0) * rot
     return dx, dy, scale, theta, keep
+
+
+def attribute(x: np.ndarray, y: np.ndarray, p: TileParams, dr: int, dc: int, output: str) -> Any:
+    """The instance value (hash stream :data:`VALUE_STREAM`, uniform in [0, 1)), the row or
+    column index (wrapped in tileable output, as the random numbers' cell) or the rotation in
+    degrees (counter-clockwise, in [-rotate, rotate]) of neighbour (dr, dc)'s instance at the
+    samples (x, y) (float64 arrays of one shape); NaN where the cell is not valid. The same
+    cells as :func:`instance_parts` (and the numba kernel): numpy serves both backends."""
+    k = p.consts()
+    w, h, shift_w, nr, nc, ks = (float(k[i]) for i in (0, 1, 2, 9, 10, 11))
+    x64, y64 = np.asarray(x, np.float64), np.asarray(y, np.float64)
+    with np.errstate(all="ignore"):
+        r = np.floor(y64 / h) + dr
+        c = np.floor((x64 - r * shift_w) / w) + dc
+        valid = (np.abs(r) < MAX_CELL) & (np.abs(c) < MAX_CELL)
+        hr, hc = (r, c) if nc == 0 else wrap_cell(r, c, nr, nc, ks)
+        if output in ("row", "column"):
+            return np.where(valid, hr if output == "row" else hc, np.nan)
+        ri = np.where(valid, hr, 0.0).astype(np.int64)
+        ci = np.where(valid, hc, 0.0).astype(np.int64)
+        if output == "angle":
+            u = uniform(stream_keys(p.seed)[2], ri, ci)
+            return np.where(valid, (2.0 * u - 1.0) * float(p.rotate), np.nan)
+        if output != "instance_value":
+            raise ValueError(f"Tile has no instance attribute {output!r}")
+        base = (int(p.seed) * 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+        key = np.uint64((base + VALUE_STREAM) & 0xFFFFFFFFFFFFFFFF)
+        return np.where(valid, uniform(key, ri, ci), np.nan)
 
 
 def wrap_cell(r: Any, c: Any, nr: float, nc: float, ks: float) -> tuple[Any, Any]:

@@ -41,17 +41,21 @@ def worley(ev: Any, call: A.Call, c: Any) -> Any:
 
 
 def bricks(ev: Any, call: A.Call, c: Any) -> Any:
-    """Bricks; its seed only where the output uses one (``ParamSpec.used_when``)."""
+    """Bricks; its seed only where the output uses one (``ParamSpec.used_when``). Cell values
+    and the row / column indices wrap in a tileable output."""
+    from matloom.engine.kernels import patterns
+
     params = ev.params(call)
-    if not uses_seed(call):
+    seeded = uses_seed(call)
+    if not seeded and params["output"] not in patterns.BRICK_INDEX_OUTPUTS:
         return ev.backend.bricks(c[0], c[1], **{**params, "seed": None})
     kernel = ev.backend.bricks
     period = ev.periods_of(c, call.func)
     wrap = None if period is None else brick_wrap(params, period)
-    if wrap is not None:  # tileable cell values: the numpy kernel wraps them (both backends)
-        from matloom.engine.kernels import patterns
-
+    if wrap is not None:  # tileable cells: the numpy kernel wraps them (both backends)
         kernel = partial(patterns.bricks, wrap=wrap)
+    if not seeded:
+        return kernel(c[0], c[1], **{**params, "seed": None})
     return per_seed(ev, call, lambda seed: kernel(c[0], c[1], **{**params, "seed": seed}))
 
 
@@ -73,8 +77,29 @@ def per_seed(ev: Any, call: A.Call, compute: Callable[[int], Any]) -> Any:
 
 
 def weave(ev: Any, call: A.Call, c: Any) -> Any:
+    """Weave; its seed only for output="thread_value", whose thread indices wrap in a tileable
+    output (columns and rows per View period, where they are whole numbers)."""
     fx, fy = ev.freqs(call)
-    return ev.backend.weave(c[0], c[1], freq_x=fx, freq_y=fy, **ev.params(call, frequency=False))
+    params = {"freq_x": fx, "freq_y": fy, **ev.params(call, frequency=False)}
+    if not uses_seed(call):
+        return ev.backend.weave(c[0], c[1], **{**params, "seed": None})
+    period = ev.periods_of(c, call.func)
+    if period is not None:
+        params["wrap"] = weave_wrap(fx, fy, period)
+    return per_seed(ev, call, lambda seed: ev.backend.weave(c[0], c[1], **{**params, "seed": seed}))
+
+
+def weave_wrap(fx: float, fy: float, period: tuple[float, float]) -> tuple[int, int]:
+    """Thread columns and rows per period (0 for an axis where they are not a whole number
+    that :func:`~matloom.ops.periodic.wraps`)."""
+    from matloom.ops.period import whole
+    from matloom.ops.periodic import wraps
+
+    out = []
+    for n in (fx * period[0], fy * period[1]):
+        k = whole(n)
+        out.append(int(k) if k is not None and wraps(n) and k > 0 else 0)
+    return out[0], out[1]
 
 
 def fill(ev: Any, call: A.Call, c: Any) -> Any:
@@ -145,6 +170,11 @@ def tile(ev: Any, call: A.Call, c: Any) -> Any:
     period = ev.periods_of(c, call.func)
     if period is not None:
         params = params.tiled(period)
+    output = ev.num(call, "output")
+    if output != "mask":  # language 3: a value of the instance on top
+        from matloom.engine.rules.instancing import tile_output
+
+        return tile_output(ev, call, c, params, output)
     motif = call.arg("expr")
     box = ev.motif_support(motif)
     shape = np.broadcast_shapes(np.shape(c[0]), np.shape(c[1]))

@@ -80,11 +80,16 @@ def stroke(ctx: Context, call: A.Call, operands: list[A.Node]) -> Box | None:
 
 
 def union(ctx: Context, call: A.Node, operands: list[A.Node]) -> Box | None:
-    """Add, Sub, Min, Max: 0 where both operands are."""
-    a, b = (ctx.box(n) for n in operands)
-    if a is None or b is None:
+    """Add, Sub, Min, Max: 0 where every operand is (Min(a, b, c, ...) has more than two)."""
+    boxes = [ctx.box(n) for n in operands]
+    if any(b is None for b in boxes):
         return None
-    return (min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3]))
+    return (
+        min(b[0] for b in boxes),  # type: ignore[index]
+        min(b[1] for b in boxes),  # type: ignore[index]
+        max(b[2] for b in boxes),  # type: ignore[index]
+        max(b[3] for b in boxes),  # type: ignore[index]
+    )
 
 
 def product(ctx: Context, call: A.Node, operands: list[A.Node]) -> Box | None:
@@ -151,6 +156,8 @@ def support(ev: Any, node: A.Node, rules: dict[str, Any], operators: dict[str, A
             if op is None or op.support is None:
                 return None
             operands = [n.arg(name) for name in _operand_names(n.func)]
+            if n.extra and op.kind.value == "elementwise":  # Min(a, b, c, ...)
+                operands += list(n.extra)
             if any(o is None for o in operands):
                 return None
             return op.support(ctx, n, operands)

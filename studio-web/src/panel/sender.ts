@@ -20,11 +20,22 @@ export class Sender {
   private commitLabel: string | null = null;
   private running: Promise<void> = Promise.resolve();
   private pumping = false;
+  /** Bumped by every text change that is not the panel's (typing, undo/redo, a load): a reply
+   *  or a value from before it must not land on the text after it, even an equal one (undo can
+   *  restore exactly the text a drag's first request was sent with). */
+  private generation = 0;
 
   constructor(
     private readonly ctx: Ctx,
     private readonly report: Report,
-  ) {}
+  ) {
+    ctx.store.on("text", ({ source }) => {
+      if (source === "panel") return;
+      this.generation += 1;
+      this.pending = null; // values of a gesture the user has just undone or typed over
+      this.commitLabel = null; // nor a history version for it
+    });
+  }
 
   /** Whether a value for `address` is waiting or in flight (its row keeps its own value). */
   holds(address: string): boolean {
@@ -65,10 +76,11 @@ export class Sender {
         this.pending = null;
         this.sending = values;
         const sent = store.text;
+        const generation = this.generation;
         try {
           const r = await api.json<{ text: string; warnings?: string[] }>("/api/set", { text: sent, values });
           // Someone else changed the program meanwhile (typing, undo): their text wins.
-          if (store.text === sent) store.setText(r.text, "panel");
+          if (store.text === sent && this.generation === generation) store.setText(r.text, "panel");
           if (r.warnings && r.warnings.length) this.report(r.warnings.join("; "), "warning");
           else this.report("", "info");
         } catch (e) {

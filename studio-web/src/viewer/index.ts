@@ -8,7 +8,7 @@ import { Environments } from "./environment";
 import { ensureHooks } from "./hooks";
 import { MaterialBinder } from "./material";
 import { ViewerScene } from "./scene";
-import { buildShape, disposeShape, type Shape } from "./shapes";
+import { buildShape, disposeShape, setDetail, type Shape } from "./shapes";
 import { injectStyle } from "./style";
 import { TexturePool } from "./textures";
 
@@ -56,6 +56,9 @@ class Viewer {
     this.pool = new TexturePool(view.maxAnisotropy(), view.floatLinear());
     this.binder = new MaterialBinder(this.pool);
     this.envs = new Environments(view.scene, () => view.requestRender());
+    view.onCheap = (cheap) => {
+      if (this.shape) setDetail(this.shape, cheap);
+    };
     this.overlay = buildOverlay(this.settings, {
       changed: (s, what) => this.changed(s, what),
       reset: () => view.reset(),
@@ -71,6 +74,13 @@ class Viewer {
     void this.useEnv(s.env);
     this.rebuild(true);
     ctx.store.on("maps", (maps) => this.show(maps));
+    // A slider step: frames stay cheap (software GL) until the drag pauses, then refine.
+    ctx.store.on("text", ({ source }) => {
+      if (source === "panel") view.edited();
+    });
+    ctx.store.on("status", ({ state }) => {
+      if (state !== "busy") view.settle(); // no full pass is coming for a shown first pass
+    });
     if (ctx.store.maps) this.show(ctx.store.maps);
   }
 
@@ -96,7 +106,7 @@ class Viewer {
       this.applyTiling();
     }
     this.overlay.message(this.binder.info.notes.join(" · "));
-    this.view.markShown(h.seq, h.pass === "preview");
+    this.view.markShown(h.seq, h.pass === "full");
   }
 
   private changed(s: ViewSettings, what: keyof ViewSettings): void {
@@ -119,6 +129,7 @@ class Viewer {
     }
     const shape = buildShape(this.settings.shape, this.span, this.aspect, this.binder.material, this.binder.neutral);
     this.shape = shape;
+    setDetail(shape, this.view.cheap);
     this.binder.setDoubleSided(shape.doubleSided);
     this.view.scene.add(shape.object);
     this.applyTiling();

@@ -13,8 +13,13 @@ import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import { frameDrawn } from "./hooks";
 
 const FOV = 35;
-/** How long after the last change a software-GL view keeps drawing cheap frames (ms). */
+/** How long after an orbit a software-GL view keeps drawing cheap frames (ms). */
 const BUSY_MS = 400;
+/** How long after the last program edit (a slider step) it does, before refining (ms). */
+const EDIT_IDLE_MS = 250;
+/** Pixels of a cheap frame on software GL (about 220 x 220): SwiftShader's time grows with the
+ * pixels shaded, and this keeps a physical-material frame near 40 ms on two cores. */
+const CHEAP_PIXELS = 48_000;
 
 export class ViewerScene {
   readonly renderer: WebGLRenderer;
@@ -28,9 +33,17 @@ export class ViewerScene {
   lastFrameMs = 0;
   private pending = false;
   private shownSeq: number | null = null;
+  /** The maps on the material now: their seq, and whether they are a full pass. */
+  private boundSeq = 0;
+  private boundFull = false;
+  private refinedSeq = 0;
   /** Full pixel ratio, and (software GL only) a cheaper one while things move. */
   private readonly ratio = Math.min(window.devicePixelRatio || 1, 2);
-  private lowRes = false;
+  private drawnRatio = 0;
+  /** The last frame was a cheap one. */
+  cheap = false;
+  /** Called before a frame when it switches between cheap and full (reduced mesh detail). */
+  onCheap: ((cheap: boolean) => void) | null = null;
   private dragging = false;
   private busyUntil = 0;
   private refine: ReturnType<typeof setTimeout> | undefined;
@@ -80,21 +93,33 @@ export class ViewerScene {
     requestAnimationFrame(() => this.draw());
   }
 
-  /** The next frame drawn is the first to show maps `seq` (for window.matloomStudio);
-   * `preview`: the quick first pass of an evaluation. */
-  markShown(seq: number, preview = false): void {
-    // A first pass is drawn cheaply (its full pass follows at once); a full pass always at
-    // full resolution, so what a test or a screenshot sees after it is the final image.
-    if (preview) this.busy();
-    else if (!this.dragging) this.busyUntil = 0;
+  /** The next frame drawn is the first to show maps `seq`; `full`: they are the full-size pass.
+   * On software GL a first pass is drawn cheaply and not refined (its full pass follows), and a
+   * full pass too while edits go on; the full pass is then refined once they pause. */
+  markShown(seq: number, full: boolean): void {
     this.shownSeq = seq;
+    this.boundSeq = seq;
+    this.boundFull = full;
     this.requestRender();
   }
 
-  /** On software GL, draw at half resolution for a moment (orbiting, a first pass) and redraw
-   * at full resolution once things are still: a SwiftShader frame costs about 3x less. */
-  private busy(): void {
-    if (this.software) this.busyUntil = performance.now() + BUSY_MS;
+  /** The program was just edited (a slider step): keep frames cheap until edits pause. */
+  edited(): void {
+    this.busy(EDIT_IDLE_MS);
+  }
+
+  /** Nothing more is coming for the shown maps (the evaluation failed or was superseded):
+   * refine what is shown. */
+  settle(): void {
+    if (this.boundFull) return;
+    this.boundFull = true;
+    this.requestRender();
+  }
+
+  /** On software GL, draw cheap frames (about CHEAP_PIXELS) for `ms` (orbiting, a drag), then
+   * one full-resolution frame once things are still. A GPU draws every frame at full size. */
+  private busy(ms = BUSY_MS): void {
+    if (this.software) this.busyUntil = Math.max(this.busyUntil, performance.now() + ms);
   }
 
   /** Place the camera around `center` at `radius` (bounding sphere), azimuth/elevation in
@@ -171,24 +196,38 @@ export class ViewerScene {
     this.requestRender();
   }
 
+  /** The pixel ratio of a cheap frame: about CHEAP_PIXELS, at most half the full ratio. */
+  private cheapRatio(): number {
+    const area = Math.max(1, this.canvas.clientWidth * this.canvas.clientHeight);
+    return Math.min(this.ratio * 0.5, Math.max(0.15, Math.sqrt(CHEAP_PIXELS / area)));
+  }
+
   private draw(): void {
     this.pending = false;
     if (this.disposed || this.canvas.clientWidth === 0 || this.canvas.clientHeight === 0) return;
     const moving = this.controls.update();
     const t0 = performance.now();
-    const low = t0 < this.busyUntil;
-    if (low !== this.lowRes) {
-      this.lowRes = low;
-      this.renderer.setPixelRatio(low ? this.ratio * 0.5 : this.ratio);
+    const low = this.software && (t0 < this.busyUntil || !this.boundFull);
+    const ratio = low ? this.cheapRatio() : this.ratio;
+    if (low !== this.cheap) {
+      this.cheap = low;
+      this.onCheap?.(low);
+    }
+    if (ratio !== this.drawnRatio) {
+      this.drawnRatio = ratio;
+      this.renderer.setPixelRatio(ratio);
     }
     this.renderer.render(this.scene, this.camera);
     this.lastFrameMs = performance.now() - t0;
-    frameDrawn(this.shownSeq);
+    const refined = !low && this.boundFull && this.boundSeq > this.refinedSeq;
+    if (refined) this.refinedSeq = this.boundSeq;
+    frameDrawn(this.shownSeq, refined ? this.boundSeq : null, ratio);
     this.shownSeq = null;
+    clearTimeout(this.refine);
     if (moving) this.requestRender();
-    else if (low) {
-      clearTimeout(this.refine);
-      this.refine = setTimeout(() => this.requestRender(), this.busyUntil - performance.now() + 20);
+    else if (low && this.boundFull) {
+      // Refine once things are still (a first pass waits for its full pass instead).
+      this.refine = setTimeout(() => this.requestRender(), Math.max(0, this.busyUntil - performance.now()) + 20);
     }
   }
 }

@@ -42,6 +42,10 @@ export interface Shape {
   /** The surface closes on itself (sphere, cube, ball): the maps must wrap around even when
    * they are not tileable, so both sides of a seam sample the same texels and do not crack. */
   closed: boolean;
+  /** Each mesh's geometry at full and at reduced detail (a quarter of the vertices), for the
+   * cheap frames drawn on software GL while something moves: there the vertex work of a
+   * finely tessellated mesh costs more than its pixels. */
+  lod: { mesh: Mesh; fine: BufferGeometry; coarse: BufferGeometry }[];
 }
 
 /** Build `name` for maps spanning `span` x `span * aspect` world units. */
@@ -52,29 +56,51 @@ export function buildShape(
   material: Material,
   neutral: Material,
 ): Shape {
+  const shape = buildDetail(name, span, aspect, material, neutral, 1);
+  const coarse = buildDetail(name, span, aspect, material, neutral, 0.5);
+  const meshes = (s: Shape) => s.object.children.filter((o): o is Mesh => o instanceof Mesh);
+  const low = meshes(coarse);
+  shape.lod = meshes(shape).map((mesh, i) => ({ mesh, fine: mesh.geometry, coarse: low[i].geometry }));
+  return shape;
+}
+
+/** Show each mesh of `shape` at full or reduced detail. */
+export function setDetail(shape: Shape, coarse: boolean): void {
+  for (const l of shape.lod) l.mesh.geometry = coarse ? l.coarse : l.fine;
+}
+
+function buildDetail(
+  name: ShapeName,
+  span: number,
+  aspect: number,
+  material: Material,
+  neutral: Material,
+  detail: number,
+): Shape {
   const group = new Group();
+  const seg = (n: number) => Math.max(4, Math.round(n * detail));
   const add = (g: BufferGeometry, m: Material = material) => group.add(new Mesh(g, m));
   let repeat: [number, number] = [1, 1];
   let view: [number, number] = [90, 28];
   let doubleSided = false;
   const closed = name === "sphere" || name === "cube" || name === "ball";
   if (name === "plane") {
-    add(plane(span, span * aspect));
+    add(plane(span, span * aspect, seg(128)));
     view = [90, 42];
   } else if (name === "sphere") {
     // Circumference = two spans: the maps repeat twice around, once from pole to pole.
-    add(withUv1(new SphereGeometry(span / Math.PI, 128, 64)));
+    add(withUv1(new SphereGeometry(span / Math.PI, seg(128), seg(64))));
     repeat = [2, 1];
     view = [90, 15];
   } else if (name === "cube") {
-    add(cube(span, 48));
+    add(cube(span, seg(48)));
     view = [60, 28];
   } else if (name === "cloth") {
-    add(cloth(span, 128));
+    add(cloth(span, seg(128)));
     view = [90, 32];
     doubleSided = true;
   } else {
-    const parts = shaderBall(span);
+    const parts = shaderBall(span, detail);
     add(parts.shell);
     add(parts.core);
     add(parts.base, neutral);
@@ -85,13 +111,14 @@ export function buildShape(
   const bounds = new Box3().setFromObject(group).getBoundingSphere(new Sphere());
   const center = bounds.center;
   const radius = bounds.radius;
-  return { object: group, center, radius, repeat, view, doubleSided, closed };
+  return { object: group, center, radius, repeat, view, doubleSided, closed, lod: [] };
 }
 
 export function disposeShape(shape: Shape): void {
-  shape.object.traverse((o) => {
-    if (o instanceof Mesh) o.geometry.dispose();
-  });
+  for (const l of shape.lod) {
+    l.fine.dispose();
+    l.coarse.dispose();
+  }
 }
 
 /** three reads aoMap through `uv` (texture.channel 0) since r152; uv1 is kept for older paths. */
@@ -102,8 +129,7 @@ function withUv1(g: BufferGeometry): BufferGeometry {
 }
 
 /** A horizontal plane facing +y; the top of the maps is away from the default camera. */
-function plane(w: number, h: number): BufferGeometry {
-  const seg = 128;
+function plane(w: number, h: number, seg: number): BufferGeometry {
   const g = new PlaneGeometry(w, h, seg, Math.max(2, Math.round(seg * (h / w))));
   g.rotateX(-Math.PI / 2);
   return withUv1(g);
@@ -203,7 +229,7 @@ function smooth(e0: number, e1: number, x: number): number {
 
 /** The classic material-preview ball: a sphere shell with a cut ring and an open wedge over an
  * inner core, on a neutral pedestal. UVs follow the sphere's (azimuth, latitude). */
-function shaderBall(span: number): { shell: BufferGeometry; core: BufferGeometry; base: BufferGeometry } {
+function shaderBall(span: number, detail: number): { shell: BufferGeometry; core: BufferGeometry; base: BufferGeometry } {
   const R = 0.36 * span;
   const inner = 0.9 * R;
   const lat = (d: number) => (d * Math.PI) / 180;
@@ -211,15 +237,16 @@ function shaderBall(span: number): { shell: BufferGeometry; core: BufferGeometry
   const arcPts = (r: number, from: number, to: number, steps: number) =>
     Array.from({ length: steps + 1 }, (_, i) => onSphere(r, from + ((to - from) * i) / steps));
   // Lower shell, all round: from the neck up to the cut ring, then into the groove.
-  const lower = [...arcPts(R, -76, 2, 70), onSphere(inner, 2), ...arcPts(inner, 2, 12, 6)];
+  const n = (k: number) => Math.max(6, Math.round(k * detail));
+  const lower = [...arcPts(R, -76, 2, n(70)), onSphere(inner, 2), ...arcPts(inner, 2, 12, 6)];
   // Upper shell with a wedge cut out toward the camera, showing the core.
-  const upper = [onSphere(inner, 12), ...arcPts(R, 12, 90, 70)];
-  const lowerG = latheWithSphereUv(lower, 0, Math.PI * 2, R);
-  const upperG = latheWithSphereUv(upper, Math.PI * 0.2, Math.PI * 1.5, R);
+  const upper = [onSphere(inner, 12), ...arcPts(R, 12, 90, n(70))];
+  const lowerG = latheWithSphereUv(lower, 0, Math.PI * 2, R, n(128));
+  const upperG = latheWithSphereUv(upper, Math.PI * 0.2, Math.PI * 1.5, R, n(128));
   const shell = mergeGeometries([lowerG, upperG]) ?? lowerG;
   lowerG.dispose();
   upperG.dispose();
-  const core = withUv1(new SphereGeometry(0.8 * R, 96, 48));
+  const core = withUv1(new SphereGeometry(0.8 * R, n(96), n(48)));
   const neckY = R * Math.sin(lat(-76));
   const neckR = R * Math.cos(lat(-76));
   const foot = neckY - 0.16 * span;
@@ -234,13 +261,13 @@ function shaderBall(span: number): { shell: BufferGeometry; core: BufferGeometry
       new Vector2(neckR * 1.05, neckY - 0.01 * span),
       new Vector2(neckR * 0.95, neckY + 0.005 * span),
     ],
-    96,
+    n(96),
   );
   return { shell: withUv1(shell), core, base };
 }
 
-function latheWithSphereUv(points: Vector2[], phiStart: number, phiLength: number, R: number): BufferGeometry {
-  const segs = Math.max(8, Math.round((128 * phiLength) / (Math.PI * 2)));
+function latheWithSphereUv(points: Vector2[], phiStart: number, phiLength: number, R: number, round: number): BufferGeometry {
+  const segs = Math.max(8, Math.round((round * phiLength) / (Math.PI * 2)));
   const g = new LatheGeometry(points, segs, phiStart, phiLength);
   const uv = g.getAttribute("uv");
   const pos = g.getAttribute("position");

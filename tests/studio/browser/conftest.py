@@ -126,7 +126,8 @@ def open_page(browser: Any, url: str) -> Any:
     page.wait_for_function(
         "() => window.matloomStudio && window.matloomStudio.store.maps"
         " && window.matloomStudio.store.maps.header.pass === 'full'"
-        " && window.matloomStudio.lastShownAt.seq >= window.matloomStudio.store.maps.header.seq",
+        " && window.matloomStudio.lastShownAt.seq >= window.matloomStudio.store.maps.header.seq"
+        " && window.matloomStudio.lastRefinedAt.seq >= window.matloomStudio.store.maps.header.seq",
         timeout=60_000,
     )
     page.page_errors = errors  # type: ignore[attr-defined]

@@ -36,7 +36,8 @@ def wait_full_shown(page: Any, after: int) -> None:
     page.wait_for_function(
         "(after) => { const s = window.matloomStudio; const m = s.store.maps;"
         " return m && m.header.pass === 'full' && m.header.seq > after"
-        " && s.lastShownAt.seq >= m.header.seq && document.querySelector("
+        " && s.lastShownAt.seq >= m.header.seq && s.lastRefinedAt.seq >= m.header.seq"
+        " && document.querySelector("
         "'[data-testid=status]').textContent.includes('ready'); }",
         arg=after,
         timeout=60_000,
