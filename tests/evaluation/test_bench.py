@@ -29,7 +29,6 @@ from matloom.evaluation.metrics.base import (  # noqa: E402
 )
 
 PROMPTS = Path(__file__).parents[1] / "data" / "prompts-dev.json"
-CHAT = Path(__file__).resolve().parents[1] / "author" / "chat_server.py"
 CALLS: list[int] = []  # samples scored by the tiny metric, per call
 LAYOUTS_SEEN: list[set[str]] = []  # the image layouts of each sample scored
 
@@ -81,37 +80,21 @@ def _reply(body: dict[str, Any]) -> str:
     return f"<material>\n{program}\n</material>"
 
 
-def _chat_server() -> Any:
-    """The authoring tests' scripted Chat Completions server (tests/author/chat_server.py)."""
-    spec = importlib.util.spec_from_file_location("bench_chat_server", CHAT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
 @pytest.fixture
-def server() -> Iterator[Any]:
-    with _chat_server().ChatServer(_reply) as srv:
+def server(chat_module: Any) -> Iterator[Any]:
+    with chat_module.ChatServer(_reply) as srv:
         yield srv
 
 
 @pytest.fixture
-def setup(tmp_path: Path, server: Any, monkeypatch: pytest.MonkeyPatch) -> dict[str, Any]:
+def setup(
+    tmp_path: Path, server: Any, monkeypatch: pytest.MonkeyPatch, scripted_config: Any
+) -> dict[str, Any]:
     monkeypatch.setenv("MATLOOM_API_KEY", "test-key")
     monkeypatch.setenv("MATLOOM_CONFIG", str(tmp_path / "no-such.toml"))
     monkeypatch.delenv("OPENAI_API_KEY", raising=False)
     monkeypatch.chdir(tmp_path)
-    config = tmp_path / "bench.toml"
-    config.write_text(
-        f'[profiles.scripted]\nmodel = "scripted-model"\nbase_url = "{server.base_url}"\n'
-        "max_retries = 0\ntimeout_s = 20\n\n"
-        '[settings.tiny]\nbase = "paper"\nrounds = 0\nscorer = "none"\nvariants = 0\n'
-        "critique_size = 32\nselect_size = 32\nsweep_size = 32\nexport_size = 32\n"
-        "stats_grid = 16\n",
-        encoding="utf-8",
-    )
+    config = scripted_config(tmp_path / "bench.toml", server.base_url)
     data = json.loads(PROMPTS.read_text(encoding="utf-8"))
     prompts = tmp_path / "prompts20.json"
     prompts.write_text(json.dumps({"prompts": data["prompts"][:20]}), encoding="utf-8")

@@ -5,9 +5,7 @@ workers) over 4 prompts; every cell once, the same results as the inline executo
 from __future__ import annotations
 
 import csv
-import importlib.util
 import json
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -24,7 +22,6 @@ from matloom.cli.main import cli  # noqa: E402
 
 pytestmark = pytest.mark.dask
 
-CHAT = Path(__file__).resolve().parents[1] / "author" / "chat_server.py"
 PROMPTS = Path(__file__).resolve().parents[1] / "data" / "prompts-dev.json"
 
 
@@ -35,13 +32,8 @@ def _reply(body: dict[str, Any]) -> str:
 
 
 @pytest.fixture
-def server() -> Iterator[Any]:
-    spec = importlib.util.spec_from_file_location("dask_bench_chat_server", CHAT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    with module.ChatServer(_reply) as srv:
+def server(chat_module: Any) -> Iterator[Any]:
+    with chat_module.ChatServer(_reply) as srv:
         yield srv
 
 
@@ -51,21 +43,13 @@ def _rows(out: Path) -> list[dict[str, str]]:
 
 
 def test_bench_on_local_cluster_matches_inline(
-    tmp_path: Path, server: Any, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, server: Any, monkeypatch: pytest.MonkeyPatch, scripted_config: Any
 ) -> None:
     monkeypatch.setenv("MATLOOM_API_KEY", "test-key")
     monkeypatch.setenv("MATLOOM_CONFIG", str(tmp_path / "no-such.toml"))
     monkeypatch.delenv("OPENAI_API_KEY", raising=False)
     monkeypatch.chdir(tmp_path)
-    config = tmp_path / "bench.toml"
-    config.write_text(
-        f'[profiles.scripted]\nmodel = "scripted-model"\nbase_url = "{server.base_url}"\n'
-        "max_retries = 0\ntimeout_s = 20\n\n"
-        '[settings.tiny]\nbase = "paper"\nrounds = 0\nscorer = "none"\nvariants = 0\n'
-        "critique_size = 32\nselect_size = 32\nsweep_size = 32\nexport_size = 32\n"
-        "stats_grid = 16\n",
-        encoding="utf-8",
-    )
+    config = scripted_config(tmp_path / "bench.toml", server.base_url)
     data = json.loads(PROMPTS.read_text(encoding="utf-8"))
     prompts = tmp_path / "prompts4.json"
     prompts.write_text(json.dumps({"prompts": data["prompts"][:4]}), encoding="utf-8")

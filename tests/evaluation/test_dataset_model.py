@@ -4,9 +4,7 @@ from those programs."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -16,21 +14,11 @@ from click.testing import CliRunner
 
 from matloom.cli.main import cli
 
-CHAT = Path(__file__).resolve().parents[1] / "author" / "chat_server.py"
 #: Two programs the scripted model answers with, told apart by the prompt's colour word.
 PROGRAMS = {
     "red": "Material(Layer(1).basecolor(200, 30, 30).roughness(0.4))",
     "blue": "Material(Layer(1).basecolor(30, 30, 200).roughness(0.7))",
 }
-
-
-def _chat_module() -> Any:
-    spec = importlib.util.spec_from_file_location("dataset_chat_server", CHAT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 def _reply(body: dict[str, Any]) -> str:
@@ -40,8 +28,8 @@ def _reply(body: dict[str, Any]) -> str:
 
 
 @pytest.fixture
-def server() -> Iterator[Any]:
-    with _chat_module().ChatServer(_reply) as srv:
+def server(chat_module: Any) -> Iterator[Any]:
+    with chat_module.ChatServer(_reply) as srv:
         yield srv
 
 
