@@ -82,7 +82,10 @@ def _metric_options(given: tuple[str, ...]) -> dict[str, dict[str, str]]:
 @click.option("--layouts", default="quick,flat,staged", show_default=True, help="Image layouts.")
 @click.option("--contrast", "contrasts", multiple=True, help="A-B paired contrast (repeatable).")
 @click.option(
-    "--scheduler", default="inline", show_default=True, help="inline, local or tcp://HOST:PORT."
+    "--scheduler",
+    default=None,
+    help="inline, local (an embedded Dask cluster) or tcp://HOST:PORT; default: local when the "
+    "dask extra is installed, else inline.",
 )
 @click.option("--workers", type=int, default=2, show_default=True, help="Dask local workers.")
 @click.option("--jobs", type=int, default=1, show_default=True, help="Cells at once (inline).")
@@ -108,7 +111,7 @@ def run_cmd(prompts: str | None, out: str, quiet: bool, **kw: Any) -> None:
     """Author, render, score and report PROMPTS x systems x runs into -o DIR."""
     from matloom.evaluation.bench import BenchOptions, run_bench
     from matloom.evaluation.bench_spec import BenchInputError
-    from matloom.evaluation.executor import ExecutorUnavailableError
+    from matloom.evaluation.executor import ExecutorUnavailableError, default_scheduler
     from matloom.io.outdir import OutputError
 
     if kw["size"] < 8 or kw["size"] > 8192:
@@ -123,7 +126,7 @@ def run_cmd(prompts: str | None, out: str, quiet: bool, **kw: Any) -> None:
         metric_options=_metric_options(kw["metric_options"]),
         layouts=_split((kw["layouts"],)),
         contrasts=kw["contrasts"],
-        scheduler=kw["scheduler"],
+        scheduler=kw["scheduler"] or default_scheduler(),
         workers=kw["workers"],
         jobs=kw["jobs"],
         llm_slots=kw["llm_slots"],

@@ -32,14 +32,6 @@ class _ProgressLine:
             click.echo(f"dataset: {progress.line()}", err=True)
 
 
-def _default_scheduler() -> str:
-    try:
-        import distributed  # noqa: F401
-    except ImportError:
-        return "inline"
-    return "local"
-
-
 @click.command("dataset")
 @click.option(
     "-o",
@@ -161,7 +153,11 @@ def dataset_cmd(  # noqa: PLR0913 - one flag each
     from matloom.evaluation.dataset import DatasetError, DatasetOptions, build_dataset
     from matloom.evaluation.dataset_filter import FilterError
     from matloom.evaluation.dataset_sources import SourceError
-    from matloom.evaluation.executor import ExecutorUnavailableError, make_executor
+    from matloom.evaluation.executor import (
+        ExecutorUnavailableError,
+        default_scheduler,
+        make_executor,
+    )
 
     if not (all_entries or entries or tags or programs_dir or prompts_file):
         raise click.UsageError(
@@ -181,7 +177,7 @@ def dataset_cmd(  # noqa: PLR0913 - one flag each
         )
         options.conditions  # noqa: B018 - parse the filters before any work
         executor = make_executor(
-            scheduler or _default_scheduler(), workers=workers, jobs=jobs, llm_slots=llm_slots
+            scheduler or default_scheduler(), workers=workers, jobs=jobs, llm_slots=llm_slots
         )
     except (FilterError, ValueError, ExecutorUnavailableError) as err:
         raise click.ClickException(str(err)) from None

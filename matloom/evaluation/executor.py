@@ -23,9 +23,20 @@ __all__ = [
     "Progress",
     "ProgressCallback",
     "Task",
+    "default_scheduler",
     "make_executor",
     "one_line",
 ]
+
+
+def default_scheduler() -> str:
+    """``local`` (an embedded Dask ``LocalCluster``) when the ``[dask]`` extra is installed,
+    else ``inline`` (threads in this process)."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        return "inline"
+    return "local"
 
 
 def make_executor(
