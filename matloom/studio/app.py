@@ -267,10 +267,14 @@ async def set_(studio: Studio, request: Request) -> Response:
 
     body = await read_body(request)
     text = need_str(body, "text")
+    return _json(await run_in_threadpool(set_values, text, _values(body), studio.session))
+
+
+def _values(body: dict[str, Any]) -> dict[str, Any]:
     values = body.get("values")
     if not isinstance(values, dict) or not values:
         raise ApiError(400, "'values' must be an object of address -> value")
-    return _json(await run_in_threadpool(set_values, text, values, studio.session))
+    return values
 
 
 async def layers(studio: Studio, request: Request) -> Response:
@@ -306,8 +310,14 @@ async def evaluate(studio: Studio, request: Request) -> Response:
     pass_name = opt_str(body, "pass", "full") or "full"
     if pass_name not in ("preview", "full"):
         raise ApiError(400, "'pass' must be preview or full")
+    text, text_sha = need_str(body, "text"), None
+    if body.get("values") is not None:  # evaluate the text /api/set makes of {text, values}
+        from matloom.studio.structure import set_values
+
+        edited = await run_in_threadpool(set_values, text, _values(body), studio.session)
+        text, text_sha = edited["text"], edited["text_sha"]
     req = EvalRequest(
-        text=need_str(body, "text"),
+        text=text,
         size=opt_int(body, "size", 512, 1, MAX_EVAL_SIZE),
         stream=opt_str(body, "stream", "main") or "main",
         seq=opt_int(body, "seq", 0),
@@ -316,6 +326,7 @@ async def evaluate(studio: Studio, request: Request) -> Response:
         lit=opt_bool(body, "lit"),
         raw=raw,
         pass_name=pass_name,
+        text_sha=text_sha,
     )
     data = await studio.evaluator.evaluate(req)
     header = json.loads(data[8 : 8 + int.from_bytes(data[4:8], "little")])

@@ -67,6 +67,8 @@ class EvalRequest:
     lit: bool = False
     raw: tuple[str, ...] = ()
     pass_name: str = "full"
+    #: With ``values``: the hash of the edited text that was evaluated (put in the header).
+    text_sha: str | None = None
     received: float = field(default_factory=time.perf_counter)
 
 
@@ -155,6 +157,8 @@ class Evaluator:
             "seam": seam_ratios(maps) if v.tileable and req.pass_name == "full" else None,
             **facts,
         }
+        if req.text_sha is not None:
+            header["text_sha"] = req.text_sha
         header["total_ms"] = round((time.perf_counter() - req.received) * 1000, 2)
         return pack(header, payloads)
 

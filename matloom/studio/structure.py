@@ -11,6 +11,7 @@ user's comments and names (:func:`matloom.studio.rewrite.program_text`).
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -110,7 +111,14 @@ def set_values(text: str, values: dict[str, Any], session: Session | None = None
         edited, warnings = edit_program(before, converted, listed)
     except ValueError as err:
         raise ApiError(400, str(err)) from None
-    return {"text": program_text(text, before, edited, session), "warnings": warnings}
+    new = program_text(text, before, edited, session)
+    return {"text": new, "warnings": warnings, "text_sha": text_sha(new)}
+
+
+def text_sha(text: str) -> str:
+    """The hash ``/api/set`` and a maps request with ``values`` report for a program text
+    (sha256 of its UTF-8, the first 16 hex digits), so the page compares two strings."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
 
 def layer_op(text: str, op: str, index: int, to: int | None) -> dict[str, Any]:

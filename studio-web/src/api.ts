@@ -31,6 +31,8 @@ export interface MapsHeader {
   tileable: boolean;
   seam: Record<string, number> | null;
   maps: MapInfo[];
+  /** With `values` in the request: the hash of the edited text evaluated (as /api/set's). */
+  text_sha?: string;
   /** The emission map is an sRGB texture times this strength (0 when nothing glows). */
   emissive_scale?: number;
   /** Height min and max in coordinate units. */
@@ -55,6 +57,8 @@ export interface EvaluateRequest {
   channels?: string[];
   /** Which pass this is (the server may also tell by size). */
   pass?: "preview" | "full";
+  /** Evaluate the text /api/set makes of `{text, values}` (the header gets its `text_sha`). */
+  values?: Record<string, unknown>;
   /** Also render the lit preview. */
   lit?: boolean;
 }

@@ -1,6 +1,8 @@
 // Live evaluation: every program or layer change is evaluated, a quick first pass (256 px)
 // then full size (512 px), one request in flight per stream plus the latest pending, so a
 // slider drag never queues up. Also refreshes the structure (/api/structure) for the panel.
+// A panel edit's first pass is speculative: sent with the edit's values as /api/set goes out,
+// it evaluates the text /api/set will return, so the slider step costs one round trip.
 import { ApiError, type Maps } from "./api";
 import type { Ctx } from "./ctx";
 import type { Structure } from "./store";
@@ -29,6 +31,10 @@ interface Job {
   /** A slider step: always send the quick first pass (the 3D view shows it while dragging). */
   drag: boolean;
   text: string;
+  /** The server's hash of `text` (set by a panel edit), to match a speculative first pass. */
+  sha: string | null;
+  /** The speculation sent for the edit that made `text`, if any. */
+  spec: Speculation | null;
   hidden: number[];
   solo: number | null;
 }
@@ -38,6 +44,16 @@ export interface EvalInfo {
   size: number;
   evalMs: number;
   roundTripMs: number;
+}
+
+/** A speculative first pass: the maps of what /api/set makes of `from` with some values. */
+interface Speculation {
+  from: string;
+  /** The text generation it was sent in (typing, undo and loads start a new one). */
+  generation: number;
+  /** The evaluated text's hash once the maps came back (null while in flight or failed). */
+  sha: string | null;
+  done: Promise<void>;
 }
 
 /** Runs at most one task at a time and keeps only the latest one waiting. */
@@ -83,6 +99,13 @@ export class Live {
   private infoListeners: ((info: EvalInfo) => void)[] = [];
   /** The last evaluation succeeded (the status returns to `ready` only then). */
   private ok = true;
+  /** The recent speculations, oldest first. */
+  private specs: Speculation[] = [];
+  private generation = 0;
+  /** The program text as of the last `text` event. */
+  private prevText: string;
+  /** The newest seq whose maps were shown: an older answer arriving late is not shown. */
+  private shownSeq = 0;
 
   constructor(
     private readonly ctx: Ctx,
@@ -91,19 +114,61 @@ export class Live {
     this.evaluator = new Latest((job, superseded) => this.evaluate(job, superseded), () => this.idle());
     this.structurer = new Latest((text, superseded) => this.structure(text, superseded), () => this.idle());
     const { store } = ctx;
-    store.on("text", ({ source }) => {
+    this.prevText = store.text;
+    store.on("text", ({ text, source }) => {
+      const before = this.prevText;
+      this.prevText = text;
+      if (source !== "panel") {
+        this.generation += 1; // a speculation made before this change is outdated
+        this.specs = [];
+      }
       clearTimeout(this.timer);
       this.ctx.store.emit("status", { state: "busy" }); // at once, not after the debounce
       if (source === "editor") this.timer = setTimeout(() => this.kick(true), TYPING_DEBOUNCE_MS);
       else if (source === "panel") {
         // A drag: evaluate at once, refresh the structure only once the drag pauses, so the
         // structure request does not compete with the evaluation for the server's cores.
-        this.kick(false, true);
+        const spec = this.specs.filter((s) => s.from === before && s.generation === this.generation).pop();
+        this.kick(false, true, spec ?? null);
         clearTimeout(this.structureTimer);
         this.structureTimer = setTimeout(() => this.structurer.push(store.text), PANEL_STRUCTURE_MS);
       } else this.kick(true);
     });
-    store.on("layers", () => this.kick(false));
+    store.on("layers", () => {
+      this.generation += 1; // a speculation was made with the other layers
+      this.specs = [];
+      this.kick(false);
+    });
+    store.on("speculate", ({ text, values }) => this.speculate(text, values));
+  }
+
+  /** Request the first pass of what /api/set makes of `{text, values}` now, in parallel with
+   * the /api/set request; shown only while it is still the program's next or current text. */
+  speculate(text: string, values: Record<string, unknown>): void {
+    const { api, store } = this.ctx;
+    const seq = (this.seq = Math.max(this.seq + 1, Date.now()));
+    const spec: Speculation = { from: text, generation: this.generation, sha: null, done: Promise.resolve() };
+    this.specs = [...this.specs.slice(-3), spec];
+    const req = {
+      text,
+      values,
+      size: previewSize(this.lastFullMs),
+      stream: `${this.stream}:speculative`,
+      seq,
+      hidden: [...store.hidden],
+      solo: store.solo,
+      pass: "preview" as const,
+    };
+    spec.done = api.maps(req).then(
+      (maps) => {
+        const sha = maps.header.text_sha ?? null;
+        if (this.generation !== spec.generation) return; // typing, undo or a load came since
+        if (store.text !== text && (sha === null || store.textSha !== sha)) return;
+        spec.sha = sha;
+        this.show(maps, "preview", req.size, performance.now());
+      },
+      () => undefined, // superseded by a newer speculation, or the regular passes report it
+    );
   }
 
   onInfo(fn: (info: EvalInfo) => void): void {
@@ -111,10 +176,10 @@ export class Live {
   }
 
   /** Evaluate the current program now (and refresh the structure when `structure`). */
-  kick(structure = true, drag = false): void {
+  kick(structure = true, drag = false, spec: Speculation | null = null): void {
     const { store } = this.ctx;
     this.ctx.store.emit("status", { state: "busy" });
-    this.evaluator.push({ drag, text: store.text, hidden: [...store.hidden], solo: store.solo });
+    this.evaluator.push({ drag, text: store.text, sha: store.textSha, spec, hidden: [...store.hidden], solo: store.solo });
     if (structure) this.structurer.push(store.text);
   }
 
@@ -122,8 +187,27 @@ export class Live {
     if (!this.evaluator.busy && !this.structurer.busy && this.ok) this.ctx.store.emit("status", { state: "ready" });
   }
 
+  /** Whether the speculative first pass evaluated `job`'s text (waits for it to land). */
+  private async speculated(job: Job): Promise<boolean> {
+    const spec = job.spec;
+    if (!job.drag || job.sha === null || spec === null || spec.generation !== this.generation) return false;
+    await spec.done;
+    return spec.sha === job.sha && spec.generation === this.generation;
+  }
+
+  private show(maps: Maps, pass: "preview" | "full", size: number, t0: number): boolean {
+    if (maps.header.seq < this.shownSeq) return false; // a newer answer is already shown
+    this.shownSeq = maps.header.seq;
+    const roundTripMs = performance.now() - t0;
+    if (pass === "full") this.lastFullMs = roundTripMs;
+    if (pass === "full") this.ctx.store.maps = maps;
+    this.ctx.store.emit("maps", maps);
+    for (const fn of this.infoListeners) fn({ pass, size, evalMs: maps.header.eval_ms, roundTripMs });
+    return true;
+  }
+
   private async evaluate(job: Job, superseded: () => boolean): Promise<void> {
-    const skipPreview = this.lastFullMs < FAST_FULL_MS && !job.drag;
+    const skipPreview = (this.lastFullMs < FAST_FULL_MS && !job.drag) || (await this.speculated(job));
     const passes: ("preview" | "full")[] = skipPreview ? ["full"] : ["preview", "full"];
     for (const pass of passes) {
       if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits
@@ -149,12 +233,8 @@ export class Live {
         if (!superseded()) this.ctx.store.emit("status", { state: "error", message: oneLine(e) });
         return;
       }
-      const roundTripMs = performance.now() - t0;
-      if (pass === "full") this.lastFullMs = roundTripMs;
       this.ok = true;
-      if (pass === "full") this.ctx.store.maps = maps;
-      this.ctx.store.emit("maps", maps);
-      for (const fn of this.infoListeners) fn({ pass, size, evalMs: maps.header.eval_ms, roundTripMs });
+      this.show(maps, pass, size, t0);
     }
   }
 

@@ -42,6 +42,8 @@ export type Source = "editor" | "panel" | "history" | "author" | "load";
 
 export interface Events {
   text: { text: string; source: Source };
+  /** The panel sent `values` for `text` to /api/set: Live may evaluate the result at once. */
+  speculate: { text: string; values: Record<string, unknown> };
   maps: Maps;
   structure: Structure;
   diagnostics: Diagnostic[];
@@ -53,6 +55,8 @@ type Handler<T> = (value: T) => void;
 
 export class Store {
   text = "";
+  /** The server's `text_sha` of `text` when the panel's /api/set reply set it, else null. */
+  textSha: string | null = null;
   path: string | null = null;
   maps: Maps | null = null;
   structure: Structure | null = null;
@@ -72,9 +76,10 @@ export class Store {
   }
 
   /** Change the program text (every part calls this; the others follow the `text` event). */
-  setText(text: string, source: Source): void {
+  setText(text: string, source: Source, sha: string | null = null): void {
     if (text === this.text) return;
     this.text = text;
+    this.textSha = sha;
     this.emit("text", { text, source });
   }
 

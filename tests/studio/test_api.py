@@ -227,6 +227,26 @@ def test_evaluate_hidden_solo_lit_and_raw_channels(studio: StudioServer) -> None
     assert bad.status == 422 and bad.json()["diagnostics"]
 
 
+def test_evaluate_with_values_evaluates_the_text_set_returns(studio: StudioServer) -> None:
+    text = demo(studio)
+    address = "define:tileMask.Bricks.mortar"
+    params = studio.post("/api/structure", {"text": text}).json()["params"]
+    old = next(p["value"] for p in params if p["address"] == address)
+    value = old * 1.5
+    edited = studio.post("/api/set", {"text": text, "values": {address: value}}).json()
+    assert edited["text"] != text and len(edited["text_sha"]) == 16
+    header, spec = _evaluate(studio, text=text, values={address: value}, size=32,
+                             stream="t-values", pass_="preview")  # fmt: skip
+    assert header["text_sha"] == edited["text_sha"]
+    plain_header, plain = _evaluate(studio, text=edited["text"], size=32, stream="t-values-b")
+    assert "text_sha" not in plain_header and spec.keys() == plain.keys()
+    for name, array in plain.items():
+        np.testing.assert_array_equal(spec[name], array, err_msg=name)
+    for values in ({}, [1], "x", {"define:nope": 1}):
+        bad = studio.post("/api/evaluate", {"text": text, "size": 16, "values": values})
+        assert bad.status == 400 and "\n" not in bad.json()["error"], values
+
+
 def test_a_stale_seq_is_superseded(studio: StudioServer) -> None:
     text = demo(studio)
     _evaluate(studio, text=text, size=16, seq=5, stream="t-sup")

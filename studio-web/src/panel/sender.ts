@@ -78,9 +78,14 @@ export class Sender {
         const sent = store.text;
         const generation = this.generation;
         try {
-          const r = await api.json<{ text: string; warnings?: string[] }>("/api/set", { text: sent, values });
+          const reply = api.json<{ text: string; warnings?: string[]; text_sha?: string }>("/api/set", {
+            text: sent,
+            values,
+          });
+          store.emit("speculate", { text: sent, values }); // Live evaluates the result meanwhile
+          const r = await reply;
           // Someone else changed the program meanwhile (typing, undo): their text wins.
-          if (store.text === sent && this.generation === generation) store.setText(r.text, "panel");
+          if (store.text === sent && this.generation === generation) store.setText(r.text, "panel", r.text_sha ?? null);
           if (r.warnings && r.warnings.length) this.report(r.warnings.join("; "), "warning");
           else this.report("", "info");
         } catch (e) {
