@@ -9,6 +9,9 @@ import type { Structure } from "./store";
 
 export const PREVIEW_SIZE = 256;
 export const FULL_SIZE = 512;
+/** A drag's first pass: the 3D view draws it in small frames (about 48k pixels on software GL),
+ * so 192 px maps show all it can; a quarter of the texels of 512, half of 256's. */
+export const DRAG_PREVIEW_SIZE = 192;
 /** Debounce of editor typing; panel drags and layer toggles go at once. */
 const TYPING_DEBOUNCE_MS = 30;
 /** When the last full pass came back faster than this, the first pass is skipped (except for a
@@ -152,7 +155,7 @@ export class Live {
     const req = {
       text,
       values,
-      size: previewSize(this.lastFullMs),
+      size: Math.min(DRAG_PREVIEW_SIZE, previewSize(this.lastFullMs)),
       stream: `${this.stream}:speculative`,
       seq,
       hidden: [...store.hidden],
