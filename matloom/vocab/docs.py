@@ -40,7 +40,11 @@ def render_language_reference() -> str:
         "`python -m matloom.vocab.docs > docs/language.md`; a test keeps it in sync._",
         "",
         "A program is an optional `View(x1, y1, x2, y2)`, then `Define(name, expr)` lines, then "
-        "one `Material(Layer(...), ...)` with layers listed bottom first. `#` starts a comment "
+        "one `Material(Layer(...), ...)` with layers listed bottom first. A parameterised Define "
+        "(language 3), `Define(stripe(w, c), Smoothstep(0, w, X()) * c)`, is used as a call, "
+        "`stripe(0.2, 0.5)` or `stripe(w=0.2, c=0.5)`: each use is its body with the arguments "
+        "filled in (checked, costed and evaluated expanded; `fmt` keeps it, `fmt --inline` and "
+        "the reference-compatible export write the expansion). `#` starts a comment "
         "that runs to the end of the line. `matloom fmt` keeps comments: on their own lines before "
         "a `View`, `Define`, `Material`, `Layer` or channel call, or after the code of the line "
         "where one of these ends; any other comment (inside an expression) moves before the "

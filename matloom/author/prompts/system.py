@@ -148,7 +148,10 @@ def define_section() -> str:
     return "\n".join(
         [
             "# Define",
-            "- Reference a Define by its bare name (`tone`), never as a call.",
+            "- Reference a Define by its bare name (`tone`), never as a call; only a "
+            "parameterised Define is called: `Define(stripe(w, c), Smoothstep(0, w, X()) * c)` "
+            "then `stripe(0.2, 0.5)` (each use is its body with the arguments filled in). Use one "
+            "instead of near-duplicate Defines that differ only in a few numbers.",
             "- A Define may use only earlier Defines.",
             "- Shapes cannot be Defined; Define the `Fill(...)`/`Stroke(...)` field instead, and "
             "repeat a shape inline to stroke it at several widths.",
