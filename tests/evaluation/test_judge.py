@@ -5,11 +5,9 @@ key goes, and the option errors."""
 from __future__ import annotations
 
 import base64
-import importlib.util
 import json
 import math
 import pickle
-import sys
 from collections import deque
 from collections.abc import Iterator
 from pathlib import Path
@@ -24,26 +22,10 @@ from matloom.evaluation.metrics.judge import JudgeMetric
 from matloom.evaluation.metrics.registry import get_metric
 from matloom.io import png
 
-CHAT = Path(__file__).resolve().parents[1] / "author" / "chat_server.py"
 KEY = "sk-judge-secret-0123456789"
 GOOD = json.dumps(
     {"match_score": 72, "differences": ["too dark"], "suggestions": ["lighten the base"]}
 )
-
-
-def _chat_module() -> Any:
-    """The shared scripted server (tests/author/chat_server.py), loaded by path."""
-    name = "evaluation_judge_chat_server"
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(name, CHAT)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        spec.loader.exec_module(module)
-    return sys.modules[name]
-
-
-chat = _chat_module()
 
 
 class Replies:
@@ -72,8 +54,8 @@ def replies() -> Replies:
 
 
 @pytest.fixture
-def server(replies: Replies) -> Iterator[Any]:
-    with chat.ChatServer(replies) as srv:
+def server(replies: Replies, chat_module: Any) -> Iterator[Any]:
+    with chat_module.ChatServer(replies) as srv:
         yield srv
 
 
@@ -138,8 +120,8 @@ def test_temperature_is_zero_even_when_the_profile_says_otherwise(
     assert server.requests[0]["temperature"] == 0
 
 
-def test_a_429_then_success_is_retried(server: Any, image: Path) -> None:
-    server.inject(chat.Fault(status=429))
+def test_a_429_then_success_is_retried(server: Any, image: Path, chat_module: Any) -> None:
+    server.inject(chat_module.Fault(status=429))
     got = get_metric("judge", options(server)).score([sample(image)])
     assert got[0]["judge.score"] == 72.0
     assert len(server.requests) == 2
@@ -170,8 +152,13 @@ def test_answers_that_never_parse_give_nan_after_the_retries(
 
 
 def test_the_key_goes_only_in_the_authorization_header_to_the_configured_server(
-    replies: Replies, image: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    replies: Replies,
+    image: Path,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    chat_module: Any,
 ) -> None:
+    chat = chat_module
     with chat.ChatServer(replies) as server, chat.ChatServer(replies) as decoy:
         monkeypatch.setenv("OPENAI_BASE_URL", decoy.base_url)
         monkeypatch.setenv("OPENAI_API_KEY", "sk-other-provider-key")
@@ -214,8 +201,8 @@ def test_each_layout_is_judged_on_its_own(server: Any, image: Path) -> None:
     assert all(len(user_parts(b)) == 2 for b in server.requests)  # text + one image each
 
 
-def test_a_refused_key_raises(server: Any, image: Path) -> None:
-    server.inject(chat.Fault(status=401))
+def test_a_refused_key_raises(server: Any, image: Path, chat_module: Any) -> None:
+    server.inject(chat_module.Fault(status=401))
     metric = get_metric("judge", options(server))
     with pytest.raises(ModelError) as err:
         metric.score([sample(image)])
