@@ -19,6 +19,11 @@ export interface Ctx {
   api: Api;
   store: Store;
   history: HistoryApi;
+  /** Set by the 3D view on software GL (SwiftShader, llvmpipe: the rasteriser runs on the same
+   *  CPU cores as the server): resolves once the frame showing maps `seq` has been presented, or
+   *  at once when nothing will draw it. Live waits on it before a drag's full pass, so the
+   *  server's 512 px evaluation does not slow down the first frame. Absent on a GPU. */
+  presented?: (seq: number) => Promise<void>;
   /** Session facts from GET /api/session. */
   session: {
     version: string;

@@ -21,6 +21,8 @@ const FAST_FULL_MS = 70;
 const PANEL_STRUCTURE_MS = 350;
 /** The first pass aims to come back within this, scaled from the last full pass's time. */
 const FIRST_PASS_MS = 120;
+/** The longest a drag's full pass waits for its first pass's frame to be presented. */
+const PRESENT_WAIT_MS = 250;
 
 /** First-pass size: 256 px, or smaller for a program whose full pass is slow (its time scales
  * with the texels), in steps of 32 px and at least 64 px. */
@@ -56,6 +58,8 @@ interface Speculation {
   generation: number;
   /** The evaluated text's hash once the maps came back (null while in flight or failed). */
   sha: string | null;
+  /** The seq of its maps once shown. */
+  seq: number | null;
   done: Promise<void>;
 }
 
@@ -150,7 +154,7 @@ export class Live {
   speculate(text: string, values: Record<string, unknown>): void {
     const { api, store } = this.ctx;
     const seq = (this.seq = Math.max(this.seq + 1, Date.now()));
-    const spec: Speculation = { from: text, generation: this.generation, sha: null, done: Promise.resolve() };
+    const spec: Speculation = { from: text, generation: this.generation, sha: null, seq: null, done: Promise.resolve() };
     this.specs = [...this.specs.slice(-3), spec];
     const req = {
       text,
@@ -168,7 +172,7 @@ export class Live {
         if (this.generation !== spec.generation) return; // typing, undo or a load came since
         if (store.text !== text && (sha === null || store.textSha !== sha)) return;
         spec.sha = sha;
-        this.show(maps, "preview", req.size, performance.now());
+        if (this.show(maps, "preview", req.size, performance.now())) spec.seq = maps.header.seq;
       },
       () => undefined, // superseded by a newer speculation, or the regular passes report it
     );
@@ -209,10 +213,24 @@ export class Live {
     return true;
   }
 
+  /** On software GL, wait (bounded) until the frame showing a drag's first pass is presented,
+   * so the full pass does not share the CPU with the rasteriser drawing it. */
+  private async afterPresented(seq: number | null): Promise<void> {
+    const gate = this.ctx.presented;
+    if (!gate || seq === null) return;
+    await Promise.race([gate(seq), new Promise<void>((r) => setTimeout(r, PRESENT_WAIT_MS))]);
+  }
+
   private async evaluate(job: Job, superseded: () => boolean): Promise<void> {
-    const skipPreview = (this.lastFullMs < FAST_FULL_MS && !job.drag) || (await this.speculated(job));
+    const speculated = await this.speculated(job);
+    const skipPreview = (this.lastFullMs < FAST_FULL_MS && !job.drag) || speculated;
     const passes: ("preview" | "full")[] = skipPreview ? ["full"] : ["preview", "full"];
+    let firstSeq = speculated && job.spec ? job.spec.seq : null;
     for (const pass of passes) {
+      if (pass === "full" && job.drag) {
+        await this.afterPresented(firstSeq);
+        if (superseded()) return; // the drag went on: its next step's first pass comes first
+      }
       if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits
       const size = pass === "full" ? FULL_SIZE : previewSize(this.lastFullMs);
       // Increasing across page loads too: the server keeps each stream's newest seq and answers
@@ -237,7 +255,7 @@ export class Live {
         return;
       }
       this.ok = true;
-      this.show(maps, pass, size, t0);
+      if (this.show(maps, pass, size, t0) && pass === "preview") firstSeq = maps.header.seq;
     }
   }
 

@@ -74,6 +74,7 @@ class Viewer {
     void this.useEnv(s.env);
     this.rebuild(true);
     ctx.store.on("maps", (maps) => this.show(maps));
+    if (view.software) ctx.presented = (seq) => view.presented(seq);
     // A slider step: frames stay cheap (software GL) until the drag pauses, then refine.
     ctx.store.on("text", ({ source }) => {
       if (source === "panel") view.edited();

@@ -49,6 +49,8 @@ export class ViewerScene {
   private refine: ReturnType<typeof setTimeout> | undefined;
   private readonly resizer: ResizeObserver;
   private disposed = false;
+  /** Who waits for the frame showing maps `seq` to be presented (see `presented`). */
+  private waiters: { seq: number; resolve: () => void }[] = [];
 
   constructor(readonly canvas: HTMLCanvasElement) {
     this.software = isSoftwareGl();
@@ -84,6 +86,21 @@ export class ViewerScene {
 
   maxAnisotropy(): number {
     return this.software ? 1 : Math.min(4, this.renderer.capabilities.getMaxAnisotropy());
+  }
+
+  /** Resolves once a frame showing maps `seq` (or newer) has been presented: at the animation
+   * frame after its draw. At once when the canvas is hidden (nothing will draw it). */
+  presented(seq: number): Promise<void> {
+    if (this.disposed || this.canvas.clientWidth === 0 || this.canvas.clientHeight === 0) return Promise.resolve();
+    return new Promise((resolve) => this.waiters.push({ seq, resolve }));
+  }
+
+  /** Release the waiters for maps up to `seq` (all of them when `seq` is Infinity). */
+  private release(seq: number): void {
+    const ready = this.waiters.filter((w) => w.seq <= seq);
+    if (!ready.length) return;
+    this.waiters = this.waiters.filter((w) => w.seq > seq);
+    for (const w of ready) w.resolve();
   }
 
   /** Draw a frame soon (at the next animation frame); repeated calls coalesce. */
@@ -175,6 +192,7 @@ export class ViewerScene {
 
   dispose(): void {
     this.disposed = true;
+    this.release(Infinity);
     clearTimeout(this.refine);
     this.resizer.disconnect();
     this.controls.dispose();
@@ -204,7 +222,10 @@ export class ViewerScene {
 
   private draw(): void {
     this.pending = false;
-    if (this.disposed || this.canvas.clientWidth === 0 || this.canvas.clientHeight === 0) return;
+    if (this.disposed || this.canvas.clientWidth === 0 || this.canvas.clientHeight === 0) {
+      this.release(Infinity);
+      return;
+    }
     const moving = this.controls.update();
     const t0 = performance.now();
     const low = this.software && (t0 < this.busyUntil || !this.boundFull);
@@ -222,6 +243,10 @@ export class ViewerScene {
     const refined = !low && this.boundFull && this.boundSeq > this.refinedSeq;
     if (refined) this.refinedSeq = this.boundSeq;
     frameDrawn(this.shownSeq, refined ? this.boundSeq : null, ratio);
+    if (this.shownSeq !== null && this.waiters.length) {
+      const drawn = this.shownSeq;
+      requestAnimationFrame(() => this.release(drawn)); // presented by the next frame
+    }
     this.shownSeq = null;
     clearTimeout(this.refine);
     if (moving) this.requestRender();
