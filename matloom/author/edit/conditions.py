@@ -302,12 +302,18 @@ def _seeds(program: A.Program) -> set[int]:
 
 
 def overlay_lines(
-    program: A.Program, overlay: Overlay, cover: float | None = None
+    program: A.Program,
+    overlay: Overlay,
+    cover: float | None = None,
+    scale: float = 1.0,
+    within: A.Node | None = None,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
     where a name is taken, its seeds re-derived where one is taken; its host colour bound to
-    the program's main colour slot), and the channels a layer on top changes where it covers. ``cover``: the
-    overlay's amount (None: its own). ValueError when it would break the program's tiling."""
+    the program's main colour slot), and the channels a layer on top changes where it covers.
+    ``cover``: the overlay's amount (None: its own); ``scale``: its feature size factor;
+    ``within``: a mask its layers are confined to (the joints). ValueError when it would break
+    the program's tiling."""
     from matloom.library.overlay import compose
     from matloom.library.passes.compose import reseed
 
@@ -323,7 +329,15 @@ def overlay_lines(
     def fresh(q: A.Program) -> A.Program:
         return reseed(q, f"edit+{overlay.name}", 1) if _seeds(q) & taken else q
 
-    composed = compose(program, overlay, main_colour=main, cover=cover, reseed=fresh)
+    composed = compose(program, overlay, main_colour=main, cover=cover, reseed=fresh, scale=scale)
+    if within is not None:  # confined: each new layer covers only where `within` is
+        layers = tuple(
+            replace(
+                layer, alpha=within if layer.alpha is None else A.BinOp("*", layer.alpha, within)
+            )
+            for layer in composed.layers[len(program.layers) :]
+        )
+        composed = replace(composed, layers=composed.layers[: len(program.layers)] + layers)
     if program.tileable and len(tileable_warnings(composed)) > len(tileable_warnings(program)):
         raise ValueError(f"the {overlay.name} overlay would not tile with this program")
     defines = composed.defines[len(program.defines) :]
@@ -378,17 +392,46 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         return None
     amounts = [c.vocabulary.amounts[t] for t in c.words if t in c.vocabulary.amounts]
     cover = amounts[0] if amounts else None
+    scale = 1.0
+    if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
+        scale = c.ew.f("spot_scale")
+        cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
+    within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
+    if within is not None and not amounts:  # the joints asked for are the joints it fills
+        cover = c.ew.f("joint_cover")
     try:
-        add, channels = overlay_lines(c.program, ov, cover)
+        add, channels = overlay_lines(c.program, ov, cover, scale, within)
     except ValueError as err:
         raise c.refuse(str(err)) from None
     amount = f" (amount {cover:g})" if cover is not None else ""
+    if scale != 1.0:
+        amount += f" as spots (size x{scale:g})"
+    amount += where
     return Plan(
         "overlay",
         f"the library's {ov.name!r} overlay added on top{amount}",
         add=add,
         intended=channels,
     )
+
+
+def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
+    """The joints ("dirt in the grout lines"): where the mask Define that holds the program's
+    joint width (``define:tiles.Bricks.mortar``) is low, or high when the joints are its
+    majority value's opposite; (None, "") when the program has no joint parameter."""
+    for p in c.params:
+        if p.kind != "size" or not any(k in p.address.lower() for k in c.ew.joint_params):
+            continue
+        m = re.fullmatch(r"define:(\w+)\.\w+\.\w+", p.address)
+        if m is None or c.program.define(m.group(1)) is None:
+            continue
+        name = m.group(1)
+        mask: A.Node = A.Ref(name)
+        # the joints are the thin part: the mask's minority value
+        if _coverage(c.program, mask) > 0.5:
+            mask = A.BinOp("-", A.Num(1), mask)
+        return mask, f" in the joints (of {name})"
+    return None, ""
 
 
 def _floored(p: Param, v: float) -> float:

@@ -27,7 +27,7 @@ from matloom.author.edit.apply import (
 )
 from matloom.author.edit.lexicon import edit_words, tokens
 from matloom.author.edit.rules import EditRefused, Plan, plan_edit
-from matloom.author.edit.visible import VISIBLE_SIZE, visible_changes
+from matloom.author.edit.visible import VISIBLE_SIZE, lit_changes, visible_changes
 from matloom.engine.evaluate import evaluate
 from matloom.lang import ast as A
 from matloom.lang.params import list_params
@@ -129,21 +129,26 @@ class Verified:
     program: A.Program
     locality: LocalityReport
     visible: dict[str, float]
+    #: the fraction of the lit preview's pixels that moved at all (``visible["lit"]``: visibly)
+    lit_moved: float = 0.0
 
     def shows(self, fraction: float, channels: Sequence[str] = ()) -> bool:
         """Whether a map the edit meant to change moved visibly on ``fraction`` of texels.
 
         With ``channels`` (the request's own: the plan's intended channels), the change is
-        measured where a lit preview shows it: a relief in the normal map (a height map may
-        double its range and still not show), another channel in its own map; else in any map
-        the locality allows."""
+        measured where a lit preview shows it: a relief in the lit preview itself (a height map
+        may double its range, and its normals move on half the texels, and still not show),
+        another channel in its own map; else in any map the locality allows."""
         seen = [SEEN_AS.get(ch, ch) for ch in channels if ch != "alpha"]
         names = [n for n in dict.fromkeys(seen) if n in self.visible]
         if not names:
             names = [n for n in self.visible if n in self.locality.allowed]
         for n in names:
             v = self.visible[n]
-            moved = self.locality.maps[n].fraction if n in self.locality.maps else v
+            if n == "lit":
+                moved = self.lit_moved
+            else:
+                moved = self.locality.maps[n].fraction if n in self.locality.maps else v
             # visible on enough of the map, or on most of the texels that moved at all (a
             # part that covers little of the surface: the knots, the veins, the worn patches)
             if v >= fraction or (v >= PART_FRACTION and moved > 0 and v / moved >= PART_SHARE):
@@ -157,8 +162,13 @@ PART_SHARE = 0.3
 PART_FRACTION = 0.004
 
 
-#: The map a change of a channel shows in, in a lit preview.
-SEEN_AS = {"height": "normal"}
+#: The map a change of a channel shows in, in a lit preview ("lit": the lit preview itself).
+SEEN_AS = {"height": "lit"}
+
+
+def _seen_name(channel: str) -> str:
+    seen = SEEN_AS.get(channel, channel)
+    return "lit preview" if seen == "lit" else seen
 
 
 def verify(
@@ -188,7 +198,11 @@ def verify(
         vb = evaluate(after, VISIBLE_SIZE, VISIBLE_SIZE, session=session)
     else:
         va, vb = a, b
-    return Verified(after, compare_maps(a, b, intended_t), visible_changes(va, vb))
+    visible = visible_changes(va, vb)
+    lit_moved = 0.0
+    if "height" in intended_t:
+        visible["lit"], lit_moved = lit_changes(va, vb)
+    return Verified(after, compare_maps(a, b, intended_t), visible, lit_moved)
 
 
 def _line_texts(program: A.Program) -> dict[str, str]:
@@ -238,10 +252,11 @@ def edit_offline(
 
     A graded step whose change does not show (no intended map moved visibly on
     ``visible_fraction`` of its texels) is planned again at a greater strength (times
-    ``escalate``, up to ``max_strength``; not after "slightly" or "a bit"). The change is
-    measured in the request's own channels (a relief in the normal map). A change that still
-    does not show at ``max_strength`` is refused with the reason; one whose parameters reached
-    their limits (all the wear removed) is kept with a warning, as is a "slightly" step."""
+    ``escalate``, up to ``max_strength``; "slightly" or "a bit" start from a smaller step and
+    so stop at the smallest one that shows). The change is measured in the request's own
+    channels (a relief in the lit preview). A change that still does not show at
+    ``max_strength`` is refused with the reason; one whose parameters reached their limits (all
+    the wear removed) is kept with a warning, as is a "slightly" step."""
     ew = edit_words()
     before = parse_program(text)
     params = all_params(before)
@@ -256,7 +271,8 @@ def edit_offline(
         shows = checked.shows(ew.f("visible_fraction"), plan.intended) or not (
             structural or checked.locality.changed
         )
-        if shows or not plan.graded or calm:
+        # "slightly" starts from a smaller step and grows only until the change just shows
+        if shows or not plan.graded:
             break
         if strength * ew.f("escalate") > ew.f("max_strength"):
             capped = True
@@ -270,8 +286,8 @@ def edit_offline(
             break
         plan = stronger
     if not shows and structural and not plan.exact:
-        if capped:  # an edit that would not show is refused, not returned
-            seen = ", ".join(dict.fromkeys(SEEN_AS.get(ch, ch) for ch in plan.intended)) or "maps"
+        if capped and not calm:  # an edit that would not show is refused, not returned
+            seen = ", ".join(dict.fromkeys(_seen_name(ch) for ch in plan.intended)) or "maps"
             raise EditRefused(
                 request,
                 f"{plan.rule}: even at {strength:.3g} times the step ({plan.note}) the {seen} "
