@@ -286,7 +286,7 @@ def edit_offline(
             break
         plan = stronger
     if not shows and structural and not plan.exact:
-        if capped and not calm:  # an edit that would not show is refused, not returned
+        if capped and not calm and not plan.reduces:  # refused, not returned
             seen = ", ".join(dict.fromkeys(_seen_name(ch) for ch in plan.intended)) or "maps"
             raise EditRefused(
                 request,

@@ -256,7 +256,8 @@ def relief_rule(c: Context) -> Plan | None:
     new, lines = relief_change(c, factor)
     word = "deeper" if d > 0 else "flatter"
     if new:
-        return assign(c, "relief", f"relief {word} (x{factor:.3g})", new, ("height",))
+        plan = assign(c, "relief", f"relief {word} (x{factor:.3g})", new, ("height",))
+        return replace(plan, reduces=d < 0)
     if not lines:
         raise c.refuse("no relief: no layer has a height that varies")
     return Plan(
@@ -265,4 +266,5 @@ def relief_rule(c: Context) -> Plan | None:
         lines=lines,
         intended=("height",),
         graded=True,
+        reduces=d < 0,
     )

@@ -36,7 +36,9 @@ class Plan:
     ``define:NAME`` -> its new text), added lines (new Defines and layers on top), and the
     channels the edit means to change. ``graded``: the step grows with the context's strength
     (the edit may escalate it when the change is too small to see); ``exact``: the request
-    gave the value itself ("12 mm joints", "white"), so a small change is no warning."""
+    gave the value itself ("12 mm joints", "white"), so a small change is no warning;
+    ``reduces``: it takes something away (flatter): one that does not show at the greatest
+    step is kept with a warning, not refused (there is nothing further to take)."""
 
     rule: str
     note: str
@@ -47,6 +49,7 @@ class Plan:
     add: tuple[str, ...] = ()
     graded: bool = False
     exact: bool = False
+    reduces: bool = False
 
     def to_json(self) -> dict[str, Any]:
         out: dict[str, Any] = {
