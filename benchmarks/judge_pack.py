@@ -8,10 +8,19 @@ the sheets and the texts. ``key.json`` (id -> prompt id, source, entry) stays wi
 the packet.
 
 ``summary`` reads judges' score files (JSON objects id -> {"score": 0-100, "why": "..."})
-and prints the mean per prompt file, per source, the number below 30 and the five worst.
+and prints the mean per system and prompt file, per source, the number below 30 and the ten
+worst.
+
+To judge two builds in one run (before and after, shuffled together): ``author`` writes one
+build's programs (run it with that build on ``PYTHONPATH``), and ``pack --programs NAME=FILE``
+packs every build's programs at once (rendered by the current engine).
 
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py pack -o /tmp/judge \\
         tests/data/prompts-dev.json benchmarks/data/prompts-own-2.json
+    PYTHONPATH=/tmp/base .venv/bin/python benchmarks/judge_pack.py author -o before.json FILES
+    PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py author -o after.json FILES
+    PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py pack -o /tmp/judge \\
+        --programs before=before.json after=after.json FILES
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py summary /tmp/judge scores_*.json
 """
 
@@ -21,6 +30,7 @@ import argparse
 import json
 import random
 import statistics
+import time
 from collections import defaultdict
 from pathlib import Path
 
@@ -39,24 +49,65 @@ def _prompts(path: Path) -> list[tuple[str, str, str]]:
         if isinstance(item, str):
             out.append((f"{path.stem}-{i:03d}", path.stem, item))
         else:
-            out.append((item["id"], item.get("source", path.stem), item["text"]))
+            text = item["text"] if "text" in item else item["prompt"]
+            out.append((item["id"], item.get("source", path.stem), text))
     return out
 
 
-def pack(out: Path, files: list[Path], size: int, shuffle_seed: int) -> None:
+def author_all(out: Path, files: list[Path]) -> None:
+    """Author every prompt with the library author of the build on ``PYTHONPATH``: file ->
+    {prompt id: {text, program, entry, seconds}}."""
+    lib = load_library()
+    programs: dict[str, dict[str, dict[str, object]]] = {}
+    for f in files:
+        rows = programs.setdefault(f.stem, {})
+        for pid, _source, text in _prompts(f):
+            t0 = time.perf_counter()
+            result = author(text, lib=lib)
+            rows[pid] = {
+                "text": text,
+                "program": result.program,
+                "entry": result.entry,
+                "seconds": round(time.perf_counter() - t0, 4),
+            }
+    out.write_text(json.dumps(programs, indent=1), encoding="utf-8")
+    print(f"{sum(len(v) for v in programs.values())} programs written to {out}")
+
+
+def pack(
+    out: Path,
+    files: list[Path],
+    size: int,
+    shuffle_seed: int,
+    programs: dict[str, Path] | None = None,
+) -> None:
     out.mkdir(parents=True, exist_ok=True)
     lib = load_library()
-    rows = [(f.stem, *p) for f in files for p in _prompts(f)]
+    systems = {n: json.loads(p.read_text(encoding="utf-8")) for n, p in (programs or {}).items()}
+    names = list(systems) or ["current"]
+    rows = [(s, f.stem, *p) for s in names for f in files for p in _prompts(f)]
     order = list(range(len(rows)))
     random.Random(shuffle_seed).shuffle(order)
     key: dict[str, dict[str, str]] = {}
     images, ids = [], []
     for n, i in enumerate(order):
-        file, pid, source, text = rows[i]
-        result = author(text, lib=lib)
+        system, file, pid, source, text = rows[i]
+        if systems:
+            made = systems[system][file][pid]
+            program, entry = str(made["program"]), str(made["entry"])
+        else:
+            result = author(text, lib=lib)
+            program, entry = result.program, result.entry
         iid = f"m{n + 1:03d}"
-        key[iid] = {"file": file, "id": pid, "source": source, "text": text, "entry": result.entry}
-        images.append(preview(result.program, size, layout="both"))
+        key[iid] = {
+            "system": system,
+            "file": file,
+            "id": pid,
+            "source": source,
+            "text": text,
+            "entry": entry,
+        }
+        images.append(preview(program, size, layout="both"))
         ids.append(iid)
     for s in range(0, len(ids), PER_SHEET):
         chunk = ids[s : s + PER_SHEET]
@@ -82,17 +133,21 @@ def summary(folder: Path, score_files: list[Path]) -> None:
         print(f"not scored: {len(missing)} ({', '.join(missing[:8])})")
     by_file: dict[str, list[str]] = defaultdict(list)
     for i in mean:
-        by_file[key[i]["file"]].append(i)
+        by_file[f"{key[i].get('system', 'current')} {key[i]['file']}"].append(i)
     for file, ids in sorted(by_file.items()):
         vals = [mean[i] for i in ids]
         low = sum(v < 30 for v in vals)
-        print(f"{file}: n={len(vals)} mean={statistics.mean(vals):.1f} below30={low}")
+        share = 100 * sum(v >= 60 for v in vals) / len(vals)
+        print(
+            f"{file}: n={len(vals)} mean={statistics.mean(vals):.1f} >=60 {share:.0f}% "
+            f"below30={low}"
+        )
         by_source: dict[str, list[float]] = defaultdict(list)
         for i in ids:
             by_source[key[i]["source"]].append(mean[i])
         for src, v in sorted(by_source.items()):
             print(f"  {src:18s} n={len(v):2d} mean={statistics.mean(v):.1f}")
-        for i in sorted(ids, key=lambda i: mean[i])[:5]:
+        for i in sorted(ids, key=lambda i: mean[i])[:10]:
             k = key[i]
             print(f"  worst {mean[i]:5.1f} {k['id']} [{k['entry']}] {k['text'][:60]!r}")
             for w in why[i]:
@@ -107,12 +162,28 @@ def main() -> None:
     p.add_argument("files", type=Path, nargs="+")
     p.add_argument("--size", type=int, default=256)
     p.add_argument("--shuffle-seed", type=int, default=7)
+    p.add_argument(
+        "--programs",
+        nargs="+",
+        default=[],
+        metavar="NAME=FILE",
+        help="builds' programs (from `author`), packed together, shuffled",
+    )
+    a = sub.add_parser("author")
+    a.add_argument("-o", "--out", type=Path, required=True)
+    a.add_argument("files", type=Path, nargs="+")
     s = sub.add_parser("summary")
     s.add_argument("folder", type=Path)
     s.add_argument("scores", type=Path, nargs="+")
     args = parser.parse_args()
     if args.cmd == "pack":
-        pack(args.out, args.files, args.size, args.shuffle_seed)
+        programs = {}
+        for item in args.programs:
+            name, _, path = item.partition("=")
+            programs[name] = Path(path)
+        pack(args.out, args.files, args.size, args.shuffle_seed, programs)
+    elif args.cmd == "author":
+        author_all(args.out, args.files)
     else:
         summary(args.folder, args.scores)
 
