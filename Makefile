@@ -20,7 +20,7 @@ demo: $(VENV)/.installed-fast,llm
 studio: $(VENV)/.installed-fast,llm,studio
 	$(VENV)/bin/matloom studio
 
-test: $(VENV)/.installed-fast,llm,test,studio,bench tools
+test: $(VENV)/.installed-fast,llm,test,studio,bench,polish tools
 	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser"
 
 # Rebuild the studio's front end (studio-web/, TypeScript) into matloom/studio/static/ with the

@@ -34,7 +34,14 @@ import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
 
 #: The critic's configurable inputs (paper Sec. 4, Stage II).
 CRITIC_SIGNALS: tuple[str, ...] = ("render", "stats", "code")
@@ -132,6 +139,25 @@ class AuthorConfig(BaseModel):
     #: Stop revising once the critic asks for no changes (no suggestions, no edits); the
     #: paper always runs every round.
     stop_when_satisfied: bool = False
+    #: Critic loop v3 (docs/authoring.md, "Critic loop v3"; all off in the paper):
+    #: the critic's system prompt also holds the generator's "Resolution and previews" facts,
+    #: how uncovered areas look in each preview and what each layout shows, measured.
+    critic_previews: bool = False
+    #: The critic may ask for structural changes (a new layer, another primitive) in its own
+    #: answer field, not only for the smallest set of line-targeted numeric edits.
+    critic_structural: bool = False
+    #: Revise the best program so far (by the scorer's score when a scorer is used, else the
+    #: critic's) instead of the latest; the revision turn says which one and why.
+    revise_from_best: bool = False
+    #: A revision whose previews differ from the program it revised by less than this (the
+    #: mean absolute difference in levels of 255 at the critique size, the largest over the
+    #: critic's layouts) is not critiqued, is reported to the generator as "no visible change"
+    #: and counts toward stopping; None: never checked.
+    no_change_threshold: float | None = Field(None, ge=0, le=255, allow_inf_nan=False)
+    #: The loop stops after this many revisions with no visible change.
+    no_change_limit: int = Field(2, ge=1)
+    #: The last program's critique asks for the score only (its suggestions cannot be used).
+    score_only_last: bool = False
     #: Blender layouts to render the final material in after export ("flat", "staged"), into
     #: ``blender/<layout>.png`` of the run folder (empty: none; see docs/blender.md).
     blender_layouts: tuple[str, ...] = ()
@@ -149,6 +175,10 @@ class AuthorConfig(BaseModel):
     max_reply_chars: int = Field(DEFAULT_MAX_REPLY_CHARS, ge=1_000)
     playbook: bool = True
     few_shot: bool = True
+    #: Which few-shot examples the system prompt shows (``--examples``): the ``paper``'s six, or
+    #: ``v3``, written in the language 2 and 3 idioms on subjects far from the benchmark
+    #: prompts (:data:`matloom.author.prompts.system.EXAMPLE_SETS`).
+    examples: Literal["paper", "v3"] = "paper"
     #: Scorer name from the scorer registry; "auto" = open_clip if its weights are local, else
     #: none; "none" = no scorer (critic-score selection, no seed search).
     scorer: str = "auto"
@@ -167,6 +197,30 @@ class AuthorConfig(BaseModel):
     tileable: bool = False
     #: The named settings preset these settings started from (``--settings``; recorded only).
     settings_preset: str | None = None
+    #: A photo (PNG or JPEG) of the material to make (``--reference``): the generator and the
+    #: critic see it beside the previews, the critic's statistics compare render and photo
+    #: (:mod:`matloom.author.reference`). Given, ``tileable`` defaults to True.
+    reference: str | None = None
+    #: Fit the exposed numeric parameters after selection (``--polish``; :mod:`matloom.author.
+    #: stages.polish`): ``none``, or ``cmaes`` (needs the ``polish`` extra).
+    polish: Literal["none", "cmaes"] = "none"
+    #: Most objective evaluations of the fit (renders, or critic calls: see
+    #: ``polish_critic_calls``).
+    polish_evaluations: int = Field(40, ge=2, le=100_000)
+    #: Most seconds the fit's evaluations take (the guard's two critic calls not counted).
+    polish_seconds: float = Field(120.0, gt=0, le=86_400, allow_inf_nan=False)
+    #: Most critic calls when the critic is the fit's objective (no scorer, no reference).
+    polish_critic_calls: int = Field(4, ge=2, le=1_000)
+    #: Render size of the fit's evaluations (scorer and reference objectives).
+    polish_size: int = Field(128, ge=16, le=MAX_SIZE)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _reference_tileable(cls, data: Any) -> Any:
+        """A run with a reference photo makes a tileable material unless told otherwise."""
+        if isinstance(data, dict) and data.get("reference") and "tileable" not in data:
+            return {**data, "tileable": True}
+        return data
 
     @field_validator("start", mode="before")
     @classmethod

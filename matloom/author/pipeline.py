@@ -19,10 +19,14 @@ from matloom.author.llm.base import ChatModel, ModelError
 from matloom.author.llm.providers import get_model
 from matloom.author.prompts.system import system_prompt
 from matloom.author.records import RECORD_NAME, ModelIds, RecordStore, RunRecord
+from matloom.author.reference import ReferencePhotoError, open_reference
+from matloom.author.reference_chat import with_reference
 from matloom.author.run import PickError, Progress, ProgressEvent, Run, append_library_program
 from matloom.author.scorers.base import ScorerUnavailableError, TextImageScorer
 from matloom.author.scorers.lookup import get_scorer
 from matloom.author.stages.generate import NoParseableProgramError, discard_unfinished_turns
+from matloom.author.stages.polish import polish_stage
+from matloom.author.stages.polish_fit import PolishUnavailableError
 from matloom.io.outdir import OutputError, OutputFolder
 
 __all__ = [
@@ -32,6 +36,7 @@ __all__ = [
     "RunRequestError",
     "RunResult",
     "author_material",
+    "check_inputs",
     "check_prompt",
     "check_sizes",
     "resolve_scorer",
@@ -128,6 +133,19 @@ def check_sizes(config: AuthorConfig) -> None:
             check_request(smallest, size, size, usage=Usage(preview_tile=1))
         except ValueError as err:
             raise type(err)(f"{flag} {size}: {err}") from None
+
+
+def check_inputs(config: AuthorConfig) -> None:
+    """The reference photo (``--reference``) can be used and the parameter fit's package
+    (``--polish cmaes``) is installed: checked before the first request. Raises ValueError
+    with a one-line message."""
+    from matloom.author.reference import load_reference
+    from matloom.author.stages.polish_fit import require_cma
+
+    if config.reference is not None:
+        load_reference(config.reference)
+    if config.polish == "cmaes":
+        require_cma()
 
 
 def _open_store(  # noqa: PLR0913 - author_material's arguments, passed through
@@ -247,6 +265,7 @@ def author_material(
             check_prompt(prompt)
         if config is not None:
             check_sizes(config)
+            check_inputs(config)
     except ValueError as err:
         raise RunRequestError(str(err), Path(out_dir)) from None
     with OutputFolder(out_dir) as out:
@@ -275,6 +294,8 @@ def _author_locked(
         gen, crit = (None, None)
         if record.author == "llm":
             gen, crit = _models(record.settings, generator, critic)
+        photo = open_reference(record)  # --reference: checked against the recorded hash
+        gen, crit, notes = with_reference(photo, record.settings.critique_size, gen, crit)
         skip = None
         if scorer is None:
             scorer, skip = resolve_scorer(record.settings)
@@ -284,6 +305,9 @@ def _author_locked(
             scorer=scorer.name if scorer else None,
         )
         run = Run(store, generator=gen, critic=crit, scorer=scorer, progress=progress)
+        run.renderer.reference = photo
+        for note in notes:
+            run.warn(note)
         _run_stages(run, skip)
         record.status = "finished"
     except (
@@ -293,6 +317,8 @@ def _author_locked(
         PickError,
         OSError,
         OutputError,
+        ReferencePhotoError,
+        PolishUnavailableError,
     ) as err:
         message = store.redactor().text(str(err))  # an error body may echo the API key
         _fail(store, message, session_start)
@@ -320,12 +346,14 @@ def _run_stages(run: Run, skip: str | None) -> None:
                 few_shot=cfg.few_shot,
                 render_size=cfg.critique_size,
                 views=run.views,
+                examples=cfg.examples,
             )
         run.store.save()
         run.generate_initial()
         run.refine()
     run.select()
     run.seed_search(skip)
+    polish_stage(run)  # --polish: fit the chosen program's numbers, kept if not worse
     run.finalize()
 
 

@@ -120,6 +120,10 @@ class CritiqueRecord(_Model):
     differences: list[str] = Field(default_factory=list)
     suggestions: list[str] = Field(default_factory=list)
     edits: list[EditRecord] = Field(default_factory=list)
+    #: Structural changes asked for (``critic_structural``): a new layer, another primitive.
+    structural: list[str] = Field(default_factory=list)
+    #: Only the score was asked for (``score_only_last``: the last program's critique).
+    score_only: bool = False
     signals: list[str]
     #: The first image shown (this round's first view), for older readers of the record.
     render: str | None = None
@@ -168,6 +172,59 @@ class SeedSearchRecord(_Model):
 
     candidates: list[int] = Field(default_factory=list)
     sweeps: list[SweepRecord] = Field(default_factory=list)
+    skipped: str | None = None
+    done: bool = False
+
+
+class ReferenceRecord(_Model):
+    """The reference photo of ``--reference``: its hash and size, never its pixels."""
+
+    name: str
+    sha256: str
+    width: int
+    height: int
+
+
+class FittedParamRecord(_Model):
+    """One parameter fitted by ``--polish``: its search window and values (a colour: r, g, b)."""
+
+    address: str
+    label: str
+    kind: str
+    low: list[float]
+    high: list[float]
+    before: list[float]
+    after: list[float] = Field(default_factory=list)
+    #: Parameters with the same function, name and value that moved with this one.
+    tied: list[str] = Field(default_factory=list)
+
+
+class PolishRecord(_Model):
+    """``--polish cmaes``: the exposed numeric parameters of the chosen program fitted after
+    selection and seed search, kept only when the critic does not score the fit lower."""
+
+    method: Literal["cmaes"] = "cmaes"
+    #: What was minimised or maximised: the scorer's score, the statistics distance to the
+    #: reference photo, or the critic's match score.
+    objective: Literal["scorer", "reference", "critic"] | None = None
+    #: "higher" or "lower": which objective values are better.
+    better: Literal["higher", "lower"] = "higher"
+    program_index: int
+    variant: int = 0
+    seed: int = 0
+    parameters: list[FittedParamRecord] = Field(default_factory=list)
+    evaluations: int = 0
+    seconds: float = 0.0
+    objective_before: float | None = None
+    objective_after: float | None = None
+    #: The critic's fresh match scores of the unfitted and the fitted program (the guard).
+    critic_before: int | None = None
+    critic_after: int | None = None
+    guard: list[CritiqueRecord] = Field(default_factory=list)
+    #: The fitted program (canonical text), kept or not.
+    program: str | None = None
+    kept: bool = False
+    reason: str = ""
     skipped: str | None = None
     done: bool = False
 
@@ -249,6 +306,10 @@ class RunRecord(_Model):
     #: the library entry when the library authored it offline, else a slug of the prompt.
     material_name: str | None = None
     blender: BlenderRecord | None = None
+    #: The reference photo (``--reference``): hash and size only.
+    reference: ReferenceRecord | None = None
+    #: The parameter fit (``--polish``), when one was asked for.
+    polish: PolishRecord | None = None
     durations: Durations = Field(default_factory=Durations)
     sessions: list[str] = Field(default_factory=list)
 

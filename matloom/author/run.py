@@ -18,6 +18,7 @@ import numpy as np
 
 from matloom.author.finalize import export_final, material_name, tileable_text
 from matloom.author.llm.base import ChatModel, ImageInput
+from matloom.author.prompts.critic import CriticOptions
 from matloom.author.prompts.revision import (
     canonical_assistant_turn,
     request_message,
@@ -35,6 +36,14 @@ from matloom.author.scorers.base import TextImageScorer
 from matloom.author.stages.critique import PreviousRound, critique_program
 from matloom.author.stages.finite import finite_final, nonfinite_texels
 from matloom.author.stages.generate import extract_answer, run_turn
+from matloom.author.stages.loop import (
+    LoopState,
+    continue_from,
+    critic_score,
+    guide,
+    loop_sections,
+    preview_difference,
+)
 from matloom.author.stages.seedsearch import best_of_sweeps, candidate_indices, run_candidate_sweep
 from matloom.author.stages.select import select_program
 from matloom.author.views import (
@@ -170,49 +179,102 @@ class Run:
         self.store.save()
 
     def refine(self) -> None:
-        """Critique P_k and revise into P_{k+1} for k = 0..rounds-1, then critique P_rounds."""
-        if self.config.rounds == 0 or self.record.stop_reason:
+        """Critique P_k and revise into P_{k+1} for k = 0..rounds-1, then critique P_rounds.
+
+        Loop v3 (off in the paper): a revision with no visible change is not critiqued and
+        counts toward stopping; a revision continues from the best program so far; the last
+        critique asks for the score only (:mod:`matloom.author.stages.loop`)."""
+        cfg = self.config
+        if cfg.rounds == 0 or self.record.stop_reason:
             return
-        if not self.config.effective_signals():
+        if not cfg.effective_signals():
             self.record.stop_reason = "no critic signals available"
             self.store.save()
             return
-        for k in range(self.config.rounds + 1):
+        loop = LoopState()
+        for k in range(cfg.rounds + 1):
             if k >= len(self.record.programs):
                 return
-            critique = self.record.critique_of(k) or self.critique(k)
-            if not critique.ok:
-                self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
-                self.store.save()
-                return
-            satisfied = not (critique.suggestions or critique.edits)
-            if k < self.config.rounds and self.config.stop_when_satisfied and satisfied:
-                self.record.stop_reason = f"the critic asked for no changes to P{k}"
-                self.store.save()
-                return
-            if k < self.config.rounds and k + 1 >= len(self.record.programs):
-                self.revise(k, critique)
-        self.record.stop_reason = f"all {self.config.rounds} revision rounds used"
+            last = k == cfg.rounds
+            if self._unchanged(k, loop):
+                if len(loop.unchanged) >= cfg.no_change_limit:
+                    shown = ", ".join(f"P{j}" for j in loop.unchanged)
+                    self.record.stop_reason = (
+                        f"{len(loop.unchanged)} revision(s) made no visible change ({shown})"
+                    )
+                    self.store.save()
+                    return
+            else:
+                score_only = last and cfg.score_only_last
+                critique = self.record.critique_of(k) or self.critique(k, loop, score_only)
+                if not critique.ok:
+                    self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
+                    self.store.save()
+                    return
+                asked = critique.suggestions or critique.edits
+                if cfg.critic_structural:
+                    asked = asked or critique.structural
+                if not last and cfg.stop_when_satisfied and not asked:
+                    self.record.stop_reason = f"the critic asked for no changes to P{k}"
+                    self.store.save()
+                    return
+            if not last:
+                scorer = None if self.scorer is None else lambda j: self._scorer_score(j, loop)
+                base = continue_from(self.record, k, loop, scorer)
+                loop.parents[k + 1] = base
+                if k + 1 >= len(self.record.programs):
+                    self.revise(k, base, loop)
+        self.record.stop_reason = f"all {cfg.rounds} revision rounds used"
         self.store.save()
 
-    def _previous_round(self, k: int, sees_render: bool) -> PreviousRound | None:
+    def _unchanged(self, k: int, loop: LoopState) -> bool:
+        """True (and noted in ``loop``) when P_k's previews differ from its parent's by less
+        than ``no_change_threshold``."""
+        threshold = self.config.no_change_threshold
+        if threshold is None or k == 0:
+            return False
+        size, parent = self.config.critique_size, loop.parent(k)
+        images = [
+            [self.renderer.image(self.record.programs[j].text, size, view) for view in self.views]
+            for j in (k, parent)
+        ]
+        difference = preview_difference(*images)
+        if difference >= threshold:
+            return False
+        loop.unchanged[k] = difference
+        return True
+
+    def _scorer_score(self, k: int, loop: LoopState) -> float:
+        assert self.scorer is not None
+        if k not in loop.scores:
+            image = self.render(self.record.programs[k].text, self.config.select_size)
+            loop.scores[k] = float(self.scorer.score([image], self.record.prompt)[0])
+        return loop.scores[k]
+
+    def shown_text(self, k: int) -> str:
+        """P_k as its author wrote it (the generator's own text), as the critic quotes it."""
+        record = self.record.programs[k]
+        if record.source == "generator" and record.authored:
+            return (extract_answer(record.authored)[0] or record.text).strip()
+        return record.text
+
+    def _previous_round(self, k: int, sees_render: bool, loop: LoopState) -> PreviousRound | None:
         if not self.config.critic_history or k == 0:
             return None
-        before = self.record.critique_of(k - 1)
-        score = before.match_score if before is not None and before.ok else None
-        images = tuple(self.view_inputs(k - 1)) if sees_render else ()
-        return PreviousRound(index=k - 1, score=score, images=images)
+        parent = loop.parent(k)
+        images = tuple(self.view_inputs(parent)) if sees_render else ()
+        return PreviousRound(index=parent, score=critic_score(self.record, parent), images=images)
 
-    def critique(self, k: int) -> CritiqueRecord:
+    def critique(
+        self, k: int, loop: LoopState | None = None, score_only: bool = False
+    ) -> CritiqueRecord:
         assert self.critic is not None
         cfg = self.config
-        record = self.record.programs[k]
-        program = record.text
+        loop = loop or LoopState()
+        program = self.record.programs[k].text
         # The critic quotes the program the generator wrote (its own text, as the generator's
         # conversation holds it), so its edits name lines the generator can find.
-        shown = program
-        if record.source == "generator" and record.authored:
-            shown = (extract_answer(record.authored)[0] or program).strip()
+        shown = self.shown_text(k)
         signals = cfg.effective_signals()
         self.notify("critique", f"critiquing P{k}", round=k)
         start = time.perf_counter()
@@ -230,8 +292,14 @@ class Run:
             stats=stats,
             retries=cfg.critic_retries,
             history=cfg.critic_history,
-            previous=self._previous_round(k, sees_render),
+            previous=self._previous_round(k, sees_render, loop),
             max_reply_chars=cfg.max_reply_chars,
+            options=CriticOptions(
+                previews=cfg.critic_previews,
+                structural=cfg.critic_structural,
+                size=cfg.critique_size,
+            ),
+            score_only=score_only,
         )
         result.seconds = time.perf_counter() - start  # renders + statistics + model calls
         self.record.critiques.append(result)
@@ -239,22 +307,39 @@ class Run:
         self.store.save()
         return result
 
-    def revise(self, k: int, critique: CritiqueRecord) -> None:
+    def revise(self, k: int, base: int | None = None, loop: LoopState | None = None) -> None:
+        """Ask the generator for P_{k+1}, revising ``base`` (P_k unless the loop continues from
+        the best program so far)."""
         assert self.generator is not None
         cfg = self.config
-        self.notify("revise", f"revising P{k} -> P{k + 1}", round=k + 1)
+        loop = loop or LoopState()
+        base = k if base is None else base
+        guiding = guide(self.record, base, loop)
+        critique = self.record.critique_of(guiding)
+        assert critique is not None
+        self.notify("revise", f"revising P{base} -> P{k + 1}", round=k + 1)
         images = []
         if cfg.revision_images and self.generator.accepts_images:
-            images = self.view_inputs(k)
-        before = self.record.critique_of(k - 1) if cfg.critic_history and k > 0 else None
+            images = self.view_inputs(base)
+        before = None
+        if cfg.critic_history and guiding > 0:
+            before = self.record.critique_of(loop.parent(guiding))
         text = revision_message(
             critique.match_score or 0,
             critique.differences,
             critique.suggestions,
             edits=critique.edits,
             views=self.views if images else (),
-            added_seeds=self.record.programs[k].added_seeds,
+            added_seeds=self.record.programs[base].added_seeds,
             previous_score=before.match_score if before is not None and before.ok else None,
+            **loop_sections(
+                self.record,
+                k,
+                base,
+                loop,
+                self.shown_text,
+                self.scorer.name if self.scorer else None,
+            ),
         )
         run_turn(
             self.generator,
@@ -355,6 +440,9 @@ class Run:
             final = FinalRecord(
                 program=record.programs[j].text, program_index=j, variant=0, score=score
             )
+        from matloom.author.stages.polish import polished_final
+
+        final = polished_final(record, final)  # --polish: the fitted program, when kept
         final, warning = finite_final(
             record, final, self._nonfinite_texels, self.config.export_size
         )

@@ -8,7 +8,10 @@ defaults; explicit command-line flags then override it. Two are built in:
 * ``recommended``: what works best with a strong model: the critic sees the ``flat`` and ``lit``
   previews, the previous round's preview and score (``critic_history``) and the statistics of
   what is visible at the critique resolution; 5 rounds; the seed search runs when a scorer is
-  available (``scorer = "auto"``) and is skipped quietly otherwise.
+  available (``scorer = "auto"``) and is skipped quietly otherwise. Critic loop v3: the critic
+  knows the resolution and what each preview shows and may ask for structural changes, a
+  revision continues from the best program so far, a revision with no visible change is
+  reported and counts toward stopping, and the last critique asks for the score only.
 
 ``matloom.toml`` can choose one by default and define its own, on top of a built-in one::
 
@@ -29,6 +32,9 @@ from typing import Any
 
 from matloom.author.config import AuthorConfig, ConfigError
 
+#: The recommended ``no_change_threshold`` in levels of 255 (measured with
+#: ``benchmarks/visible_change.py``; docs/authoring.md, "Critic loop v3").
+NO_CHANGE_THRESHOLD = 3.0
 #: The built-in presets: AuthorConfig fields over the defaults.
 BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
     "paper": {},
@@ -39,6 +45,12 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "stop_when_satisfied": True,
         "rounds": 5,
         "scorer": "auto",
+        "critic_previews": True,
+        "critic_structural": True,
+        "revise_from_best": True,
+        "no_change_threshold": NO_CHANGE_THRESHOLD,
+        "score_only_last": True,
+        "examples": "v3",
     },
 }
 #: Config fields a preset may not set (models come from profiles; the name is recorded).

@@ -22,6 +22,7 @@ import numpy as np
 from matloom.author.llm.base import ImageInput
 
 if TYPE_CHECKING:
+    from matloom.author.reference import ReferencePhoto
     from matloom.engine.maps import MaterialMaps
     from matloom.engine.session import Session
 
@@ -92,13 +93,20 @@ def available_views(views: tuple[str, ...]) -> tuple[tuple[str, ...], str | None
     return kept, f"{'; '.join(missing)}; the critic saw the {' and '.join(kept)} preview only"
 
 
-def visible_stats(maps: MaterialMaps) -> str:
-    """The statistics of what is visible at the maps' resolution."""
+def visible_stats(
+    maps: MaterialMaps, program: str | None = None, *, session: Session | None = None
+) -> str:
+    """The statistics of what is visible at the maps' resolution; given the ``program`` the
+    maps are of, also its coverage per layer and the sources of its repeating patterns
+    (:mod:`matloom.render.layer_stats`)."""
     try:
+        from matloom.render.layer_stats import visible_stats_text as with_layers
         from matloom.render.visible_stats import visible_stats_text
     except ImportError as err:
         raise ViewUnavailableError(f"the visible statistics are unavailable ({err})") from None
-    return visible_stats_text(maps)
+    if program is None:
+        return visible_stats_text(maps)
+    return with_layers(program, maps, session=session)
 
 
 class Renderer:
@@ -106,10 +114,15 @@ class Renderer:
     ``session`` (default: the process's default session; its lock serialises the engine work
     of the runs of a threaded batch)."""
 
-    def __init__(self, session: Session | None = None) -> None:
+    def __init__(
+        self, session: Session | None = None, reference: ReferencePhoto | None = None
+    ) -> None:
         from matloom.engine.session import default_session
 
         self.session = session or default_session()
+        #: The run's reference photo (``--reference``): :meth:`stats` then compares the flat
+        #: preview with it (:mod:`matloom.render.compare_stats`).
+        self.reference = reference
         self._maps: OrderedDict[tuple[str, int], MaterialMaps] = OrderedDict()
         self._images: dict[tuple[str, int, str], np.ndarray] = {}
 
@@ -140,11 +153,26 @@ class Renderer:
 
     def stats(self, program: str, kind: str, *, grid: int, size: int) -> str:
         """The critic's statistics: ``paper`` (28, on a ``grid`` grid) or ``visible`` (at
-        ``size``, the critique resolution)."""
+        ``size``, the critique resolution), followed by the comparison with the reference
+        photo when the run has one."""
+        text = self._stats(program, kind, grid=grid, size=size)
+        if self.reference is None:
+            return text
+        return f"{text.rstrip()}\n\n{self.reference_comparison(program, size)}"
+
+    def reference_comparison(self, program: str, size: int) -> str:
+        """The flat preview at ``size`` compared with the reference photo at that size."""
+        from matloom.render.compare_stats import comparison_text, image_stats
+
+        assert self.reference is not None
+        render = image_stats(self.image(program, size, "flat"))
+        return comparison_text(render, image_stats(self.reference.at(size)))
+
+    def _stats(self, program: str, kind: str, *, grid: int, size: int) -> str:
         if kind == "visible":
             maps = self.maps(program, size)
             with self.session.lock:
-                return visible_stats(maps)
+                return visible_stats(maps, program, session=self.session)
         from matloom.render.api import stats_text
 
         with self.session.lock:

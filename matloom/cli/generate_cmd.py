@@ -123,7 +123,7 @@ def generate_cmd(
     With no model configured (no --model, --profile or default profile) the program comes from
     the material library (offline, deterministic): see --explain and --pick.
     """
-    from matloom.author.pipeline import check_prompt, check_sizes
+    from matloom.author.pipeline import check_inputs, check_prompt, check_sizes
 
     given = explicit_flags(ctx)
     try:
@@ -134,6 +134,7 @@ def generate_cmd(
             ctx.params, given, base, trust_record=trust_record, library_env=_library_env()
         )
         check_sizes(config)
+        check_inputs(config)  # --reference readable, --polish's package installed
         _user_library(config)
     except (ConfigError, ValueError) as err:
         raise click.ClickException(one_line(err)) from None
@@ -368,6 +369,13 @@ def _run_batch(
 @click.option("--playbook/--no-playbook", default=True, show_default=True)
 @click.option("--few-shot/--no-few-shot", default=True, show_default=True)
 @click.option(
+    "--examples",
+    type=click.Choice(["paper", "v3"]),
+    default="paper",
+    show_default=True,
+    help="The few-shot examples (as --examples of generate; v3 with --settings recommended).",
+)
+@click.option(
     "--critic",
     "critic_signals",
     default=None,
@@ -392,6 +400,7 @@ def prompt_cmd(  # noqa: PLR0913 - one flag each
     do_print: bool,
     playbook: bool,
     few_shot: bool,
+    examples: str,
     critic_signals: str | None,
     views: str,
     size: int,
@@ -409,7 +418,9 @@ def prompt_cmd(  # noqa: PLR0913 - one flag each
         return
     from matloom.author.prompts.system import system_prompt
 
-    text = system_prompt(playbook=playbook, few_shot=few_shot, render_size=size, views=shown)
+    text = system_prompt(
+        playbook=playbook, few_shot=few_shot, render_size=size, views=shown, examples=examples
+    )
     click.echo(text, nl=False)
 
 

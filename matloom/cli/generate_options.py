@@ -15,7 +15,7 @@ from typing import Any
 import click
 from click.core import ParameterSource
 
-from matloom.author.config import AuthorConfig, ModelSettings
+from matloom.author.config import MAX_SIZE, AuthorConfig, ModelSettings
 
 #: Flags that map 1:1 onto AuthorConfig fields.
 _CONFIG_FLAGS: dict[str, str] = {
@@ -34,6 +34,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "stats_grid": "stats_grid",
     "playbook": "playbook",
     "few_shot": "few_shot",
+    "examples": "examples",
     "start": "start",
     "pick": "pick",
     "max_reply_chars": "max_reply_chars",
@@ -45,6 +46,12 @@ _CONFIG_FLAGS: dict[str, str] = {
     "blender_size": "blender_size",
     "critic_stats": "critic_stats",
     "revision_images": "revision_images",
+    "reference": "reference",
+    "polish": "polish",
+    "polish_evaluations": "polish_evaluations",
+    "polish_seconds": "polish_seconds",
+    "polish_critic_calls": "polish_critic_calls",
+    "polish_size": "polish_size",
 }
 #: Flags saying that the user asked for a scorer or a seed search (a skipped search is then
 #: reported on stderr; otherwise it is only recorded).
@@ -145,6 +152,13 @@ def _blender_layouts(_ctx: Any, _param: Any, value: str) -> tuple[str, ...]:
     return tuple(names)
 
 
+def _absolute(_ctx: Any, _param: Any, value: str | None) -> str | None:
+    """A path made absolute (not resolved: the photo's own checks see the path given)."""
+    import os
+
+    return None if value is None else os.path.abspath(value)
+
+
 def build_config(
     params: dict[str, Any],
     given: set[str],
@@ -175,6 +189,8 @@ def build_config(
     generator = _generator_settings(params, given, base.generator)
     critic = _critic_settings(params, given, generator, base.critic)
     data = {**base.model_dump(), **preset, **update, "generator": generator, "critic": critic}
+    if recorded is None and data.get("reference") and not {"tileable"} & (given | set(preset)):
+        data["tileable"] = True  # a material from a photo is tileable unless --no-tileable
     config = AuthorConfig.model_validate(data)
     if recorded is None:
         return config
@@ -355,11 +371,63 @@ def pipeline_options(f: Any) -> Any:
         click.option("--playbook/--no-playbook", default=d.playbook, show_default=True),
         click.option("--few-shot/--no-few-shot", default=d.few_shot, show_default=True),
         click.option(
-            "--tileable",
-            is_flag=True,
+            "--examples",
+            type=click.Choice(["paper", "v3"]),
+            default=d.examples,
+            show_default=True,
+            help="The few-shot examples: the paper's six, or v3 (language 2 and 3 idioms, "
+            "subjects far from the benchmark; the recommended settings' choice).",
+        ),
+        click.option(
+            "--tileable/--no-tileable",
             default=d.tileable,
             help="Make the final material tileable (View(..., tileable=True)); the library "
-            "already does where the material allows it.",
+            "already does where the material allows it. On by default with --reference.",
+        ),
+        click.option(
+            "--reference",
+            type=click.Path(dir_okay=False),
+            callback=_absolute,
+            help="A photo (PNG or JPEG) of the material to make: the generator and the critic "
+            "see it beside the previews, the critic's statistics compare render and photo; "
+            "the record keeps its SHA-256, not the photo.",
+        ),
+        click.option(
+            "--polish",
+            type=click.Choice(["none", "cmaes"]),
+            default=d.polish,
+            show_default=True,
+            help="After selection, fit the exposed numeric parameters with CMA-ES (against "
+            "the scorer, else the --reference statistics, else the critic); the fit is kept "
+            "only if the critic does not score it lower. Needs the polish extra.",
+        ),
+        click.option(
+            "--polish-evaluations",
+            type=click.IntRange(2, 100_000),
+            default=d.polish_evaluations,
+            show_default=True,
+            help="Most renders the fit scores.",
+        ),
+        click.option(
+            "--polish-seconds",
+            type=click.FloatRange(min=0, min_open=True, max=86_400),
+            default=d.polish_seconds,
+            show_default=True,
+            help="Most seconds the fit's evaluations take.",
+        ),
+        click.option(
+            "--polish-critic-calls",
+            type=click.IntRange(2, 1_000),
+            default=d.polish_critic_calls,
+            show_default=True,
+            help="Most critic calls when the critic is the fit's objective.",
+        ),
+        click.option(
+            "--polish-size",
+            type=click.IntRange(16, MAX_SIZE),
+            default=d.polish_size,
+            show_default=True,
+            help="Render size of the fit's evaluations.",
         ),
     ]
     for option in reversed(options):

@@ -49,6 +49,7 @@ EXTRAS: dict[str, str] = {
     "pyarrow": "dask",
     "scipy": "bench",
     "matplotlib": "bench",
+    "cma": "polish",
 }
 
 

@@ -27,9 +27,10 @@ for the base lobe, stretched along the tangent, which is across the brushing dir
 ``anisotropy_angle``, at angle + 90, as real grooves stretch it), F0 from the ior
 for dielectrics and from the base colour for metals, Karis' analytic split-sum term for the
 environment; a clear coat (second GGX lobe, ior 1.5, :data:`COAT_ROUGHNESS`) attenuating what
-is under it; a Charlie sheen lobe (roughness 0.5) with its directional albedo; wrap-lit diffuse
-for subsurface; transmission shows a checker backdrop, refracted by the normal and tinted by the
-base colour; uncovered texels show the same backdrop. Display: a soft shoulder above
+is under it; a Charlie sheen lobe (roughness 0.5) with its directional albedo, coloured white
+mixed with the base colour's hue (:data:`SHEEN_TINT`), so that it rims steep relief even on a
+dark cloth; wrap-lit diffuse for subsurface; transmission shows a checker backdrop, refracted by
+the normal and tinted by the base colour; uncovered texels show the same backdrop. Display: a soft shoulder above
 :data:`TONE_KNEE`, then sRGB through :data:`SRGB_LUT`.
 """
 
@@ -84,8 +85,13 @@ DIFFUSE_BLUR = 1.2
 COAT_ROUGHNESS = 0.05
 #: Lowest perceptual roughness of the base lobe (alpha = 0.002, a mirror).
 MIN_ROUGHNESS = 0.045
-#: Share of the base colour in the sheen colour (0: white sheen, 1: base-coloured).
-SHEEN_TINT = 0.75
+#: Share of the base colour's hue in the sheen colour (0: white sheen, 1: the hue at full
+#: brightness, the base colour divided by its largest component, as Blender's sheen tint): a
+#: dark velvet keeps a bright, coloured rim instead of a sheen as dark as its base.
+SHEEN_TINT = 0.5
+#: Added to the base colour and its largest component before the hue is taken (a black base
+#: gets a white sheen; no division by zero).
+SHEEN_HUE_FLOOR = 1e-3
 #: Subsurface widens the diffuse wrap by up to this much.
 SUBSURFACE_WRAP = 0.5
 
@@ -271,7 +277,7 @@ def _channel(
     """One colour channel of the shading; ``s`` holds the colour-independent terms."""
     (metal, f0d, trans, cover, sheen, spec_a, spec_b, occlusion, t_spec, box_spec) = s[:10]
     (t_coat, box_coat, coat_f, t_diff, box_diff, ao, diffuse_in) = s[10:17]
-    (spec0, spec1, coat_in, sheen_e, sheen_in, backdrop, seen_through) = s[17:]
+    (spec0, spec1, coat_in, sheen_e, sheen_in, backdrop, seen_through, peak) = s[17:]
     f0 = f0d * (1.0 - metal) + base * metal
     env_spec = ground + (sky - ground) * t_spec + box_spec
     specular = env_spec * (f0 * spec_a + spec_b) * occlusion + f0 * spec0 + spec1
@@ -279,7 +285,8 @@ def _channel(
     diffuse = base * (env_diff + diffuse_in)
     body = diffuse + (base * backdrop - diffuse) * trans
     body = body * (1.0 - metal) * (1.0 - (f0d * spec_a + spec_b))
-    sheen_colour = sheen * (1.0 - SHEEN_TINT + SHEEN_TINT * base)
+    hue = (base + SHEEN_HUE_FLOOR) / (peak + SHEEN_HUE_FLOOR)
+    sheen_colour = sheen * (1.0 - SHEEN_TINT + SHEEN_TINT * hue)
     layer = (body + specular) * (1.0 - sheen * sheen_e)
     layer = layer + sheen_colour * (env_diff * sheen_e + sheen_in)
     env_coat = ground + (sky - ground) * t_coat + box_coat
@@ -367,7 +374,9 @@ def shade_texel(
     f0d = (eta - 1.0) / (eta + 1.0)
     s = (metal, f0d * f0d, trans, cover, sheen, spec_a, spec_b, occlusion, t_spec, box_spec)
     s = s + (t_coat, box_coat, coat_f, t_diff, box_diff, ao, k_diff + f_diff)
+    peak = np.maximum(np.maximum(base[0], base[1]), base[2])  # the sheen's hue: base / peak
     s = s + (spec0, spec1, coat_in, sheen_albedo(nov), k_sheen + f_sheen, backdrop, seen_through)
+    s = s + (peak,)
     r = _channel(base[0], emissive[0], SKY[0], GROUND[0], s)
     g = _channel(base[1], emissive[1], SKY[1], GROUND[1], s)
     return r, g, _channel(base[2], emissive[2], SKY[2], GROUND[2], s)

@@ -29,11 +29,21 @@ is lost in broad noise. A comb of at least :data:`_COMB_RESCUE` harmonics that e
 a little (:data:`_HARMONIC_STRENGTH`) counts even when none reaches
 :data:`MIN_PEAK_STRENGTH`: the gaps between staves or tiles are such a comb, sitting on the
 continuous ridge that long straight edges make.
+
+A grid or a checker of few cells (4 x 4 across the image) puts the peaks of its **lattice** only
+a few bins apart, so that the background around each of them falls on the others and nothing
+stood out (the critic saw "no pattern" in an obvious 4 x 4 grid). When the two brightest
+candidates at different orientations generate a lattice whose points are mostly peaks (at
+least :data:`_LATTICE_PRESENT` of them, see :func:`_lattice`), those points are left out of
+every background. On 8 kinds of noise (white, 1/f, 1/f^2, streaky, band-limited, anisotropic,
+thresholded, 1/f^2.5; 80 seeds each at 256 px, 60 at 128, 10 at 512) this reports exactly the
+false peaks it reported before (one anisotropic field of 640 at 256 px, one of 80 at 512).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -78,6 +88,15 @@ _HARMONIC_POWER: float = 0.01
 
 #: Strength at which a multiple of a fundamental counts as present (a comb's members).
 _HARMONIC_STRENGTH: float = 3.0
+
+#: A lattice (see :func:`_lattice`): combinations a p + b q up to this order of the brightest
+#: candidate p and one of the next :data:`_LATTICE_CANDIDATES` candidates q, at another
+#: orientation and with at least :data:`_LATTICE_POWER` of p's power; at least
+#: :data:`_LATTICE_PRESENT` of its points must be peaks.
+_LATTICE_ORDER: int = 3
+_LATTICE_CANDIDATES: int = 4
+_LATTICE_POWER: float = 0.25
+_LATTICE_PRESENT: int = 8
 
 #: A further reported peak differs in orientation from the earlier ones by at least this
 #: much and has at least this share of the first one's power (weaker ones, such as the
@@ -154,9 +173,16 @@ _OFFSETS: np.ndarray = np.array(
 )
 
 
-def _strength(smooth: np.ndarray, power: np.ndarray, row: int, col: int) -> float:
+def _strength(
+    smooth: np.ndarray,
+    power: np.ndarray,
+    row: int,
+    col: int,
+    lattice: Sequence[tuple[int, int]] = (),
+) -> float:
     """The strength of the peak at (row, col): its 3x3-averaged power over its background (see
-    the module docstring)."""
+    the module docstring). ``lattice``: (row, col) of the points of the spectrum's lattice (see
+    :func:`_lattice`) that are peaks, left out of the background."""
     height, width = power.shape
     _, _, radius, _ = spectrum_geometry(height, width)
     rows = (row + _OFFSETS[..., 0]) % height
@@ -170,6 +196,9 @@ def _strength(smooth: np.ndarray, power: np.ndarray, row: int, col: int) -> floa
         r_m, c_m = cy + m * (row - cy), cx + m * (col - cx)
         if m == -1 or _peak_near(smooth, r_m, c_m):
             usable &= (np.abs(rows - r_m) > 2) | (np.abs(cols - c_m) > 2)
+    peers = [(r_m, c_m) for r_m, c_m in lattice if (r_m, c_m) != (row, col)]
+    for r_m, c_m in peers:
+        usable &= (np.abs(rows - r_m) > 2) | (np.abs(cols - c_m) > 2)
     mirror_row, mirror_col = (2 * cy - row) % height, (2 * cx - col) % width
     # Each direction's level: the largest 3x3-averaged power of its three steps out.
     levels = np.where(usable, smooth[rows, cols], -1.0).max(axis=1)
@@ -186,6 +215,8 @@ def _strength(smooth: np.ndarray, power: np.ndarray, row: int, col: int) -> floa
     # The ring of bins at about the same radius, away from the peak and its mirror image.
     ring_rows, ring_cols = _ring(height, width, int(round(radius[row, col])))
     away = _far(ring_rows, ring_cols, row, col) & _far(ring_rows, ring_cols, mirror_row, mirror_col)
+    for r_m, c_m in peers:
+        away &= _far(ring_rows, ring_cols, r_m, c_m)
     ring_values = smooth[ring_rows[away], ring_cols[away]]
     ring_level = float(np.median(ring_values)) if ring_values.size else 0.0
     floor = 1e-12 * max(float(power.sum()), 1e-300)
@@ -256,6 +287,8 @@ class _Search:
 
     spec: Spectrum
     smooth: np.ndarray
+    #: The (row, col) points of a lattice the spectrum holds (:func:`_lattice`) that are peaks.
+    lattice: tuple[tuple[int, int], ...] = ()
 
 
 def _peak_at(search: _Search, row: int, col: int) -> Peak:
@@ -267,7 +300,7 @@ def _peak_at(search: _Search, row: int, col: int) -> Peak:
         width=width,
         height=height,
         power=float(search.smooth[row, col]),
-        strength=_strength(search.smooth, search.spec.power, row, col),
+        strength=_strength(search.smooth, search.spec.power, row, col, search.lattice),
     )
 
 
@@ -303,7 +336,8 @@ def _harmonic_present(search: _Search, kx: float, ky: float, peak_power: float) 
     found = _brightest_near(search, kx, ky)
     if found is None or search.smooth[found] < _HARMONIC_POWER * peak_power:
         return False
-    return _strength(search.smooth, search.spec.power, *found) >= _HARMONIC_STRENGTH
+    strength = _strength(search.smooth, search.spec.power, *found, search.lattice)
+    return strength >= _HARMONIC_STRENGTH
 
 
 def _comb(search: _Search, peak: Peak, n: int) -> tuple[int, int]:
@@ -348,6 +382,72 @@ def _fundamental(search: _Search, peak: Peak) -> tuple[Peak, bool]:
     return replace(peak, harmonics=present), present >= max(4, _COMB_SHARE * count)
 
 
+def _lattice(
+    search: _Search, bins: Sequence[tuple[int, int]], band: np.ndarray
+) -> tuple[tuple[int, int], ...]:
+    """The points a p + b q (|a|, |b| <= :data:`_LATTICE_ORDER`) of the lattice of the two
+    brightest candidate peaks p, q (``bins``, brightest first) that differ in orientation by at
+    least :data:`_SECOND_ANGLE_DEG`, q holding at least :data:`_LATTICE_POWER` of p's power;
+    empty unless at least :data:`_LATTICE_PRESENT` of its points inside the ``band`` (the upper
+    half of the spectrum's usable bins; the lower half mirrors it) are peaks (local maxima with
+    :data:`_HARMONIC_POWER` of p's power).
+
+    A grid or a checker of few cells puts its peaks so close together (a 4 x 4 checker at any
+    size: 4 bins apart) that the background around one of them falls on the others, and no
+    peak stands out; they belong to the pattern, not to its background, and
+    :func:`_strength` leaves them out."""
+    if len(bins) < 2:
+        return ()
+    height, width = search.smooth.shape
+    cy, cx = height // 2, width // 2
+    (pr, pc), top = bins[0], float(search.smooth[bins[0]])
+    p_angle = math.degrees(math.atan2(cy - pr, pc - cx))
+    for qr, qc in bins[1:_LATTICE_CANDIDATES]:
+        if search.smooth[qr, qc] < _LATTICE_POWER * top:
+            break
+        if (
+            angle_difference(p_angle, math.degrees(math.atan2(cy - qr, qc - cx)))
+            < _SECOND_ANGLE_DEG
+        ):
+            continue
+        points, counted = [], []
+        for a in range(-_LATTICE_ORDER, _LATTICE_ORDER + 1):
+            for b in range(-_LATTICE_ORDER, _LATTICE_ORDER + 1):
+                r = cy + a * (pr - cy) + b * (qr - cy)
+                c = cx + a * (pc - cx) + b * (qc - cx)
+                if (a or b) and 0 <= r < height and 0 <= c < width:
+                    points.append((r, c))
+                    if band[r, c]:
+                        counted.append((r, c))
+        present = sum(
+            1
+            for r, c in counted
+            if _peak_near(search.smooth, r, c) and search.smooth[r, c] >= _HARMONIC_POWER * top
+        )
+        return tuple(points) if present >= _LATTICE_PRESENT else ()
+    return ()
+
+
+def _candidates(spec: Spectrum) -> tuple[_Search, list[tuple[int, int]]]:
+    """The spectrum as the search reads it (its lattice found) and the (row, col) of the
+    candidate peaks, brightest first: the local maxima of the 3x3-averaged power in the upper
+    half, from :data:`MIN_PEAK_RADIUS` to the Nyquist circle, holding :data:`MIN_PEAK_SHARE`
+    of the total power (at most :data:`_CANDIDATES`)."""
+    height, width = spec.power.shape
+    kx, ky, radius, rho = spectrum_geometry(height, width)
+    search = _Search(spec, _box3(spec.power))
+    upper = (ky > 0) | ((ky == 0) & (kx > 0))
+    inside = upper & (radius >= MIN_PEAK_RADIUS) & (rho <= 0.5)
+    inside &= search.smooth >= MIN_PEAK_SHARE * spec.total
+    rows, cols = np.nonzero(_local_maxima(search.smooth) & inside)
+    order = np.argsort(-search.smooth[rows, cols], kind="stable")[:_CANDIDATES]
+    bins = [(int(rows[k]), int(cols[k])) for k in order]
+    peaks = tuple(
+        point for point in _lattice(search, bins, inside) if _peak_near(search.smooth, *point)
+    )
+    return replace(search, lattice=peaks), bins
+
+
 def find_peaks(spec: Spectrum, limit: int = 2) -> list[Peak]:
     """Up to ``limit`` periodic components, strongest first (by power).
 
@@ -361,21 +461,16 @@ def find_peaks(spec: Spectrum, limit: int = 2) -> list[Peak]:
     degrees (the second axis of a grid, a weave or a checker) and at least 5 % of the first
     one's power. Empty when nothing stands out.
     """
-    height, width = spec.power.shape
-    kx, ky, radius, rho = spectrum_geometry(height, width)
-    search = _Search(spec, _box3(spec.power))
-    upper = (ky > 0) | ((ky == 0) & (kx > 0))
-    inside = upper & (radius >= MIN_PEAK_RADIUS) & (rho <= 0.5)
-    inside &= search.smooth >= MIN_PEAK_SHARE * spec.total
-    rows, cols = np.nonzero(_local_maxima(search.smooth) & inside)
-    if rows.size == 0:
-        return []
-    order = np.argsort(-search.smooth[rows, cols], kind="stable")[:_CANDIDATES]
+    return _find(*_candidates(spec), limit)
+
+
+def _find(search: _Search, bins: Sequence[tuple[int, int]], limit: int) -> list[Peak]:
+    """:func:`find_peaks` over the candidates ``bins`` of ``search``."""
     found: list[Peak] = []
-    for k in order:
+    for row, col in bins:
         if len(found) >= limit:
             break
-        peak = _peak_at(search, int(rows[k]), int(cols[k]))
+        peak = _peak_at(search, row, col)
         if found and peak.power < _SECOND_POWER * found[0].power:
             break
         if peak.strength < _HARMONIC_STRENGTH or any(
@@ -387,3 +482,35 @@ def find_peaks(spec: Spectrum, limit: int = 2) -> list[Peak]:
         if peak.strength >= MIN_PEAK_STRENGTH or (comb and fundamental.harmonics >= _COMB_RESCUE):
             found.append(fundamental)
     return found
+
+
+#: Peaks of its own a field is searched for when it is tested as the source of a pattern.
+SOURCE_PEAKS: int = 4
+
+
+def peak_strengths_at(spec: Spectrum, vectors: Sequence[tuple[float, float]]) -> list[float]:
+    """For each wave vector (kx, ky) of ``vectors`` (cycles across the width and height, + up):
+    the strength of ``spec``'s periodic component there, else 0. It has one when one of the
+    :data:`SOURCE_PEAKS` peaks :func:`find_peaks` finds in it lies within 1.5 bins of the
+    vector (or of its mirror image), or when the brightest local maximum of the 3x3-averaged
+    power within one bin of the vector holds at least :data:`MIN_PEAK_SHARE` of the total
+    power and stands out by :data:`MIN_PEAK_STRENGTH` (a peak weaker than the field's first
+    few). Used to find which fields of a program carry a pattern found in the maps."""
+    search, bins = _candidates(spec)
+    own: list[Peak] | None = None  # the field's own peaks, found only when needed
+    out = []
+    for kx, ky in vectors:
+        found = _brightest_near(search, kx, ky)
+        if found is not None and search.smooth[found] >= MIN_PEAK_SHARE * spec.total:
+            strength = _strength(search.smooth, spec.power, *found, search.lattice)
+            if strength >= MIN_PEAK_STRENGTH:
+                out.append(strength)
+                continue
+        own = _find(search, bins, SOURCE_PEAKS) if own is None else own
+        near = [
+            p.strength
+            for p in own
+            if min(math.hypot(p.kx - kx, p.ky - ky), math.hypot(p.kx + kx, p.ky + ky)) <= 1.5
+        ]
+        out.append(max(near, default=0.0))
+    return out

@@ -79,6 +79,9 @@ STRENGTH_CAP: float = 1e6
 #: How many repeating patterns are reported per map.
 PATTERN_LIMIT: int = 2
 
+#: Two patterns whose periods differ by at most this share form one lattice (a grid, a checker).
+LATTICE_TOLERANCE: float = 0.03
+
 
 def _number(value: float) -> str:
     """Compact number: 3 significant digits, no exponent for ordinary magnitudes."""
@@ -294,7 +297,30 @@ def _pattern_text(patterns: list[dict[str, Any]] | None, what: str) -> str:
             f"{_degrees(angle)}° ({orientation_words(angle)}), strength "
             f"{_strength_text(p['strength'])}{sharp}"
         )
-    return "; ".join(parts)
+    return "; ".join(parts) + _lattice_text(patterns)
+
+
+def _lattice_text(patterns: list[dict[str, Any]]) -> str:
+    """The two first patterns read together, when they are one lattice: equal periods (within
+    :data:`LATTICE_TOLERANCE`) at right angles. Along the axes they are a grid of square cells
+    of that period; along the diagonals a checker, whose squares' side is the period over
+    sqrt 2 (its fundamentals are the diagonal waves)."""
+    if len(patterns) < 2:
+        return ""
+    a, b = patterns[0], patterns[1]
+    if abs(a["period_px"] - b["period_px"]) > LATTICE_TOLERANCE * a["period_px"]:
+        return ""
+    if abs(spectrum.angle_difference(a["orientation_deg"], b["orientation_deg"]) - 90.0) > 5.0:
+        return ""
+    period = 0.5 * (a["period_px"] + b["period_px"])
+    cycles = 0.5 * (a["cycles_per_image"] + b["cycles_per_image"])
+    if min(spectrum.angle_difference(a["orientation_deg"], c) for c in (45.0, 135.0)) <= 10.0:
+        side = period / math.sqrt(2.0)
+        across = cycles * math.sqrt(2.0)
+        return f" (together: a checker of {side:.1f} px squares, {across:.1f} across the image)"
+    if min(spectrum.angle_difference(a["orientation_deg"], c) for c in (0.0, 90.0)) <= 10.0:
+        return f" (together: a grid of {period:.1f} px square cells, {cycles:.1f} across the image)"
+    return f" (together: a lattice of {period:.1f} px cells)"
 
 
 def _direction_text(direction: dict[str, float] | None, what: str) -> str:

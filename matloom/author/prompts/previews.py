@@ -147,3 +147,98 @@ def previews_section(size: int, views: Sequence[str] = ("flat",)) -> str:
             *(line for view in views for line in _view_lines(view)),
         ]
     )
+
+
+# ------------------------------------------------------------------ what each layout can show
+
+#: The sheen probe: a dark red cloth (sheen shows most on dark colours), flat and on a 45 degree
+#: slope (slope 1) in each axis direction.
+SHEEN_PROBE = "Layer(1).basecolor(120, 20, 40).roughness(0.8)"
+#: The uncovered probe: a layer of coverage 0 (a vivid colour and a slope, so that anything of
+#: it showing through would be seen).
+UNCOVERED_PROBE = "Layer(0).basecolor(200, 30, 30).height(X() * 0.5)"
+
+
+@cache
+def sheen_changes(view: str) -> tuple[int, int]:
+    """(flat, slope): how much sheen 1 changes the sheen probe against sheen 0 in ``view``
+    (levels of 255, :func:`_difference`) on a flat swatch, and the least change over the
+    four directions of a 45 degree slope."""
+    flat = _difference(view, SHEEN_PROBE, f"{SHEEN_PROBE}.sheen(1)")
+    tilts = [f".height({sign}{axis}() * 1)" for axis in ("X", "Y") for sign in ("", "-")]
+    slope = min(
+        _difference(view, SHEEN_PROBE + tilt, f"{SHEEN_PROBE}.sheen(1){tilt}") for tilt in tilts
+    )
+    return flat, slope
+
+
+@cache
+def uncovered_look(view: str) -> str:
+    """How texels of coverage 0 look in ``view``, measured on :data:`UNCOVERED_PROBE`: one flat
+    colour, or a checker (its two colours and cells across the image)."""
+    image = _image(view, UNCOVERED_PROBE).astype(np.uint8)
+    colours = np.unique(image.reshape(-1, 3), axis=0)
+    names = " and ".join(f"sRGB ({', '.join(str(int(c)) for c in colour)})" for colour in colours)
+    if len(colours) == 1:
+        grey = len(set(colours[0].tolist())) == 1
+        return f"flat {'grey ' if grey else ''}{names}"
+    row = image[_PROBE_SIZE // 2, :, 0]
+    cells = 1 + int(np.count_nonzero(np.diff(row.astype(np.int16))))
+    return f"a checker of {names}, {cells} cells across the image"
+
+
+#: Short descriptions of the layouts for :func:`layout_facts` (the long ones are the preview
+#: modules' notes, which the critic prompt may also quote).
+_SHORT_DESCRIPTIONS: dict[str, str] = {
+    "flat": "the reference's swatch: Blinn-Phong under one fixed light, no environment",
+    "lit": "shaded physically in a small studio, grazing key light from the upper left",
+}
+
+
+def _sheen_text(view: str) -> str:
+    flat, slope = sheen_changes(view)
+    if slope >= VISIBLE_LEVELS and slope > 1.25 * flat:
+        return (
+            f"sheen shows as a bright rim where the relief slopes steeply (sheen 1 changes a 45° "
+            f"slope of dark cloth by {slope} levels) and as a soft lift on flat cloth ({flat} "
+            "levels): give cloth thread or pile relief for the rim to show"
+        )
+    if max(flat, slope) >= VISIBLE_LEVELS:
+        return (
+            f"sheen shows only as a lift of the colour ({flat} levels flat, {slope} on a 45° slope)"
+        )
+    return f"sheen barely shows ({flat} levels flat, {slope} on a 45° slope of dark cloth)"
+
+
+def _layout_facts(view: str) -> str:
+    changes = {k: v for k, v in channel_changes(view).items() if k != "sheen"}
+    shown = [name for name, levels in changes.items() if levels >= VISIBLE_LEVELS]
+    hidden = [name for name, levels in changes.items() if levels < VISIBLE_LEVELS]
+    relief = ", ".join(f"slope {s:g}: {levels}" for s, levels in slope_changes(view).items())
+    description = _SHORT_DESCRIPTIONS.get(view) or _layout_description(view)
+    lines = [
+        f"- {view} ({description}):",
+        f"  shows base colour and pattern; {', '.join(shown) or 'no single-value channel'} "
+        f"(each changes it by at least {VISIBLE_LEVELS} levels of 255 over its range); relief "
+        f"through its slopes ({relief} levels): steep relief shows strongly and can be "
+        "mistaken for colour;",
+        f"  {_sheen_text(view)};",
+    ]
+    if hidden:
+        lines.append(f"  cannot show {', '.join(hidden)} (under {VISIBLE_LEVELS} levels);")
+    lines.append(
+        f"  uncovered areas (alpha 0) appear as {uncovered_look(view)}, and partly covered ones "
+        "blend toward it: such a patch is a hole in the layers, not a colour to fix by "
+        "repainting."
+    )
+    return "\n".join(lines)
+
+
+def layout_facts(views: Sequence[str] = ("flat", "lit")) -> str:
+    """What each preview layout of ``views`` can and cannot show, measured with the preview
+    itself: the channels that change it, relief, sheen and how uncovered areas look (for the
+    critic's system prompt; docs/preview.md says the same in prose)."""
+    return "\n".join(
+        ["What each preview layout can and cannot show (measured on probe swatches):"]
+        + [_layout_facts(view) for view in views]
+    )

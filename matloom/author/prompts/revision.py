@@ -2,6 +2,11 @@
 
 Every turn asks for the same answer format (:data:`~matloom.author.prompts.system.ANSWER_FORMAT`):
 thinking is allowed, and the last ``<material>...</material>`` block of the reply is used.
+
+Critic loop v3 adds sections to the revision turn (none of them in the paper's): which version
+the revision continues from and why (:func:`continue_text`), a revision that made no visible
+change (:func:`no_change_text`), what the critic said of a dropped attempt, and the critic's
+structural changes.
 """
 
 from __future__ import annotations
@@ -91,7 +96,45 @@ def _views_text(views: Sequence[str]) -> str:
     )
 
 
-def revision_message(
+def continue_text(
+    base: int, latest: int, standings: dict[int, str | None], program: str | None = None
+) -> str:
+    """Which version a revision continues from and why: the best so far, ``base``, and the
+    later rounds (``standings``: round -> its score in words, None for a round with no visible
+    change); ``program`` (the base's own text) when the base is not the last answer."""
+    if base == latest:
+        return (
+            f"Continuing from your last answer, round {base} ({standings[base]}): the best so far."
+        )
+    later = "; ".join(
+        f"round {j} made {NO_CHANGE}" if standings.get(j) is None else f"round {j}: {standings[j]}"
+        for j in range(base + 1, latest + 1)
+    )
+    text = f"Continuing from round {base} ({standings[base]}), the best so far; {later}."
+    if program is not None:
+        text += (
+            f" Revise round {base}'s program, not your last answer:\n"
+            f"<material>\n{program.strip()}\n</material>"
+        )
+    return text
+
+
+#: How a round whose previews did not change visibly is named.
+NO_CHANGE = "no visible change"
+
+
+def no_change_text(round_index: int, difference: float, threshold: float) -> str:
+    """The note for a revision whose previews barely changed (``difference``: the mean absolute
+    difference in levels of 255, under ``threshold``)."""
+    return (
+        f"Your revision in round {round_index} changed the previews by {difference:.2f} levels "
+        f"of 255 on average, under the {threshold:g} that shows: {NO_CHANGE}, so it was not "
+        "reviewed. Make changes large enough to see at the render size, or a structural one "
+        "(a new layer, a different primitive or pattern) where values alone do not get there."
+    )
+
+
+def revision_message(  # noqa: PLR0913 - one keyword per optional section
     match_score: int,
     differences: Sequence[str],
     suggestions: Sequence[str],
@@ -100,15 +143,39 @@ def revision_message(
     views: Sequence[str] = (),
     added_seeds: Sequence[str] = (),
     previous_score: int | None = None,
+    continue_from: str | None = None,
+    no_change: str | None = None,
+    dropped: tuple[int, Sequence[str]] | None = None,
+    structural: Sequence[str] = (),
 ) -> str:
     """The revision turn: the critic's score, what differs, what to change and its concrete
     edits under their own headings; the attached previews (``views``, when images go with the
-    turn); the seeds the render gave to noise the model left unseeded; the answer format."""
-    sections = [
+    turn); the seeds the render gave to noise the model left unseeded; the answer format.
+
+    Loop v3 sections, first: which version it continues from (``continue_from``), a revision
+    with no visible change (``no_change``), what the critic said of a dropped round
+    (``dropped``: its index and differences); and the critic's ``structural`` changes."""
+    sections = []
+    if continue_from:
+        sections.append(("Continue from", continue_from))
+    if no_change:
+        sections.append(("No visible change", no_change))
+    if dropped is not None:
+        index, said = dropped
+        sections.append(
+            (
+                "Dropped attempt",
+                f"What the critic said of round {index}, which is not continued:\n"
+                + _bullets(said, "none noted"),
+            )
+        )
+    sections += [
         ("Score", _score_line(match_score, previous_score)),
         ("What differs", _bullets(differences, "none noted")),
         ("What to change", _bullets(suggestions, "no suggestions")),
     ]
+    if structural:
+        sections.append(("Structural changes", _bullets(structural, "")))
     if edits:
         sections.append(("Concrete edits", _bullets([edit_line(e) for e in edits], "")))
     if views:

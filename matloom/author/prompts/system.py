@@ -3,7 +3,8 @@
 Only prose that is not vocabulary is written here: the role, the rules, the five pitfalls, the
 playbook and the output format. Every function signature, parameter, constraint, channel range
 and default is rendered from :mod:`matloom.vocab`, so the prompt can never drift from the parser.
-The six few-shot programs live in ``examples/*.mat`` (canonical text, tested to check and render).
+The few-shot programs live in ``examples/*.mat`` (canonical text, tested to check and render):
+the paper's six descriptions, and the ``v3`` set (``v3_*.mat``) of the ``recommended`` settings.
 """
 
 from __future__ import annotations
@@ -48,6 +49,39 @@ FEW_SHOT_EXAMPLES: tuple[FewShotExample, ...] = (
         "Glow-in-the-dark stars with a crescent moon and a comet", "6_glow_stars_moon_comet.mat"
     ),
 )
+
+#: The ``v3`` examples (``examples = "v3"``, the ``recommended`` settings): written for this
+#: prompt in its language 2 and 3 idioms (Defines of named values used as parameters,
+#: ``Bricks(mortar=grout)``, per-cell values with Choose, Tile instance outputs, a
+#: parameterised Define, n-ary Min, Weave thread values, smooth Worley), on subjects far from
+#: the benchmark prompts (``tests/author/test_examples_v3.py`` compares their words with the
+#: development prompts and bans the tricks the prompt forbids).
+FEW_SHOT_EXAMPLES_V3: tuple[FewShotExample, ...] = (
+    FewShotExample(
+        "Hand-hammered pewter sheet covered in rounded dents", "v3_1_hammered_pewter.mat"
+    ),
+    FewShotExample(
+        "Glass mosaic of tiny square chips in three shades of teal with grey grout",
+        "v3_2_teal_glass_mosaic.mat",
+    ),
+    FewShotExample(
+        "Deep green velvet upholstery quilted in a diamond pattern", "v3_3_quilted_velvet.mat"
+    ),
+    FewShotExample(
+        "Woven rattan cane: wide vertical strands crossed by thin horizontal ones",
+        "v3_4_rattan_cane.mat",
+    ),
+    FewShotExample(
+        "Terracotta roof covered in overlapping fish-scale shingles", "v3_5_fish_scale_roof.mat"
+    ),
+    FewShotExample("Riveted steel panels painted navy blue", "v3_6_riveted_panels.mat"),
+)
+
+#: The example sets by name (``AuthorConfig.examples``).
+EXAMPLE_SETS: dict[str, tuple[FewShotExample, ...]] = {
+    "paper": FEW_SHOT_EXAMPLES,
+    "v3": FEW_SHOT_EXAMPLES_V3,
+}
 
 
 # ----------------------------------------------------------------------------- registry text
@@ -254,10 +288,11 @@ Think first about structure, scale, colours and relief, then give the complete p
 must parse. Prefer few, well-chosen layers."""
 
 
-def examples_section() -> str:
+def examples_section(examples: str = "paper") -> str:
+    """The examples section with the example set ``examples`` (:data:`EXAMPLE_SETS`)."""
     entries = [
         f"Description: {ex.description}\n<material>\n{ex.program()}\n</material>"
-        for ex in FEW_SHOT_EXAMPLES
+        for ex in EXAMPLE_SETS[examples]
     ]
     return "\n\n".join([EXAMPLES_PREAMBLE, *entries])
 
@@ -282,11 +317,13 @@ def system_prompt(
     few_shot: bool = True,
     render_size: int = 512,
     views: tuple[str, ...] = ("flat",),
+    examples: str = "paper",
 ) -> str:
     """The full generator system prompt (the API and the CLI both default to everything on).
 
     ``render_size`` is the size the critic's previews are rendered at and ``views`` their
-    layouts (:mod:`matloom.author.prompts.previews`).
+    layouts (:mod:`matloom.author.prompts.previews`); ``examples`` names the few-shot set
+    (:data:`EXAMPLE_SETS`: the paper's, or ``v3``).
     """
     from matloom.author.prompts.previews import previews_section
 
@@ -294,6 +331,6 @@ def system_prompt(
     if playbook:
         parts += [PLAYBOOK, IDIOMS]
     if few_shot:
-        parts.append(examples_section())
+        parts.append(examples_section(examples))
     parts.append(OUTPUT_FORMAT)
     return "\n\n".join(parts) + "\n"

@@ -3,7 +3,10 @@
 The critic sees a fresh conversation per program (so its scores stay comparable across rounds)
 with any subset of: the preview render(s) in the configured layouts (only if the model takes
 images), the statistics, the source. With ``critic_history`` it also sees the previous round's
-render(s) and score and says whether this round is better. Its answer is parsed tolerantly
+render(s) and score and says whether this round is better. Critic loop v3 adds the measured
+preview facts and structural changes (:class:`~matloom.author.prompts.critic.CriticOptions`) and
+the score-only request (``score_only``: the answer holds the score, and the verdict on the
+previous round, only). Its answer is parsed tolerantly
 (:mod:`~matloom.author.stages.critique_parse`); a failure is retried with a follow-up message up
 to ``retries`` times, so a bad critic answer ends as a failed critique in the record, never as
 a failed run. A call that got no usable reply at all (:class:`BadReplyError`: a malformed or
@@ -27,6 +30,8 @@ from matloom.author.llm.base import (
     complete_within,
 )
 from matloom.author.prompts.critic import (
+    PAPER,
+    CriticOptions,
     PreviousView,
     critic_retry_message,
     critic_system_prompt,
@@ -87,11 +92,14 @@ def critique_program(
     history: bool = False,
     previous: PreviousRound | None = None,
     max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
+    options: CriticOptions = PAPER,
+    score_only: bool = False,
 ) -> CritiqueRecord:
     """Run the critic on one program; never raises on a bad answer (``ok=False``).
 
     ``renders`` are this program's images in the layouts ``views``; ``history`` asks the
-    better-or-worse question (from round 1 on, ``previous`` holds the previous round).
+    better-or-worse question (from round 1 on, ``previous`` holds the previous round);
+    ``options`` are the loop v3 parts of the prompts; ``score_only`` asks for the score only.
     """
     if "render" in signals and (not renders or not model.accepts_images):
         signals = [s for s in signals if s != "render"]
@@ -101,6 +109,12 @@ def critique_program(
         count = len(previous.images) if sees else 0
         shown_previous = PreviousView(previous.index, previous.score, count)
     images = (*renders, *(previous.images if previous and sees else ())) if sees else ()
+    ask = {
+        "edits": "code" in signals,
+        "history": history and previous is not None,
+        "structural": options.structural,
+        "score_only": score_only,
+    }
     user = critic_user_message(
         description,
         signals,
@@ -108,13 +122,15 @@ def critique_program(
         stats=stats,
         views=views,
         previous=shown_previous,
-        history=history and previous is not None,
+        history=ask["history"],
+        structural=options.structural,
+        score_only=score_only,
     )
+    system = critic_system_prompt(signals, views, history=history, options=options)
     messages = [
-        ChatMessage(role="system", text=critic_system_prompt(signals, views, history=history)),
+        ChatMessage(role="system", text=system),
         ChatMessage(role="user", text=user, images=tuple(images)),
     ]
-    ask = {"edits": "code" in signals, "history": history and previous is not None}
     start = time.perf_counter()
     replies: list[str] = []
     error = "no answer"
@@ -139,10 +155,12 @@ def critique_program(
         return _record(
             program_index, signals, model, messages, replies, start, critique=critique,
             views=views if sees else (), renders=renders if sees else (), previous=previous,
+            score_only=score_only,
         )  # fmt: skip
     return _record(
         program_index, signals, model, messages, replies, start, error=error,
         views=views if sees else (), renders=renders if sees else (), previous=previous,
+        score_only=score_only,
     )  # fmt: skip
 
 
@@ -170,6 +188,7 @@ def _record(  # noqa: PLR0913 - one record from everything a critique produced
     previous: PreviousRound | None,
     critique: Critique | None = None,
     error: str | None = None,
+    score_only: bool = False,
 ) -> CritiqueRecord:
     paths = [img.path for img in renders if img.path]
     return CritiqueRecord(
@@ -179,6 +198,8 @@ def _record(  # noqa: PLR0913 - one record from everything a critique produced
         differences=critique.differences if critique else [],
         suggestions=critique.suggestions if critique else [],
         edits=[EditRecord(**e.model_dump()) for e in critique.edits] if critique else [],
+        structural=critique.structural if critique else [],
+        score_only=score_only,
         signals=list(signals),
         render=paths[0] if paths else None,
         views=list(views),

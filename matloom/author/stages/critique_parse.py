@@ -3,7 +3,7 @@
 ``//`` comments outside strings are removed, the first brace-balanced object is taken,
 ``json.loads`` then the bounded repair of :mod:`~matloom.author.stages.jsonfix` are tried, and
 the result is validated leniently: ``match_score`` may be 72, 72.0, "72", "72/100" or "72%";
-``differences``/``suggestions`` may be one string; each entry of the optional ``edits`` may be
+``differences``/``suggestions``/``structural`` may be one string; each entry of the optional ``edits`` may be
 an object or a plain string, and an unusable entry is dropped rather than failing the answer;
 ``better_than_previous`` may be a boolean or yes/no. Every way an answer can be wrong (too long,
 not JSON, nested too deep, wrong fields) is a :class:`CritiqueParseError`. All parsing is
@@ -95,6 +95,8 @@ class Critique(BaseModel):
     differences: list[str] = Field(default_factory=list)
     suggestions: list[str] = Field(default_factory=list)
     edits: list[CriticEdit] = Field(default_factory=list)
+    #: Structural changes (critic loop v3): a new layer, a different primitive, ...
+    structural: list[str] = Field(default_factory=list)
     better_than_previous: bool | None = None
 
     @field_validator("match_score", mode="before")
@@ -118,6 +120,20 @@ class Critique(BaseModel):
         if isinstance(value, list):
             return [clean_text(str(v)) for v in value]
         return value
+
+    @field_validator("structural", mode="before")
+    @classmethod
+    def _changes(cls, value: object) -> object:
+        """A list of changes, one string, or objects (their change text); empty ones dropped."""
+        entries = value if isinstance(value, list) else [value]
+        changes = []
+        for entry in entries:
+            if isinstance(entry, dict):
+                entry = next((entry[k] for k in _CHANGE_KEYS if _text(entry.get(k))), None)
+            text = _text(entry)
+            if text:
+                changes.append(text)
+        return changes
 
     @field_validator("edits", mode="before")
     @classmethod

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from matloom.author.records import FinalRecord, SeedSearchRecord, SweepRecord
+from matloom.author.records import FinalRecord, RunRecord, SeedSearchRecord, SweepRecord
 from matloom.author.scorers.base import TextImageScorer
 
 SweepProgress = Callable[[int, int], None]
@@ -83,3 +83,15 @@ def best_of_sweeps(search: SeedSearchRecord) -> FinalRecord | None:
         variant=best.best_variant,
         score=best.best_score,
     )
+
+
+def chosen_final(record: RunRecord) -> FinalRecord:
+    """The material stage III chose: the best seed-sweep winner, else the selected program
+    (with the selection's score of it)."""
+    final = best_of_sweeps(record.seed_search) if record.seed_search is not None else None
+    if final is not None:
+        return final
+    assert record.selection is not None
+    j = record.selection.index
+    score = record.selection.scores[j] if record.selection.scores else None
+    return FinalRecord(program=record.programs[j].text, program_index=j, variant=0, score=score)
