@@ -5,15 +5,20 @@
 the request, rank the entries (BM25), choose one, fit the request to it, adapt it (colours,
 presets, finish, scale), find the View side at which it tiles (with the wrap edge inside the
 pattern's cells, :func:`matloom.library.adapt.place_origin`), then reseed, compose the requested
-overlays and drop the Defines nothing uses any more. The result holds the program (its AST and
-its text) and says what it did: the top candidates with scores, the entry, every adaptation and
-the words it did not use. The result is deterministic for a given (prompt, seed, pick,
-tileable).
+overlays and drop the Defines nothing uses any more. The request is also read as parts
+(:func:`matloom.library.parts.read_parts`: named material, class, colour roles, layout, motif);
+when no good candidate covers the named material or class, or the one that does lacks a
+requested motif or layout, the program is composed from the parts instead
+(:mod:`matloom.library.passes.cover`, :mod:`matloom.library.passes.composition`). The result
+holds the program (its AST and its text) and says what it did: the parts, the top candidates
+with scores and what each misses, the entry or the composition, every adaptation, the words it
+did not use and every requested part it does not show. The result is deterministic for a given
+(prompt, seed, pick, tileable).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from matloom.lang import ast as A
 from matloom.lang.printer import format_program
@@ -21,8 +26,10 @@ from matloom.library.adapt import adapt
 from matloom.library.data import words
 from matloom.library.index import Library, library
 from matloom.library.overlay import view_width
-from matloom.library.passes.choose import choose
+from matloom.library.parts import Parts, read_parts
+from matloom.library.passes.choose import Choice, choose
 from matloom.library.passes.compose import compose_overlays
+from matloom.library.passes.composition import compose_request
 from matloom.library.passes.fit import fit
 from matloom.library.passes.tile import place, tile
 from matloom.library.query import Request, read
@@ -57,6 +64,16 @@ class LibraryResult:
     absorbed: list[str] = field(default_factory=list)
     ignored: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    #: True when the program was composed from the request's parts (no entry covered them)
+    composed: bool = False
+    #: the request read as parts (None only for results made by hand)
+    parts: Parts | None = None
+    #: every requested part the program does not show, with the reason
+    dropped: list[str] = field(default_factory=list)
+    #: what a composed program shows ("layout: hexagons", "motif: star")
+    shown: list[str] = field(default_factory=list)
+    #: candidate name -> what it misses of the request's parts
+    misses: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
     @property
     def view_side(self) -> float:
@@ -68,17 +85,23 @@ class LibraryResult:
     def explanation(self) -> str:
         """The explanation as text (what ``--explain`` prints)."""
         lines = [f"prompt: {self.prompt.strip()}"]
+        if self.parts is not None:
+            lines.append(f"parts: {self.parts.summary()}")
         if self.candidates:
             lines.append("candidates:")
             for k, c in enumerate(self.candidates[:TOP], start=1):
                 mark = "*" if c.name == self.entry else " "
-                lines.append(f" {mark}{k}. {c.name} {c.score:.2f}  ({', '.join(c.matched)})")
+                miss = self.misses.get(c.name)
+                misses = f" - misses {', '.join(miss)}" if miss else ""
+                lines.append(
+                    f" {mark}{k}. {c.name} {c.score:.2f}  ({', '.join(c.matched)}){misses}"
+                )
         else:
             lines.append("candidates: none matched")
-        lines.append(
-            f"entry: {self.entry} [{self.category}] (rank {self.rank}, score {self.score:.2f}) - "
-            f"{self.description}"
-        )
+        how = "composed" if self.composed else f"rank {self.rank}, score {self.score:.2f}"
+        lines.append(f"entry: {self.entry} [{self.category}] ({how}) - {self.description}")
+        if self.shown:
+            lines.append("composed: " + ", ".join(self.shown))
         if self.adaptations:
             lines.append("adaptations:")
             lines += [f"  - {a}" for a in self.adaptations]
@@ -92,7 +115,12 @@ class LibraryResult:
             f"({self.unit_m:.4g} m per unit)"
         )
         lines += [f"note: {n}" for n in self.notes]
-        lines.append("ignored: " + (", ".join(self.ignored) if self.ignored else "nothing"))
+        if self.dropped:
+            lines.append("not shown: " + "; ".join(self.dropped))
+        ignored = ", ".join(self.ignored)
+        if self.dropped:  # never "nothing" when a requested part was dropped
+            ignored = "; ".join(x for x in (ignored, "not shown: " + "; ".join(self.dropped)) if x)
+        lines.append("ignored: " + (ignored or "nothing"))
         return "\n".join(lines)
 
 
@@ -120,8 +148,14 @@ def author(
     lib = lib or library()
     w = words()
     req = read(prompt or "", w, lib.triggers, lib.weak_triggers)
+    parts = read_parts(prompt or "", req=req)
     cands = lib.index.rank(req)
-    choice = choose(cands, lib, pick)
+    choice = choose(cands, lib, pick, parts)
+    if choice.compose is not None:
+        try:
+            return _composed(prompt, parts, choice, cands, lib, seed, tileable)
+        except ValueError as err:  # a composer bug must not cost the user a program
+            choice = _retrieved(choice, cands, str(err).splitlines()[0])
     entry = choice.entry
     base = lib.ast(entry.name)
     presets = lib.presets(entry, w.preset_sets)
@@ -154,9 +188,75 @@ def author(
         overlays=[m.name for m in fitted.applied],
         overlay_notes=[u.note for u in composed.overlays],
         absorbed=[f"{n} (amount {a:g})" for n, a in fitted.absorbed],
-        ignored=_ignored(reading, used, w.stop_words) + [*adapted.unused, *fitted.foreign],
+        ignored=_not_twice(_ignored(reading, used, w.stop_words), choice.missing)
+        + [*adapted.unused, *fitted.foreign],
         notes=[*_origin(lib, entry.name), *choice.notes, *fitted.notes, *tiling.notes]
         + list(composed.notes),
+        parts=parts,
+        dropped=list(choice.missing),
+        misses={c.name: c.missing for c in choice.coverage if c.missing},
+    )
+
+
+def _not_twice(ignored: list[str], dropped: tuple[str, ...]) -> list[str]:
+    """The ignored words not already reported inside a part that was not shown."""
+    said = {w for d in dropped for w in d.replace("(", " ").replace(")", " ").split()}
+    return [w for w in ignored if w not in said]
+
+
+def _composed(
+    prompt: str,
+    parts: Parts,
+    choice: Choice,
+    cands: list[Candidate],
+    lib: Library,
+    seed: int,
+    tileable: bool,
+) -> LibraryResult:
+    """The result of a program composed from the request's parts on ``choice.compose``."""
+    assert choice.compose is not None
+    made = compose_request(parts, choice.compose, lib, seed, tileable)
+    req = parts.request
+    used = set(parts.used)
+    for m in req.overlays:
+        used.update(range(m.index, m.index + len(m.word.split())))
+    header = [f"# composed: {made.name} ({made.spec.base}) - {made.description}"]
+    header.append(f"# parts: {parts.summary()}")
+    header += [f"# overlay: {u.note}" for u in made.overlays]
+    return LibraryResult(
+        prompt=prompt,
+        program="\n".join(header) + "\n" + format_program(made.program),
+        ast=made.program,
+        entry=made.name,
+        category=made.spec.base,
+        description=made.description,
+        unit_m=made.unit_m,
+        tileable=made.tileable,
+        score=0.0,
+        seed=seed,
+        candidates=cands[:TOP],
+        rank=0,
+        overlays=[u.name for u in made.overlays],
+        overlay_notes=[u.note for u in made.overlays],
+        ignored=_ignored(req, used, words().stop_words),
+        notes=[*choice.notes, *made.notes],
+        composed=True,
+        parts=parts,
+        dropped=list(made.dropped),
+        shown=list(made.shown),
+        misses={c.name: c.missing for c in choice.coverage if c.missing},
+    )
+
+
+def _retrieved(choice: Choice, cands: list[Candidate], why: str) -> Choice:
+    """``choice`` back on its entry (the best candidate) when composing failed."""
+    return replace(
+        choice,
+        compose=None,
+        rank=1 if cands else 0,
+        score=cands[0].score if cands else 0.0,
+        missing=choice.coverage[0].missing if choice.coverage else (),
+        why=(*choice.why, f"composition failed ({why}); used the best entry"),
     )
 
 

@@ -55,7 +55,8 @@ def test_dev_prompt_yields_a_clean_finite_program_with_its_size(prompt: str) -> 
     assert program.tileable == r.tileable
     assert nonfinite_texels(matloom.evaluate(r.program, 24, 24)) == 0, r.entry
     assert f"entry: {r.entry} " in r.explanation
-    assert r.program.startswith(f"# library entry: {r.entry} ")
+    head = "# composed: " if r.composed else "# library entry: "
+    assert r.program.startswith(f"{head}{r.entry} ")
 
 
 def test_same_prompt_and_seed_give_identical_results() -> None:
@@ -158,6 +159,8 @@ def test_an_entry_that_shows_the_condition_absorbs_it() -> None:
 def test_dev_prompts_are_tileable_wherever_the_entry_allows_it() -> None:
     lib = library()
     results = [author(p) for p in DEV_PROMPTS]
+    assert all(r.tileable for r in results if r.composed)  # composed programs always tile
+    results = [r for r in results if not r.composed]
     plain = [r for r in results if lib.entry(r.entry).tileable and not r.overlays]
     assert len(plain) >= 30
     assert [r.entry for r in plain if not r.tileable] == []

@@ -1,0 +1,92 @@
+"""The table of named materials (``library/data/materials.toml``): every row valid, found by
+its name and aliases, and composed in its table colour and finish."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import matloom.library.compose.named as named_mod
+from matloom.library.compose.build import compose
+from matloom.library.compose.named import (
+    named_material,
+    named_materials,
+    named_phrases,
+    normalise,
+)
+from matloom.library.compose.spec import CompositionSpec
+from matloom.library.compose.tables import BASES
+from matloom.library.entry import LibraryError
+
+
+def test_the_table_is_large_and_valid() -> None:
+    table = named_materials()
+    assert len(table) >= 90
+    for name, m in table.items():
+        assert m.name == name and m.base in BASES and m.description
+        assert m.colours[0][0] == "base"
+    for wanted in ("malachite", "obsidian", "basalt", "jade", "amber", "turquoise", "lapis lazuli",
+                   "onyx", "peat", "loam", "clay soil", "laterite", "recycled glass terrazzo",
+                   "recycled plastic", "corian"):  # fmt: skip
+        assert wanted in table, wanted
+
+
+@pytest.mark.parametrize(
+    ("said", "name"),
+    [
+        ("Malachite", "malachite"),
+        ("Tiger's-Eye", "tiger's eye"),
+        ("tigers eye", "tiger's eye"),
+        ("volcanic glass", "obsidian"),
+        ("LAPIS", "lapis lazuli"),
+        ("clay_soil", "clay soil"),
+        ("glass terrazzo", "recycled glass terrazzo"),
+    ],
+)
+def test_lookup_by_name_or_alias(said: str, name: str) -> None:
+    m = named_material(said)
+    assert m is not None and m.name == name
+
+
+def test_unknown_names_are_none() -> None:
+    assert named_material("flurbonium") is None
+    assert named_material("") is None
+    assert normalise("  Rose   Quartz ") == "rose quartz"
+    assert all(named_phrases()[normalise(n)] == n for n in named_materials())
+
+
+def test_every_named_material_composes_in_its_colours() -> None:
+    for name, m in named_materials().items():
+        r = compose(CompositionSpec(base=m.base, named=name))
+        assert r.tileable, name
+        base = r.program
+        rgb = tuple(base.define(f"base_{c}").expr.value for c in "rgb")  # type: ignore[union-attr]
+        assert rgb == m.colour("base"), name
+        if m.finish.roughness is not None:
+            assert base.define("rough").expr.value == m.finish.roughness, name  # type: ignore[union-attr]
+        assert any(name in s for s in r.shown), name
+
+
+def test_a_malformed_row_names_the_file_and_the_key(tmp_path: Path, monkeypatch) -> None:  # noqa: ANN001
+    bad = tmp_path / "materials.toml"
+    bad.write_text('[gloop]\nbase = "jelly"\ndescription = "x"\ncolours = [[1, 2, 3]]\n')
+    monkeypatch.setattr(named_mod, "MATERIALS_FILE", bad)
+    named_materials.cache_clear()
+    named_phrases.cache_clear()
+    try:
+        with pytest.raises(LibraryError, match=r"\[gloop\] key 'base'"):
+            named_materials()
+        bad.write_text('[gloop]\nbase = "foam"\ndescription = "x"\ncolours = [[1, 2, 300]]\n')
+        named_materials.cache_clear()
+        with pytest.raises(LibraryError, match=r"key 'colours'"):
+            named_materials()
+        bad.write_text(
+            '[gloop]\nbase = "foam"\ndescription = "x"\ncolours = [[1, 2, 3]]\nhue = 1\n'
+        )
+        named_materials.cache_clear()
+        with pytest.raises(LibraryError, match=r"key 'hue'"):
+            named_materials()
+    finally:
+        named_materials.cache_clear()
+        named_phrases.cache_clear()
