@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics dask-venv test-dask tools interop-venv test-interop blender-venv test-blender
+.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics dask-venv test-dask tools interop-venv test-interop blender-venv test-blender test-grid
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -21,7 +21,11 @@ studio: $(VENV)/.installed-fast,llm,studio
 	$(VENV)/bin/matloom studio
 
 test: $(VENV)/.installed-fast,llm,test,studio,bench,polish tools
-	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser"
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser and not grid"
+
+# The composer's full base x layout x motif product (about 19,000 programs; a few minutes).
+test-grid: $(VENV)/.installed-fast,llm,test,studio,bench,polish
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m grid tests/library/test_compose_product.py
 
 # Rebuild the studio's front end (studio-web/, TypeScript) into matloom/studio/static/ with the
 # pinned toolchain in studio-web/package-lock.json. Only needed after changing studio-web/src:

@@ -13,14 +13,15 @@ worst.
 
 To judge two builds in one run (before and after, shuffled together): ``author`` writes one
 build's programs (run it with that build on ``PYTHONPATH``), and ``pack --programs NAME=FILE``
-packs every build's programs at once (rendered by the current engine).
+packs every build's programs at once (rendered by the current engine); a program several
+builds share is judged once and counts for each of them.
 
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py pack -o /tmp/judge \\
         tests/data/prompts-dev.json benchmarks/data/prompts-own-2.json
     PYTHONPATH=/tmp/base .venv/bin/python benchmarks/judge_pack.py author -o before.json FILES
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py author -o after.json FILES
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py pack -o /tmp/judge \\
-        --programs before=before.json after=after.json FILES
+        FILES --programs before=before.json after=after.json
     PYTHONPATH=. .venv/bin/python benchmarks/judge_pack.py summary /tmp/judge scores_*.json
 """
 
@@ -86,6 +87,18 @@ def pack(
     systems = {n: json.loads(p.read_text(encoding="utf-8")) for n, p in (programs or {}).items()}
     names = list(systems) or ["current"]
     rows = [(s, f.stem, *p) for s in names for f in files for p in _prompts(f)]
+    if systems:  # a program two builds share is judged once, for both ("before+after")
+        merged: dict[tuple[str, str, str], list[str]] = {}
+        for s_, file, pid, _source, _text in rows:
+            merged.setdefault((file, pid, str(systems[s_][file][pid]["program"])), []).append(s_)
+        seen: set[tuple[str, str, str]] = set()
+        unique = []
+        for s_, file, pid, source, text in rows:
+            k = (file, pid, str(systems[s_][file][pid]["program"]))
+            if k not in seen:
+                seen.add(k)
+                unique.append(("+".join(merged[k]), file, pid, source, text))
+        rows = unique
     order = list(range(len(rows)))
     random.Random(shuffle_seed).shuffle(order)
     key: dict[str, dict[str, str]] = {}
@@ -93,7 +106,7 @@ def pack(
     for n, i in enumerate(order):
         system, file, pid, source, text = rows[i]
         if systems:
-            made = systems[system][file][pid]
+            made = systems[system.split("+")[0]][file][pid]
             program, entry = str(made["program"]), str(made["entry"])
         else:
             result = author(text, lib=lib)
@@ -133,7 +146,8 @@ def summary(folder: Path, score_files: list[Path]) -> None:
         print(f"not scored: {len(missing)} ({', '.join(missing[:8])})")
     by_file: dict[str, list[str]] = defaultdict(list)
     for i in mean:
-        by_file[f"{key[i].get('system', 'current')} {key[i]['file']}"].append(i)
+        for system in key[i].get("system", "current").split("+"):
+            by_file[f"{system} {key[i]['file']}"].append(i)
     for file, ids in sorted(by_file.items()):
         vals = [mean[i] for i in ids]
         low = sum(v < 30 for v in vals)

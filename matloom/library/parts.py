@@ -365,6 +365,8 @@ class _PartsReader:
         unknown: list[Pattern] = []
         for i, j, key, said, plural in list(self.phrases(vocabulary("motifs"))):
             last = said.split()[-1]
+            if self.at(j) in self.pw.techniques:
+                continue  # "cross-stitch", "cross-hatched": how it is made, not a motif
             figure = self.at(j) in self.pw.figures
             adjective = said.split()[0] in self.pw.motif_adjectives
             many = plural or plural_stem(last) != last

@@ -43,6 +43,10 @@ class PartsWords:
     motif_base: str
     #: layout -> the role a colour said before it takes ("red and white stripes": stripe)
     colour_layouts: dict[str, str]
+    #: words after a motif word that make it a technique ("cross stitch"), not a motif
+    techniques: frozenset[str] = frozenset()
+    #: a best candidate scoring at least this is kept whatever class or pattern it misses
+    strong_score: float = 20.0
 
     def weak(self, said: str) -> bool:
         """Is ``said`` a weak layout word (``[choice] weak_layouts``)?"""
@@ -82,6 +86,7 @@ def parts_words() -> PartsWords:
         layouts=strings("layouts"),
         motifs=strings("motifs"),
         figures=frozenset(_table(data, "figures").get("words", [])),
+        techniques=frozenset(_table(data, "techniques").get("words", [])),
         motif_adjectives=frozenset(_table(data, "motif_adjectives").get("words", [])),
         motif_intro=frozenset(_table(data, "motif_intro").get("words", [])),
         translucency={
@@ -89,6 +94,7 @@ def parts_words() -> PartsWords:
         },
         weak_layouts=frozenset(_table(data, "choice").get("weak_layouts", [])),
         motif_base=str(_table(data, "choice").get("motif_base", "fabric")),
+        strong_score=float(_table(data, "choice").get("strong_score", 20.0)),
         colour_layouts=strings("colour_layouts"),
     )
 

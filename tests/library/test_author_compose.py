@@ -180,3 +180,32 @@ def test_generate_explain_prints_a_composed_program(tmp_path) -> None:  # noqa: 
     expected = author(prompt)
     assert expected.explanation in result.stderr
     assert matloom.format(expected.program) == result.stdout.strip()
+
+
+@pytest.mark.parametrize(
+    ("prompt", "entry"),
+    [
+        ("carbon fibre: a twill-woven composite of black filaments", "carbon-fibre"),
+        ("damascus steel with flowing wavy bands", "damascus-steel-pattern"),
+    ],
+)
+def test_a_strong_match_is_kept_when_it_misses_only_a_class_or_layout(
+    prompt: str, entry: str
+) -> None:
+    """A best candidate scoring at least ``[choice] strong_score`` stays, whatever class or
+    layout reading it misses (both read "woven" and "bands" here)."""
+    from matloom.library import search
+    from matloom.library.parts_words import parts_words
+
+    assert search(prompt)[0].score >= parts_words().strong_score
+    r = author(prompt)
+    assert r.entry == entry and r.rank == 1 and not r.composed, r.explanation
+    assert_clean(r)
+
+
+def test_a_technique_is_no_motif() -> None:
+    from matloom.library.parts import read_parts
+
+    assert [m.key for m in read_parts("linen with cross-stitch roses").motifs] == []
+    assert [m.key for m in read_parts("linen with little red crosses").motifs] == ["cross"]
+    assert [m.key for m in read_parts("fresh snow with footprints").motifs] == []

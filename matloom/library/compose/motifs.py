@@ -268,7 +268,7 @@ _ALL = (
     _m(
         "paw",
         "paw prints",
-        "paw paws pawprint pawprints footprint footprints",
+        "paw paws pawprint pawprints",
         "Max(Fill(Ellipse(0, -0.17, 0.22, 0.18)), Fill(Ellipse(-0.28, 0.08, 0.09, 0.12)), "
         "Fill(Ellipse(-0.1, 0.26, 0.09, 0.12)), Fill(Ellipse(0.1, 0.26, 0.09, 0.12)), "
         "Fill(Ellipse(0.28, 0.08, 0.09, 0.12)))",

@@ -180,6 +180,8 @@ def decide(cands: Sequence[Candidate], lib: Library, parts: Parts) -> Verdict:
     c = _Cover(parts, lib)
     top = [lib.entry(x.name) for x in cands[:TOP]]
     covs = tuple(c.coverage(e) for e in top)
+    if cands and cands[0].score >= c.pw.strong_score:
+        return _strong(c, cands, covs, top, lib)
     full = [k for k, cov in enumerate(covs) if not cov.essential]
     if not full:
         deep = _deeper(c, cands, lib)
@@ -197,6 +199,20 @@ def decide(cands: Sequence[Candidate], lib: Library, parts: Parts) -> Verdict:
     notes: list[str] = []
     if k > 0:
         notes.append(f"took candidate {k + 1}: the better ones miss {', '.join(covs[0].essential)}")
+    return _pattern(c, cands, covs, top, full, k, notes)
+
+
+def _pattern(
+    c: _Cover,
+    cands: Sequence[Candidate],
+    covs: tuple[Coverage, ...],
+    top: list[Entry],
+    full: list[int],
+    k: int,
+    notes: list[str],
+) -> Verdict:
+    """Candidate ``k`` is taken unless it lacks a requested motif or layout the composer can
+    show: then a candidate of ``full`` that shows it too, or a program composed on its base."""
     if covs[k].composable:
         floor = PROMOTE * cands[k].score
         shows = [
@@ -215,7 +231,48 @@ def decide(cands: Sequence[Candidate], lib: Library, parts: Parts) -> Verdict:
     return Verdict(k, coverage=covs, taken=covs[k], notes=tuple(notes))
 
 
-def _deeper(c: _Cover, cands: Sequence[Candidate], lib: Library) -> tuple[int, Coverage] | None:
+def _strong(
+    c: _Cover,
+    cands: Sequence[Candidate],
+    covs: tuple[Coverage, ...],
+    top: list[Entry],
+    lib: Library,
+) -> Verdict:
+    """A strong best match (``[choice] strong_score``) is kept, with what it misses reported,
+    unless it lacks the named material (a candidate that says it takes its place, "malachite
+    tiles": the malachite entry, else a program composed of it when the composer knows it,
+    "peat moss ground") or a motif the request explicitly asks for (then as :func:`_pattern`).
+    A missing class or layout alone does not move it: judged on held-out requests, those
+    readings overrode strong matches wrongly far more often than rightly."""
+    if not _misses_named(covs[0]):
+        if any(x.startswith("motif ") for x in covs[0].composable):
+            full = [j for j, cov in enumerate(covs) if not _misses_named(cov)]
+            return _pattern(c, cands, covs, top, full, 0, [])
+        return Verdict(0, coverage=covs, taken=covs[0])
+    named = [k for k, cov in enumerate(covs) if not _misses_named(cov)]
+    if named:
+        k = named[0]
+    else:
+        deep = _deeper(c, cands, lib, named_only=True)
+        if deep is None:
+            base = c.base_for(None)
+            if base is not None:
+                why = f"composed: no entry shows {', '.join(covs[0].essential)}"
+                return Verdict(None, base, covs, notes=(why,))
+            return Verdict(0, coverage=covs, taken=covs[0])
+        k = deep[0]
+    cov = covs[k] if k < len(covs) else c.coverage(lib.entry(cands[k].name))
+    why = f"took candidate {k + 1}: the better ones miss {', '.join(covs[0].essential)}"
+    return Verdict(k, coverage=covs, taken=cov, notes=(why,))
+
+
+def _misses_named(cov: Coverage) -> bool:
+    return any(e.startswith("named material") for e in cov.essential)
+
+
+def _deeper(
+    c: _Cover, cands: Sequence[Candidate], lib: Library, named_only: bool = False
+) -> tuple[int, Coverage] | None:
     """The first candidate past the best ``TOP`` that covers the named material and the class,
     among those scoring at least ``DEEP`` of the best ("malachite tiles": the tile entries
     rank first, the malachite entry further down)."""
@@ -224,6 +281,6 @@ def _deeper(c: _Cover, cands: Sequence[Candidate], lib: Library) -> tuple[int, C
         if cands[k].score < floor:
             break
         cov = c.coverage(lib.entry(cands[k].name))
-        if not cov.essential:
+        if not (_misses_named(cov) if named_only else cov.essential):
             return k, cov
     return None
