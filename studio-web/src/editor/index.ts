@@ -25,6 +25,8 @@ import type { Vocab } from "./vocab";
 
 /** Marks a transaction that applies a change made elsewhere (panel, history, author). */
 const External = Annotation.define<boolean>();
+/** How long after the last panel edit (a slider step) the text shows it (see mountEditor). */
+export const PANEL_TEXT_DELAY_MS = 120;
 
 export interface Editor {
   view: EditorView;
@@ -50,6 +52,11 @@ export function minimalChange(a: string, b: string): ChangeSpec & { from: number
 
 export function mountEditor(el: HTMLElement, ctx: Ctx, vocab: Vocab, onError: (message: string) => void): Editor {
   const { store } = ctx;
+  let flushPending: () => void = () => undefined;
+  const handFirst = (): boolean => {
+    flushPending();
+    return false;
+  };
   const view = new EditorView({
     parent: el,
     state: EditorState.create({
@@ -81,6 +88,7 @@ export function mountEditor(el: HTMLElement, ctx: Ctx, vocab: Vocab, onError: (m
           indentWithTab,
           ...defaultKeymap,
         ]),
+        EditorView.domEventHandlers({ keydown: handFirst, mousedown: handFirst, focus: handFirst, paste: handFirst }),
         EditorView.editorAttributes.of({ "data-testid": "editor" }),
         EditorView.contentAttributes.of({ "aria-label": "program text", spellcheck: "false" }),
         EditorView.updateListener.of((u) => {
@@ -91,8 +99,31 @@ export function mountEditor(el: HTMLElement, ctx: Ctx, vocab: Vocab, onError: (m
     }),
   });
 
+  // Panel edits (a slider drag) reach the text PANEL_TEXT_DELAY_MS after the last one: the text
+  // need not redraw at every step of a drag, and without a GPU its repaint competes with the
+  // quick first pass for the CPU. Any other change, or the user's hand on the editor, first
+  // applies a waiting one, so typing never starts from an outdated text.
+  let deferred: ReturnType<typeof setTimeout> | undefined;
+  let waiting = false;
+  const flush = (): void => {
+    clearTimeout(deferred);
+    if (!waiting) return;
+    waiting = false;
+    apply(store.text, "panel");
+  };
+  flushPending = flush;
   store.on("text", ({ text, source }) => {
     if (source === "editor") return;
+    clearTimeout(deferred);
+    if (source === "panel") {
+      waiting = true;
+      deferred = setTimeout(flush, PANEL_TEXT_DELAY_MS);
+      return;
+    }
+    waiting = false;
+    apply(text, source);
+  });
+  const apply = (text: string, source: string): void => {
     const current = view.state.doc.toString();
     if (current === text) return;
     const change = minimalChange(current, text);
@@ -103,16 +134,18 @@ export function mountEditor(el: HTMLElement, ctx: Ctx, vocab: Vocab, onError: (m
       // Undo/redo puts the cursor at the change and shows it; other sources leave it mapped.
       ...(fromHistory ? { selection: { anchor: change.from + change.insert.length }, scrollIntoView: true } : {}),
     });
-  });
+  };
 
   const editor: Editor = {
     view,
     jumpTo(offset: number) {
+      flush();
       const pos = Math.max(0, Math.min(offset, view.state.doc.length));
       view.dispatch({ selection: { anchor: pos }, scrollIntoView: true, userEvent: "select" });
       view.focus();
     },
     async format() {
+      flush();
       const before = view.state.doc.toString();
       ctx.history.commit();
       const text = await formatText(ctx, before);
