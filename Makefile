@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PIP := $(VENV)/bin/pip
 DEMO_OUT ?= demo-output
 
-.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics dask-venv test-dask tools interop-venv test-interop blender-venv test-blender test-grid
+.PHONY: demo studio studio-build studio-venv test-studio test lint bench clean clip-venv test-clip metrics-venv test-metrics dask-venv test-dask tools interop-venv test-interop blender-venv test-blender test-grid test-fuzz
 
 $(VENV)/.installed-%: pyproject.toml setup.py matloom/engine/kernels/_cnoise.c
 	$(PYTHON) -m venv $(VENV)
@@ -21,7 +21,12 @@ studio: $(VENV)/.installed-fast,llm,studio
 	$(VENV)/bin/matloom studio
 
 test: $(VENV)/.installed-fast,llm,test,studio,bench,polish tools
-	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser and not grid"
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m "not blender and not browser and not grid and not fuzz"
+
+# The engine's 2,000 random programs (about 2 minutes on 2 cores), outside the default suite
+# to keep it under 10 minutes; .ci/run runs it after `make test`.
+test-fuzz: $(VENV)/.installed-fast,llm,test,studio,bench,polish
+	$(PY) -m pytest -q -n 2 -p no:cacheprovider -m fuzz tests/engine/test_fuzz_engine.py
 
 # The composer's full base x layout x motif product (about 19,000 programs; a few minutes).
 test-grid: $(VENV)/.installed-fast,llm,test,studio,bench,polish

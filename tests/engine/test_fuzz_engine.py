@@ -29,6 +29,7 @@ N_PROGRAMS = 2000
 SHARDS = 8
 
 
+@pytest.mark.fuzz  # about 2 minutes on 2 cores: `make test-fuzz`, run by .ci/run after `make test`
 @pytest.mark.parametrize("shard", range(SHARDS))
 def test_random_programs_evaluate(shard):
     for seed in range(shard, N_PROGRAMS, SHARDS):
