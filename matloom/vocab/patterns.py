@@ -28,6 +28,23 @@ def freq_param(name: str, doc: str, default: float | None, positive: bool) -> Pa
     )
 
 
+def _output_seed(output: str, since: int) -> ParamSpec:
+    """The ``seed`` of a pattern whose one ``output`` is random (Bricks' cell_value, Weave's
+    thread_value); the other outputs ignore it."""
+    return P(
+        "seed",
+        Kind.INT,
+        f'random seed of output="{output}" (integer >= 0; made explicit by '
+        "canonicalisation when omitted); the other outputs ignore it and get none",
+        default=None,
+        nullable=True,
+        lo=0,
+        is_seed=True,
+        since=since,
+        used_when=("output", (output,)),
+    )
+
+
 def pattern_specs() -> list[FunctionSpec]:
     feather = P(
         "feather", Kind.FLOAT, "edge softening width (0 = hard edge)", 0.0, lo=0, search=(0.0, 0.2)
@@ -98,18 +115,7 @@ def pattern_specs() -> list[FunctionSpec]:
                 since=2,
                 choice_since=(("row", 3), ("column", 3)),
             ),
-            P(
-                "seed",
-                Kind.INT,
-                'random seed of output="cell_value" (integer >= 0; made explicit by '
-                "canonicalisation when omitted); the other outputs ignore it and get none",
-                default=None,
-                nullable=True,
-                lo=0,
-                is_seed=True,
-                since=2,
-                used_when=("output", ("cell_value",)),
-            ),
+            _output_seed("cell_value", since=2),
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
     )
@@ -172,18 +178,7 @@ def pattern_specs() -> list[FunctionSpec]:
                 search=(0.05, 1.0),
                 since=3,
             ),
-            P(
-                "seed",
-                Kind.INT,
-                'random seed of output="thread_value" (integer >= 0; made explicit by '
-                "canonicalisation when omitted); the other outputs ignore it and get none",
-                default=None,
-                nullable=True,
-                lo=0,
-                is_seed=True,
-                since=3,
-                used_when=("output", ("thread_value",)),
-            ),
+            _output_seed("thread_value", since=3),
         ),
         print_style=PrintStyle.NONDEFAULT_KEYWORDS,
     )
