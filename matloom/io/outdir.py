@@ -320,7 +320,8 @@ class OutputFolder:
                 continue
             match = _TEMP_FILE.match(name)
             if match and child.is_file() and not child.is_symlink():
-                if match["name"] in self._index:
+                # a file MatLoom wrote, or its own index (killed while saving it)
+                if match["name"] in self._index or match["name"] == INDEX_NAME:
                     child.unlink(missing_ok=True)
         # the sibling staging folders (".<name>.tmp-…") of MatLoom before 0.4: only this
         # folder's own (".out.x.tmp-…" belongs to a folder "out.x", not to "out")

@@ -124,6 +124,16 @@ def test_stale_staging_and_temp_files_are_cleaned(tmp_path: Path) -> None:
     assert lookalike.exists() and foreign_temp.exists()
 
 
+def test_a_temp_file_of_the_index_itself_is_cleaned(tmp_path: Path) -> None:
+    # a run killed while saving the ownership index leaves its temporary copy behind
+    write_batch(tmp_path, {"a.png": b"1"})
+    temp = tmp_path / f".{outdir.INDEX_NAME}.tmp-af1f78c49efe"
+    temp.write_bytes(b'{"partial')
+    with OutputFolder(tmp_path):
+        pass
+    assert not temp.exists()
+
+
 def test_old_sibling_staging_folder_is_cleaned(tmp_path: Path) -> None:
     out = tmp_path / "out"
     old = tmp_path / ".out.tmp-0123456789ab"  # MatLoom < 0.4 staged renders beside -o
