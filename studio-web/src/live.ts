@@ -12,6 +12,19 @@ export const FULL_SIZE = 512;
 /** A drag's first pass: the 3D view draws it in small frames (about 48k pixels on software GL),
  * so 192 px maps show all it can; a quarter of the texels of 512, half of 256's. */
 export const DRAG_PREVIEW_SIZE = 192;
+/** A drag's first pass aims to come back within this, scaled from the last full pass's round
+ * trip (a heavy program's drag preview is smaller, down to `DRAG_MIN_SIZE`). */
+const DRAG_PASS_MS = 32;
+const DRAG_MIN_SIZE = 128;
+
+/** A drag's first-pass size: `DRAG_PREVIEW_SIZE`, or smaller (in steps of 32 px, at least
+ * `DRAG_MIN_SIZE`) for a program whose full pass is slow. */
+export function dragSize(lastFullMs: number): number {
+  if (!Number.isFinite(lastFullMs) || lastFullMs <= 0) return DRAG_PREVIEW_SIZE;
+  const fit = FULL_SIZE * Math.sqrt(DRAG_PASS_MS / lastFullMs);
+  return Math.max(DRAG_MIN_SIZE, Math.min(DRAG_PREVIEW_SIZE, Math.floor(fit / 32) * 32));
+}
+
 /** Debounce of editor typing; panel drags and layer toggles go at once. */
 const TYPING_DEBOUNCE_MS = 30;
 /** When the last full pass came back faster than this, the first pass is skipped (except for a
@@ -159,7 +172,7 @@ export class Live {
     const req = {
       text,
       values,
-      size: Math.min(DRAG_PREVIEW_SIZE, previewSize(this.lastFullMs)),
+      size: dragSize(this.lastFullMs),
       stream: `${this.stream}:speculative`,
       seq,
       hidden: [...store.hidden],
@@ -232,7 +245,7 @@ export class Live {
         if (superseded()) return; // the drag went on: its next step's first pass comes first
       }
       if (pass === "full" && passes.length > 1 && superseded()) return; // a newer program waits
-      const size = pass === "full" ? FULL_SIZE : previewSize(this.lastFullMs);
+      const size = pass === "full" ? FULL_SIZE : job.drag ? dragSize(this.lastFullMs) : previewSize(this.lastFullMs);
       // Increasing across page loads too: the server keeps each stream's newest seq and answers
       // an older one with 409, so a reload must not start again at 1.
       const seq = (this.seq = Math.max(this.seq + 1, Date.now()));
