@@ -41,9 +41,13 @@ def params(program_or_text: Any) -> list[Any]:
 def set_params(program_or_text: Any, values: dict[str, Any]) -> tuple[str, list[str]]:
     """Set parameters by address (see :func:`params`): the new program text and the warnings
     (values clamped into range). Raises ValueError for an unknown address or a wrong value."""
+    from matloom.lang.layout import keep_layout
     from matloom.lang.params import set_params as _set_params
 
-    return _set_params(program_or_text, values)
+    text, warnings = _set_params(program_or_text, values)
+    if isinstance(program_or_text, str):  # the untouched lines as they were written
+        text = keep_layout(program_or_text, text)
+    return text, warnings
 
 
 def edit(program_or_text: Any, request: str, model: Any = None, **kwargs: Any) -> Any:

@@ -12,6 +12,7 @@ import click
 from matloom.cli.lang_cmds import _read
 from matloom.lang.deps import OUTPUTS
 from matloom.lang.diagnostics import ProgramError, format_diagnostics
+from matloom.lang.layout import keep_layout
 from matloom.lang.params import Param, Value, list_params, set_params
 from matloom.lang.printer import fmt_num
 
@@ -146,6 +147,7 @@ def set_cmd(file: str, assignments: tuple[str, ...], out: str | None, write: boo
     text = _read(file)
     try:
         new, warnings = set_params(text, values)
+        new = keep_layout(text, new)  # the untouched lines as the user wrote them
     except ProgramError as err:
         _program_error(err, file)
     except ValueError as err:

@@ -115,7 +115,7 @@ def test_channel_bases_inside_sums_and_clamps() -> None:
     assert params["layer:1.sheen.base"].value == 0.8
     assert params["layer:1.roughness.base"].value == 0.86
     result = edit_offline(program("velvet"), "less sheen", size=32)
-    assert "Clamp(x=(0.4 + (lie * 0.2))" in result.program
+    assert "Clamp((0.4 + (lie * 0.2)), 0, 1)" in result.program  # written as it was, 0.8 -> 0.4
     assert result.report.locality.changed == ("sheen",)
 
 

@@ -30,6 +30,7 @@ from matloom.author.edit.rules import EditRefused, Plan, plan_edit
 from matloom.author.edit.visible import VISIBLE_SIZE, lit_changes, visible_changes
 from matloom.engine.evaluate import evaluate
 from matloom.lang import ast as A
+from matloom.lang.layout import keep_layout
 from matloom.lang.params import list_params
 from matloom.lang.printer import format_expr, format_layer
 from matloom.library.data import words
@@ -299,7 +300,7 @@ def edit_offline(
     if strength != 1.0:
         record["strength"] = round(strength, 3)
     return EditResult(
-        new_text,
+        keep_layout(text, new_text),  # only the changed lines differ from the user's text
         EditReport(
             request, "rules", record, changes(before, checked.program), warnings, checked.locality
         ),

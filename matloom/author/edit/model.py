@@ -31,6 +31,7 @@ from matloom.author.stages.critique_parse import first_json_object
 from matloom.lang import ast as A
 from matloom.lang.deps import OUTPUTS
 from matloom.lang.diagnostics import ProgramError
+from matloom.lang.layout import keep_layout
 from matloom.lang.printer import format_expr
 from matloom.runtime.locality import LOCALITY_SIZE
 
@@ -216,7 +217,7 @@ def edit_with_model(
             if extra:
                 plan["channels"] = channels
             last = EditResult(
-                new_text,
+                keep_layout(text, new_text),  # only the changed lines differ
                 EditReport(
                     request,
                     "model",
