@@ -167,12 +167,6 @@ TABLE: list[tuple[str, str, dict[str, object], dict[str, object]]] = [
     ("worndirty", "more wear", {"define:cover": 0.8}, {}),
     ("worndirty", "less dirt", {"define:cover2": 0.2}, {}),
     ("rusted", "less rust", {"define:wear": 0.3}, {}),
-    (
-        "painted",
-        "more rust",  # the rust mask's Threshold edges shift together
-        {"define:rust.Threshold.below_at": 0.75, "define:rust.Threshold.above_at": 1.75},
-        {},
-    ),
     # View
     ("black", "make it tileable", {}, {"tileable": True}),
     ("weathered", "seamless please", {}, {"tileable": True}),

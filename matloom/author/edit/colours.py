@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
@@ -27,6 +28,7 @@ from matloom.author.edit.targets import (
     material_noun,
     named_in_program,
     overlaps,
+    param_layers,
     param_words,
     wanted,
 )
@@ -442,7 +444,41 @@ def colour_rule(c: Context) -> Plan | None:
     graded = step is not None and rgb is None
     if any(p.address.startswith(DERIVED) for p in new):
         return _derived_plan(c, what, new, graded)
-    return assign(c, "colour", what, new, _channels(new), graded=graded, exact=not graded)
+    plan = assign(c, "colour", what, new, _channels(new), graded=graded, exact=not graded)
+    bare = _painted_over(c, targets) if rgb is not None else {}
+    if bare:
+        plan = replace(
+            plan,
+            note=f"{plan.note}; painted: metallic 0",
+            assignments={**plan.assignments, **{p.address: v for p, v in bare.items()}},
+            intended=(*plan.intended, "metallic"),
+        )
+    return plan
+
+
+#: Verbs that put a coat of paint on a surface ("paint it safety yellow", "powder-coat it red").
+_PAINT_VERBS = frozenset(
+    {"paint", "painted", "repaint", "repainted", "powder", "enamel", "enamelled", "enameled",
+     "spray", "sprayed", "lacquer", "lacquered"}
+)  # fmt: skip
+
+
+def _painted_over(c: Context, targets: Sequence[Param]) -> dict[Param, Value]:
+    """A coat of paint on a metal: the metallic literals of the recoloured layers go to 0 (a
+    yellow metal reads as gold, not as paint). Only when the request paints, and only the
+    layers whose colour changes."""
+    if not _PAINT_VERBS & set(c.words):
+        return {}
+    layers: set[int] = set()
+    for p in targets:
+        layers |= param_layers(p, c.program)
+    out: dict[Param, Value] = {}
+    for p in c.params:
+        if p.kind != "scalar" or set(p.affects) != {"metallic"} or float(p.value) <= 0:  # type: ignore[arg-type]
+            continue
+        if param_layers(p, c.program) & layers:
+            out[p] = 0.0
+    return out
 
 
 def _channels(new: dict[Param, Value]) -> tuple[str, ...]:

@@ -21,24 +21,19 @@ from __future__ import annotations
 import functools
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
-import numpy as np
-
-from matloom.author.edit.apply import all_params, apply_edit, parse_program
-from matloom.author.edit.lexicon import edit_words, split_words, stem
+from matloom.author.edit.apply import all_params
+from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
+from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.plan import Context, Plan, Value, affects, assign, clamp
-from matloom.author.edit.targets import define_closure, main_colour, mask_names, refs_of
-from matloom.engine.evaluate import evaluate
+from matloom.author.edit.targets import define_closure, main_colour, mask_names
 from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
 from matloom.lang.tileable import tileable_warnings
 from matloom.library.overlay import Overlay
-
-#: Grid the coverage of a condition's layer is measured on.
-PROBE = 48
 
 
 def _named(name: str, stems: Sequence[str]) -> bool:
@@ -74,208 +69,6 @@ def _overlay_covers(c: Context, stems: Sequence[str]) -> list[Param]:
         if any(name in deps and _named(d, stems) for d, deps in closure.items()):
             out.append(p)
     return out
-
-
-# ---- measured coverage -------------------------------------------------------------------------
-@dataclass(frozen=True)
-class _Candidate:
-    """Parameters moved together by one shift (a Threshold's two edges), whether they feed
-    nothing but the condition's layer, and whether they are a named constant."""
-
-    params: tuple[Param, ...]
-    exclusive: bool
-    constant: bool
-
-
-#: Static parameters that are the two edges of one ramp: shifting both moves where it falls.
-_EDGES = (("below_at", "above_at"), ("lo", "hi"), ("edge0", "edge1"))
-
-
-def _coverage(program: A.Program, mask: A.Node) -> float:
-    probe = A.Program(
-        program.view,
-        program.defines,
-        (
-            A.Layer(None, (A.ChannelSet("roughness", (A.Num(0),)),)),
-            A.Layer(mask, (A.ChannelSet("roughness", (A.Num(1),)),)),
-        ),
-    )
-    maps = evaluate(probe, PROBE, PROBE)
-    return float(np.nanmean(maps.roughness))
-
-
-def _candidates(c: Context, index: int) -> list[_Candidate]:
-    """Scalar parameters the coverage of layer ``index`` (0-based) depends on: those feeding
-    nothing else first, a ramp's two edges together before either alone, named constants
-    before parameters inside calls."""
-    program = c.program
-    closure = define_closure(program)
-    mask_refs = refs_of(program.layers[index].alpha, closure)
-    others: set[str] = set()
-    for i, layer in enumerate(program.layers):
-        if i == index:  # the layer's own channels go with its coverage
-            continue
-        for ch in layer.channels:
-            others |= {r for a in ch.args for r in refs_of(a, closure)}
-        others |= refs_of(layer.alpha, closure)
-    singles: list[_Candidate] = []
-    for p in c.params:
-        if p.kind != "scalar" or p.address.endswith(".base"):
-            continue
-        m = re.match(r"define:(\w+)(\.|$)", p.address)
-        if m is None or m.group(1) not in mask_refs:
-            continue
-        singles.append(_Candidate((p,), m.group(1) not in others, m.group(2) == ""))
-    by = {k.params[0].address: k for k in singles}
-    pairs = []
-    for k in singles:
-        for lo, hi in _EDGES:
-            if k.params[0].address.endswith(f".{lo}"):
-                other = by.get(k.params[0].address[: -len(lo)] + hi)
-                if other is not None:
-                    pairs.append(_Candidate((k.params[0], other.params[0]), k.exclusive, False))
-    out = pairs + singles
-    out.sort(key=lambda k: (not k.exclusive, not k.constant, len(k.params) == 1))
-    return out
-
-
-def _shift(c: Context, cand: _Candidate, mask: A.Node, now: float, goal: float):  # noqa: ANN202
-    """The shift of the candidate's values whose measured coverage is nearest ``goal`` (on
-    the side of ``now`` it asks for): (values, coverage), or None."""
-    ps = cand.params
-    vs = [float(p.value) for p in ps]  # type: ignore[arg-type]
-    span = max(max(abs(v) for v in vs), abs(vs[-1] - vs[0]), 0.25)
-    best = None
-    for f in (0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0):
-        for sign in (1, -1):
-            xs = [clamp(p, v + sign * f * span) for p, v in zip(ps, vs, strict=True)]
-            if xs == vs:
-                continue
-            try:
-                text, _ = apply_edit(c.program, {p.address: x for p, x in zip(ps, xs, strict=True)})
-                cov = _coverage(parse_program(text), mask)
-            except ValueError:
-                continue
-            if (cov - now) * (goal - now) <= 0:
-                continue
-            if best is None or abs(cov - goal) < abs(best[1] - goal):
-                best = (xs, cov)
-    return best
-
-
-def _measured(
-    c: Context,
-    index: int,
-    more: bool,
-    word: str,
-    grow: tuple[float, float] | None = None,
-    prefer: Sequence[str] = (),
-) -> Plan | None:
-    """The coverage of layer ``index`` grown (or shrunk) to its goal by moving a parameter it
-    depends on, else by shifting the edges of a ``Smoothstep`` of numbers in a Define it reads
-    (those named like ``prefer`` first: "thicker came" moves ``came``'s threshold). ``joint``:
-    ``grow``: the coverage factor and least change when not a condition's (a joint's width
-    x1.6, at least +0.03; more of a part x2, at least +0.05)."""
-    mask = c.program.layers[index].alpha
-    assert mask is not None
-    now = _coverage(c.program, mask)
-    k = c.k
-    factor, least = grow or (c.ew.f("cover_more"), c.ew.f("cover_min"))
-    if more:
-        goal = min(0.95, max(now * factor**k, now + least * k))
-        if now >= 0.93:
-            raise c.refuse(f"the {word} covers {now:.0%} already")
-    else:
-        goal = max(0.0, min(now * c.ew.f("cover_less") ** k, now - c.ew.f("cover_min") * k))
-        if now <= 0.005:
-            raise c.refuse(f"the {word} covers nothing already")
-    for cand in _candidates(c, index):
-        best = _shift(c, cand, mask, now, goal)
-        if best is not None and abs(best[1] - now) >= 0.5 * abs(goal - now):
-            note = f"{'more' if more else 'less'} {word}: coverage {now:.0%} -> {best[1]:.0%}"
-            new: dict[Param, Value] = dict(zip(cand.params, best[0], strict=True))
-            return assign(c, "amount", note, new, affects(cand.params), graded=True)
-    for name, lines in _edge_shifts(c, index, prefer):
-        best_lines = None
-        for text in lines:
-            try:
-                program = parse_program(apply_edit(c.program, {}, None, text)[0])
-                cov = _coverage(program, mask)
-            except ValueError:
-                continue
-            if (cov - now) * (goal - now) > 0 and (
-                best_lines is None or abs(cov - goal) < abs(best_lines[1] - goal)
-            ):
-                best_lines = (text, cov)
-        if best_lines is not None and abs(best_lines[1] - now) >= 0.5 * abs(goal - now):
-            note = (
-                f"{'more' if more else 'less'} {word}: coverage {now:.0%} -> {best_lines[1]:.0%}"
-                f" (the edges of {name}'s threshold moved)"
-            )
-            # a coverage moves every channel the layer writes
-            return Plan("amount", note, lines=best_lines[0], intended=("alpha",), graded=False)
-    return None
-
-
-def _number(v: float) -> A.Node:
-    v = float(f"{v:.4g}")
-    return A.Num(v) if v >= 0 else A.Neg(A.Num(-v))
-
-
-def _edge_shifts(
-    c: Context, index: int, prefer: Sequence[str]
-) -> list[tuple[str, list[dict[str, str]]]]:
-    """For each Define the layer's coverage reads that is a ``Smoothstep`` with two number
-    edges (named like ``prefer`` first): the line rewritten with both edges shifted, by a
-    growing share of their scale each way."""
-    closure = define_closure(c.program)
-    names = refs_of(c.program.layers[index].alpha, closure)
-    want = {stem(w) for w in prefer}
-    out = []
-    for d in c.program.defines:
-        e = d.expr
-        if d.name not in names or not (isinstance(e, A.Call) and e.func == "Smoothstep"):
-            continue
-        edges = [a.value for a in e.args[:2]]
-        if len(e.args) < 3 or not all(isinstance(x, A.Num) for x in edges):
-            continue
-        lo, hi = (float(x.value) for x in edges)  # type: ignore[union-attr]
-        span = max(abs(hi - lo) * 2, 0.5 * max(abs(lo), abs(hi)), 0.01)
-        variants = []
-        for f in (0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0):
-            for sign in (1, -1):
-                dv = sign * f * span
-                args = (
-                    replace(e.args[0], value=_number(lo + dv)),
-                    replace(e.args[1], value=_number(hi + dv)),
-                    *e.args[2:],
-                )
-                variants.append(
-                    {f"define:{d.name}": f"Define({d.name}, {format_expr(replace(e, args=args))})"}
-                )
-        out.append((d.name, variants))
-    out.sort(key=lambda x: not (split_words(x[0]) & want))
-    return out
-
-
-def measured_layer(
-    c: Context, nouns: Sequence[str], more: bool, joint: bool = False
-) -> Plan | None:
-    """More or less of the layer (above the first) whose coverage a noun names ("more flecks",
-    "thicker came"), measured."""
-    want = {stem(n) for n in nouns}
-    if not want:
-        return None
-    for i, layer in enumerate(c.program.layers):
-        if i == 0 or layer.alpha is None:
-            continue
-        names = [n for n in mask_names(layer.alpha) if split_words(n) & want]
-        if names:
-            grow = (1.6, 0.03) if joint else (2.0, 0.05)
-            plan = _measured(c, i, more, names[0], grow, prefer=names)
-            if plan is not None:
-                return plan
-    return None
 
 
 def _condition_layers(c: Context, stems: Sequence[str]) -> list[int]:
@@ -364,13 +157,15 @@ def library_overlays() -> dict[str, Overlay]:
 
 def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     """A library overlay's one-word trigger in the request ("wet", "snowy", "faded") when the
-    request asks for an amount of it (more, less, add, some ...) or is that word alone, with
+    request asks for an amount of it (more, less, add, some ...), is that word alone or leads
+    it (its first word that is not filler: "make it look wet after rain"), with
     the stems its layers would be named by."""
     direction = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
     alone = len([n for n in c.nouns if n not in direction]) == 1
+    head = c.nouns[0] if c.nouns else None  # "make it look wet after rain": wet leads
     for t in c.words:
         for ov in _overlays():
-            if t in ov.triggers and (alone or set(c.words) & direction):
+            if t in ov.triggers and (alone or t == head or set(c.words) & direction):
                 return t, tuple(dict.fromkeys((stem(t), ov.name.removesuffix("y")[:5])))
     return None
 
@@ -428,7 +223,7 @@ def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
         name = m.group(1)
         mask: A.Node = A.Ref(name)
         # the joints are the thin part: the mask's minority value
-        if _coverage(c.program, mask) > 0.5:
+        if mask_coverage(c.program, mask) > 0.5:
             mask = A.BinOp("-", A.Num(1), mask)
         return mask, f" in the joints (of {name})"
     return None, ""
@@ -442,7 +237,14 @@ def _floored(p: Param, v: float) -> float:
 def amount_rule(c: Context) -> Plan | None:
     ws = set(c.words)
     sizes = c.ew["bigger"] | c.ew["smaller"] | c.ew["denser"] | c.ew["sparser"] | c.ew["width"]
-    if ws & (sizes - set(c.vocabulary.amounts)):  # "a little moss" is an amount
+    # the first clause says what to do ("less peeling, only small chips": an amount)
+    head = set(tokens(re.split(r"[,;]", c.request.lower())[0])) or ws
+    size_words = sizes - set(c.vocabulary.amounts)  # "a little moss" is an amount
+    if "fewer" in head and not head & (size_words - c.ew["sparser"]):
+        plan = _more_of_layer(c)  # "fewer blisters": less of the layer they name, not bigger
+        if plan is not None:
+            return plan
+    if head & (size_words - {"fewer"}):
         return None  # "bigger chips", "finer cracks": the scale of a feature
     conds = [t for t in c.words if t in c.ew.conditions]
     if conds:
@@ -470,7 +272,7 @@ def amount_rule(c: Context) -> Plan | None:
         note = f"{'more' if more else 'less'} {word} ({step:+.3g})"
         return assign(c, "amount", note, new, affects(found))
     for index in _condition_layers(c, stems):
-        plan = _measured(c, index, more, word)
+        plan = measured_coverage(c, index, more, word)
         if plan is not None:
             return plan
     present = bool(_condition_layers(c, stems))

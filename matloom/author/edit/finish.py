@@ -43,6 +43,20 @@ def _finish_word(c: Context) -> tuple[int, str, str] | None:
     return None
 
 
+#: Words that push a gloss target further ("a high gloss", "highly polished", "mirror").
+_INTENSE = frozenset({"high", "highly", "very", "super", "mirror", "extremely", "ultra"})
+
+
+def _intense(c: Context, word: str) -> bool:
+    ws = c.words
+    i = ws.index(word) if word in ws else -1
+    return (
+        bool(_INTENSE & set(ws[max(0, i - 2) : i]))
+        or "mirror" in ws
+        or ("high" in ws and "gloss" in ws)
+    )
+
+
 def _rough_params(c: Context) -> list[Param]:
     return [
         p
@@ -80,8 +94,11 @@ def roughness_rule(c: Context) -> Plan | None:
     targets = matching(params, nouns, c.program, c.ew) or params
     if not targets:
         raise c.refuse("no roughness parameter")
-    finish = c.vocabulary.finishes.get(word)
+    finish = c.vocabulary.finishes.get(word) or c.vocabulary.finishes.get(f"{word}ed")
     target = c.vocabulary.finish_roughness.get(finish) if finish and kind == "target" else None
+    if target is not None and d < 0 and _intense(c, word):
+        # "a high gloss", "highly polished", "mirror": past the polished value
+        target = min(target, c.vocabulary.finish_roughness.get("polished", target)) * 0.6
     new: dict[Param, Value] = {}
     for p in targets:
         v = float(p.value)  # type: ignore[arg-type]

@@ -38,7 +38,7 @@ from dataclasses import replace
 
 from matloom.author.edit.apply import apply_edit, parse_program
 from matloom.author.edit.colours import colour_rule
-from matloom.author.edit.conditions import amount_rule, measured_layer
+from matloom.author.edit.conditions import amount_rule
 from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
 from matloom.author.edit.lexicon import (
     EditWords,
@@ -46,6 +46,7 @@ from matloom.author.edit.lexicon import (
     split_words,
     tokens,
 )
+from matloom.author.edit.measured import measured_layer
 from matloom.author.edit.physical import SIZE_RE as _SIZE_RE
 from matloom.author.edit.physical import physical_rule, tiles, window, zoomed
 from matloom.author.edit.plan import (

@@ -1,0 +1,149 @@
+"""Offline edits for request wordings found failing on the v5/v6 held-out sets: paint on a
+metal ("paint it safety yellow" reads as gold when the metal stays metallic), a high gloss,
+a condition named as the request's lead word ("make it look wet after rain"), age words
+("make it look older"), and fewer or filled features drawn inside the channels ("fewer
+blisters", "fill the pits": less of the feature's mask, not a different size)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from matloom.author.edit import EditRefused, edit_offline
+from matloom.author.edit.core import parse_program
+from matloom.engine.evaluate import evaluate
+from matloom.lang import ast as A
+from matloom.lang.params import list_params
+
+METAL = """View(0, 0, 1, 1, tileable=True)
+Define(metal_r, 190)
+Define(metal_g, 193)
+Define(metal_b, 198)
+Define(grain, fBm(octaves=3, base_freq=8, to_01=True, seed=3))
+Material(
+  Layer(1)
+    .basecolor(metal_r, metal_g, metal_b)
+    .metallic(1)
+    .roughness(0.35)
+    .height((grain * 0.002))
+)
+"""
+
+BLISTERED = """View(0, 0, 2, 2, tileable=True)
+Define(rough, 0.6)
+Define(cell, Worley(base_freq=4.5, to_01=True, seed=5))
+Define(blister, Threshold(((0.3 - cell) * 6), below_at=0, above_at=1))
+Define(grit, fBm(octaves=4, base_freq=30, to_01=True, seed=7))
+Material(
+  Layer(1)
+    .basecolor((200 * (1 - (blister * 0.2))), (190 * (1 - (blister * 0.2))), 170)
+    .roughness(rough)
+    .height(((blister * 0.03) + (grit * 0.002)))
+)
+"""
+
+
+def _values(text: str) -> dict[str, object]:
+    return {p.address: p.value for p in list_params(parse_program(text))}
+
+
+def _mean_of(text: str, name: str) -> float:
+    prog = parse_program(text)
+    probe = A.Program(
+        prog.view,
+        prog.defines,
+        (A.Layer(None, (A.ChannelSet("roughness", (A.Ref(name),)),)),),
+    )
+    return float(np.mean(evaluate(probe, 64, 64).roughness))
+
+
+def test_paint_on_a_metal_takes_its_metalness_away() -> None:
+    result = edit_offline(METAL, "paint it safety yellow")
+    after = _values(result.program)
+    assert after["layer:1.metallic"] == 0
+    r, g, b = after["define:metal"]  # type: ignore[misc]
+    assert r > 200 and g > 170 and b < 90  # yellow
+    assert "metallic" in result.report.plan["intended"]
+
+
+def test_a_colour_without_paint_keeps_the_metal_metallic() -> None:
+    result = edit_offline(METAL, "make it a warm gold colour")
+    assert _values(result.program)["layer:1.metallic"] == 1
+
+
+@pytest.mark.parametrize(
+    ("request_", "most"),
+    [("polish it to a high gloss", 0.08), ("polished", 0.12), ("make it glossy", 0.16)],
+)
+def test_gloss_words_reach_their_finish(request_: str, most: float) -> None:
+    result = edit_offline(BLISTERED, request_)
+    assert float(_values(result.program)["define:rough"]) <= most  # type: ignore[arg-type]
+
+
+def test_a_high_gloss_is_glossier_than_glossy() -> None:
+    high = edit_offline(BLISTERED, "polish it to a high gloss").program
+    plain = edit_offline(BLISTERED, "make it glossy").program
+    assert _values(high)["define:rough"] < _values(plain)["define:rough"]  # type: ignore[operator]
+
+
+def test_a_condition_leading_the_request_adds_its_overlay() -> None:
+    result = edit_offline(BLISTERED, "make it look wet after rain")
+    assert result.report.plan["rule"] == "overlay"
+    assert "'wet'" in result.report.plan["note"]
+    assert len(parse_program(result.program).layers) > 1
+
+
+def test_a_condition_word_that_does_not_lead_is_not_taken_as_one() -> None:
+    # "wet" after other words is no request for the wet overlay: nothing maps, so refused
+    with pytest.raises(EditRefused):
+        edit_offline(BLISTERED, "the sample from the wet room")
+
+
+def test_age_words_add_wear() -> None:
+    result = edit_offline(METAL, "make it look older")
+    assert "worn" in result.report.plan["note"] or result.report.plan["rule"] == "amount"
+    assert len(parse_program(result.program).layers) > 1
+
+
+def test_fewer_features_drawn_in_the_channels_shrink_their_mask_not_their_size() -> None:
+    before = _mean_of(BLISTERED, "blister")
+    result = edit_offline(BLISTERED, "fewer blisters")
+    assert result.report.plan["rule"] == "amount"
+    # the cells keep their size: the Worley frequency is untouched
+    assert _values(result.program)["define:cell.Worley.base_freq"] == 4.5
+    after = _mean_of(result.program, "blister")
+    assert 0.0 < after < 0.75 * before
+
+
+def test_more_of_a_feature_grows_its_mask() -> None:
+    before = _mean_of(BLISTERED, "blister")
+    after = _mean_of(edit_offline(BLISTERED, "more blisters").program, "blister")
+    assert after > 1.3 * before
+
+
+def test_fill_removes_the_feature_and_fewer_keeps_some() -> None:
+    filled = _mean_of(edit_offline(BLISTERED, "fill the blisters").program, "blister")
+    fewer = _mean_of(edit_offline(BLISTERED, "fewer blisters").program, "blister")
+    assert filled < 0.01
+    assert fewer > 0.02
+
+
+def test_more_rust_moves_the_rust_mask_by_its_input_keeping_its_range() -> None:
+    """``Threshold(x, below_at=0, above_at=1)`` clamps ``x`` to 0..1; moving both cutoffs (as an
+    earlier rule did) made the mask at least 0.75 everywhere: rust with no shape."""
+    from matloom.library import load_library
+
+    text = load_library().entry("painted-metal").program
+    result = edit_offline(text, "more rust")
+    replaced = result.report.plan.get("replace", {})
+    assert list(replaced) == ["define:rust"]
+    assert "below_at=0, above_at=1" in replaced["define:rust"]
+    before, after = _mean_of(text, "rust"), _mean_of(result.program, "rust")
+    assert after > 1.3 * before
+    prog = parse_program(result.program)
+    probe = A.Program(
+        prog.view, prog.defines, (A.Layer(None, (A.ChannelSet("roughness", (A.Ref("rust"),)),)),)
+    )
+    rust = np.asarray(evaluate(probe, 64, 64).roughness)
+    # still has a shape: the old shift left it at 0.75 or more everywhere
+    assert float(rust.min()) == 0.0 and float(np.mean(rust < 0.5)) > 0.03
