@@ -147,3 +147,85 @@ def test_more_rust_moves_the_rust_mask_by_its_input_keeping_its_range() -> None:
     rust = np.asarray(evaluate(probe, 64, 64).roughness)
     # still has a shape: the old shift left it at 0.75 or more everywhere
     assert float(rust.min()) == 0.0 and float(np.mean(rust < 0.5)) > 0.03
+
+
+TILED = """View(0, 0, 4, 4, tileable=True)
+Define(tile_r, 180)
+Define(tile_g, 90)
+Define(tile_b, 60)
+Define(grout_r, 150)
+Define(grout_g, 145)
+Define(grout_b, 135)
+Define(rough, 0.92)
+Define(edge, Bricks(brick_width=1, brick_height=1, offset=0, mortar=0.05, output="edge"))
+Define(tiles, Smoothstep(0.01, 0.02, edge))
+Material(
+  Layer(1)
+    .basecolor(grout_r, grout_g, grout_b)
+    .roughness(0.95),
+  Layer(tiles)
+    .basecolor(tile_r, tile_g, tile_b)
+    .roughness(rough)
+    .height((tiles * 0.01))
+)
+"""
+
+
+@pytest.mark.parametrize(
+    ("request_", "rgb"),
+    [
+        ("make the tiles a dyed red, around RGB 150, 60, 40", (150, 60, 40)),
+        ("tiles in #3366aa please", (0x33, 0x66, 0xAA)),
+        ("tile colour rgb(12, 200, 7)", (12, 200, 7)),
+    ],
+)
+def test_a_colour_given_as_a_value_is_that_value(request_: str, rgb: tuple[int, int, int]) -> None:
+    after = _values(edit_offline(TILED, request_).program)
+    assert tuple(round(x) for x in after["define:tile"]) == rgb  # type: ignore[union-attr]
+
+
+def test_more_like_a_named_colour_moves_most_of_the_way_not_all() -> None:
+    after = _values(edit_offline(TILED, "warmer tiles, more like honey").program)["define:tile"]
+    honey = _values(edit_offline(TILED, "honey tiles").program)["define:tile"]
+    start = (180, 90, 60)
+    moved = sum(abs(a - b) for a, b in zip(after, start, strict=True))  # type: ignore[arg-type]
+    assert moved > 20 and after != honey
+
+
+def test_wider_darker_joints_widen_and_darken_the_joints_only() -> None:
+    result = edit_offline(TILED, "wider, darker grout")
+    after = _values(result.program)
+    assert after["define:edge.Bricks.mortar"] > 0.05  # type: ignore[operator]
+    assert sum(after["define:grout"]) < 150 + 145 + 135  # type: ignore[arg-type]
+    assert after["define:tile"] == (180, 90, 60)  # the tiles keep their colour
+
+
+def test_two_conditions_add_two_overlays() -> None:
+    result = edit_offline(TILED, "make it look older, with some moss and grime")
+    note = result.report.plan["note"]
+    assert "'mossy'" in note and "'dirty'" in note
+    assert len(parse_program(result.program).layers) >= 4
+
+
+def test_what_it_should_look_like_is_a_condition() -> None:
+    result = edit_offline(TILED, "make the floor look wet, like just after rain")
+    assert "'wet'" in result.report.plan["note"]
+
+
+def test_tile_seamlessly_makes_it_tileable() -> None:
+    text = TILED.replace("View(0, 0, 4, 4, tileable=True)", "View(0, 0, 4, 4)")
+    assert edit_offline(text, "I need this to tile seamlessly").report.plan["rule"] == "tileable"
+
+
+def test_glossier_is_stepped_until_the_lit_preview_shows_it() -> None:
+    """From 0.92 a first gloss step (to about 0.41) hardly moves a matte bisque's lit preview;
+    the step grows until it shows there."""
+    from matloom.author.edit.visible import lit_changes
+    from matloom.library import load_library
+
+    text = load_library().entry("unglazed-bisque-porcelain").program
+    result = edit_offline(text, "glossier")
+    assert result.report.plan.get("strength", 1.0) > 1.0
+    before = evaluate(parse_program(text), 128, 128)
+    after = evaluate(parse_program(result.program), 128, 128)
+    assert lit_changes(before, after)[0] >= 0.05

@@ -133,6 +133,9 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     w = c.vocabulary
     named, phrases = _tables(c)
     ws = c.words
+    exact = _explicit(c)
+    if exact:  # "around RGB 150, 60, 40", "#D8E0CF": the value given, not the words near it
+        return exact
     out: list[tuple[int, int, RGB, bool]] = []
     taken: set[int] = set()
     for n in (3, 2):
@@ -148,6 +151,28 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
             out.append((i, 1, named[word], word != t))
     return sorted(out)
+
+
+def _explicit(c: Context) -> list[tuple[int, int, RGB, bool]]:
+    """Colours given as values: ``#d8e0cf`` (a hex word the request writes after ``#``) and
+    ``RGB 150, 60, 40`` / ``rgb(150, 60, 40)`` (three numbers 0-255 after "rgb")."""
+    ws = c.words
+    raw = c.request.lower()
+    out: list[tuple[int, int, RGB, bool]] = []
+    for i, t in enumerate(ws):
+        if len(t) == 6 and all(ch in "0123456789abcdef" for ch in t) and f"#{t}" in raw:
+            out.append((i, 1, (int(t[0:2], 16), int(t[2:4], 16), int(t[4:6], 16)), False))
+        elif t == "rgb" and i + 3 < len(ws) and all(x.isdigit() for x in ws[i + 1 : i + 4]):
+            r, g, b = (int(x) for x in ws[i + 1 : i + 4])
+            if max(r, g, b) <= 255:
+                out.append((i, 4, (r, g, b), False))
+    return out
+
+
+#: Words that make a named colour a direction, not a value, beside a comparative ("warmer,
+#: more like honey"), and the share of the way the colour moves then.
+_LIKE = frozenset({"like", "towards", "toward"})
+_LIKE_SHARE = 0.6
 
 
 #: Material words that are also colour names: a noun before a colour, not the colour.
@@ -392,7 +417,9 @@ def colour_rule(c: Context) -> Plan | None:
     rgb, tone, comp, used, source = _colour_in(c)
     if rgb is None and tone is None and comp is None:
         return None
-    colours = [p for p in c.params if p.kind == "colour"]
+    # three numbers each (a lone component named like a colour, ``tile_r`` beside a Define
+    # ``tile``, is a number: not recoloured on its own)
+    colours = [p for p in c.params if p.kind == "colour" and isinstance(p.value, tuple)]
     if not colours:
         raise c.refuse("no colour parameter")
     nouns = [t for i, t in enumerate(c.words) if i not in used and t not in c.ew["filler"]]
@@ -426,7 +453,11 @@ def colour_rule(c: Context) -> Plan | None:
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
-            if step is not None:  # "darker, purple-brown": the comparative on the named colour
+            if step is not None and _LIKE & set(c.words):
+                # "warmer, more like a honey sandstone": most of the way to the named colour
+                # from the current one (a name like "honey" is far more saturated than a stone)
+                lab = to_lab(_mix(current, named, _LIKE_SHARE))
+            elif step is not None:  # "darker, purple-brown": the comparative on the named colour
                 lab = comparative(named, step, 1.0)
             if p is not primary:
                 lab = _with_offset(lab, to_lab(current), base_lab)

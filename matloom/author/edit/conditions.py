@@ -23,10 +23,10 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.apply import all_params
+from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
-from matloom.author.edit.plan import Context, Plan, Value, affects, assign, clamp
+from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
 from matloom.author.edit.targets import define_closure, main_colour, mask_names
 from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
@@ -155,6 +155,9 @@ def library_overlays() -> dict[str, Overlay]:
     return {ov.name: ov for ov in _overlays()}
 
 
+_LOOK = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "seems"})
+
+
 def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     """A library overlay's one-word trigger in the request ("wet", "snowy", "faded") when the
     request asks for an amount of it (more, less, add, some ...), is that word alone or leads
@@ -163,9 +166,11 @@ def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     direction = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
     alone = len([n for n in c.nouns if n not in direction]) == 1
     head = c.nouns[0] if c.nouns else None  # "make it look wet after rain": wet leads
+    # "make the roof look wet": what it should look like
+    said = {b for a, b in zip(c.words, c.words[1:], strict=False) if a in _LOOK}
     for t in c.words:
         for ov in _overlays():
-            if t in ov.triggers and (alone or t == head or set(c.words) & direction):
+            if t in ov.triggers and (alone or t == head or t in said or set(c.words) & direction):
                 return t, tuple(dict.fromkeys((stem(t), ov.name.removesuffix("y")[:5])))
     return None
 
@@ -246,7 +251,8 @@ def amount_rule(c: Context) -> Plan | None:
             return plan
     if head & (size_words - {"fewer"}):
         return None  # "bigger chips", "finer cracks": the scale of a feature
-    conds = [t for t in c.words if t in c.ew.conditions]
+    # a concrete condition before an age word ("older, with some moss": the moss first)
+    conds = sorted((t for t in c.words if t in c.ew.conditions), key=lambda t: t in c.ew["age"])
     if conds:
         word = conds[0]
         stems = c.ew.conditions[word]
@@ -284,7 +290,40 @@ def amount_rule(c: Context) -> Plan | None:
     plan = _add_overlay(c, word, stems)
     if plan is None:
         raise c.refuse(f"no {word} amount in this program and no library overlay for it")
+    return _more_overlays(c, plan, word, conds)
+
+
+def _more_overlays(c: Context, plan: Plan, word: str, conds: Sequence[str]) -> Plan:
+    """``plan`` and the overlays of the request's other conditions ("some moss and grime in
+    the joints": moss and dirt), each composed over the program the ones before made."""
+    done = {word}
+    names = {_overlay_name(word, c.ew.conditions.get(word, ()))}
+    for other in conds:
+        stems = c.ew.conditions[other]
+        name = _overlay_name(other, stems)
+        if other in done or name is None or name in names or other in c.ew["age"]:
+            continue
+        sub = replace(c, program=add_lines(c.program, plan.add))
+        try:
+            more = _add_overlay(sub, other, stems)
+        except EditRefused:
+            continue
+        if more is None:
+            continue
+        done.add(other)
+        names.add(name)
+        plan = Plan(
+            "overlay",
+            f"{plan.note}; {more.note}",
+            add=[*plan.add, *more.add],
+            intended=tuple(dict.fromkeys(plan.intended + more.intended)),
+        )
     return plan
+
+
+def _overlay_name(word: str, stems: Sequence[str]) -> str | None:
+    ov = _overlay_for(word, stems)
+    return None if ov is None else ov.name
 
 
 def _direction(c: Context, word: str) -> bool | None:
@@ -293,6 +332,8 @@ def _direction(c: Context, word: str) -> bool | None:
     ws = c.words
     i = ws.index(word)
     near = ws[max(0, i - 3) : i]
+    if "add" in near:  # "add some oil stains": the colour describes what is added
+        return True
     for t in reversed(near):
         if _is_property(c, t):
             return None  # "more purple-brown patina": "more" of a colour
@@ -306,7 +347,8 @@ def _direction(c: Context, word: str) -> bool | None:
 def _property_word(c: Context, word: str) -> bool:
     """Whether the request names a property of something (a colour, a finish, a relief), other
     than the condition's word itself."""
-    return any(t != word and _is_property(c, t) for t in c.words)
+    # another condition's word ("older, with some moss") is no colour, though "moss" names one
+    return any(t != word and t not in c.ew.conditions and _is_property(c, t) for t in c.words)
 
 
 def _is_property(c: Context, t: str) -> bool:

@@ -83,7 +83,7 @@ def param_words(p: Param, program: A.Program | None = None) -> set[str]:
 
 # ---- View ------------------------------------------------------------------------------------
 def _tileable(c: Context) -> Plan | None:
-    if not ({"tileable", "seamless", "tiling", "repeatable"} & set(c.words)):
+    if not ({"tileable", "seamless", "seamlessly", "tiling", "repeatable"} & set(c.words)):
         return None
     if c.program.view is not None and c.program.view.tileable:
         raise c.refuse("the program is tileable already")
@@ -132,8 +132,33 @@ def _joints(c: Context) -> Plan | None:
     size = _SIZE_RE.search(c.request.lower())
     if not (c.ew["joint"] & ws) or not ((c.ew["wider"] | c.ew["narrower"]) & ws or size):
         return None
-    if ws & set(c.ew.comparative):
+    tones = ws & set(c.ew.comparative)
+    if tones and not ws & _WIDTH_VERBS:
         return None  # "darker grout": a colour
+    plan = _joint_width(c, ws, size)
+    if plan is None or not tones:
+        return plan
+    # "wider, darker gaps": the width, and the tone on the joints' own colour (not the tiles')
+    joint_words = [t for t in c.words if t in tones or t in c.ew["joint"]]
+    try:
+        colour = colour_rule(replace(c, words=joint_words))
+    except EditRefused:
+        return plan
+    if colour is None or not all(
+        any(k in a.lower() for k in c.ew.joint_params) for a in colour.assignments
+    ):
+        return plan  # no colour of the joints' own: the width alone
+    return Plan(
+        "joints+colour",
+        f"{plan.note}; {colour.note}",
+        assignments={**plan.assignments, **colour.assignments},
+        intended=tuple(dict.fromkeys(plan.intended + colour.intended)),
+        lines=plan.lines,
+        graded=plan.graded,
+    )
+
+
+def _joint_width(c: Context, ws: set[str], size: re.Match[str] | None) -> Plan | None:
     if any(t in c.vocabulary.named for t in ws) and not ws & _WIDTH_VERBS:
         return None  # "white mortar" is a colour; "widen the black seams" a width
     if ws & ((set(c.ew.relief_nouns) - c.ew["joint"]) | set(c.ew.relief)):
