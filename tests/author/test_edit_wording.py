@@ -229,3 +229,62 @@ def test_glossier_is_stepped_until_the_lit_preview_shows_it() -> None:
     before = evaluate(parse_program(text), 128, 128)
     after = evaluate(parse_program(result.program), 128, 128)
     assert lit_changes(before, after)[0] >= 0.05
+
+
+CHECKER = """View(0, 0, 2, 2, tileable=True, unit_m=0.5)
+Define(light_r, 170)
+Define(light_g, 168)
+Define(light_b, 160)
+Define(dark_r, 50)
+Define(dark_g, 52)
+Define(dark_b, 58)
+Define(gx, (X() + 0.37))
+Define(gy, (Y() + 0.37))
+Define(checker, Mod((Floor(gx) + Floor(gy)), 2))
+Define(fuzz, fBm(octaves=3, base_freq=180, to_01=True, seed=3))
+Material(
+  Layer(1)
+    .basecolor((light_r * (0.9 + (fuzz * 0.1))), (light_g * (0.9 + (fuzz * 0.1))), light_b)
+    .roughness(0.9),
+  Layer(checker)
+    .basecolor(dark_r, dark_g, dark_b)
+    .roughness(0.9)
+)
+"""
+
+
+def test_squares_cut_by_the_window_edge_are_measured_whole() -> None:
+    """The squares are 1 unit = 0.5 m; the window's edge cuts every one of them (offset 0.37),
+    so they are measured over two repeats: 25 cm squares are half the size, twice as many."""
+    plan = edit_offline(CHECKER, "make the squares smaller, about 25 cm each").report.plan
+    assert plan["view"]["unit_m"] == pytest.approx(0.25)
+    assert plan["view"]["window"] == [0, 0, 4, 4]
+
+
+def test_tileable_is_refused_when_the_flag_alone_leaves_a_seam() -> None:
+    text = CHECKER.replace("View(0, 0, 2, 2, tileable=True, unit_m=0.5)", "View(0, 0, 2.5, 2.5)")
+    text = text.replace("Define(gx, (X() + 0.37))", "Define(gx, ((X() * 1.1) + 0.37))")
+    with pytest.raises(EditRefused, match="seam"):
+        edit_offline(text, "make it seamless")
+
+
+def test_dirt_in_the_joints_without_a_joint_width_uses_the_joint_coloured_base() -> None:
+    text = TILED.replace("mortar=0.05", "mortar=0.05").replace(
+        'Define(edge, Bricks(brick_width=1, brick_height=1, offset=0, mortar=0.05, output="edge"))',
+        "Define(edge, Min(Fract(X()), Fract(Y())))",
+    )
+    result = edit_offline(text, "add some grime in the grout")
+    assert "in the joints" in result.report.plan["note"]
+
+
+def test_something_put_in_joints_a_program_lacks_is_refused_not_spilled() -> None:
+    with pytest.raises(EditRefused, match="no joints"):
+        edit_offline(BLISTERED, "add a little moss growing in the gaps")
+
+
+def test_two_colour_clauses_change_two_parts() -> None:
+    result = edit_offline(TILED, "change the tiles to royal blue and make the grout white")
+    after = _values(result.program)
+    r, g, b = after["define:tile"]  # type: ignore[misc]
+    assert b > r and b > g
+    assert min(after["define:grout"]) > 220  # type: ignore[arg-type]

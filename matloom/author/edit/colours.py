@@ -169,6 +169,9 @@ def _explicit(c: Context) -> list[tuple[int, int, RGB, bool]]:
     return out
 
 
+#: Words that apply a tone comparative to every colour of the material.
+_OVERALL = frozenset({"overall", "everything", "entire", "whole", "all"})
+
 #: Words that make a named colour a direction, not a value, beside a comparative ("warmer,
 #: more like honey"), and the share of the way the colour moves then.
 _LIKE = frozenset({"like", "towards", "toward"})
@@ -335,6 +338,8 @@ def _targets(
     targets = matching(colours, nouns, c.program, c.ew)
     if targets:
         return targets
+    if comparative_all and _OVERALL & set(c.words):  # "slightly darker overall": every colour
+        return list(colours)
     derived = _derived(c, nouns)
     if derived:
         return derived

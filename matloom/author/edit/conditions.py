@@ -27,7 +27,7 @@ from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
-from matloom.author.edit.targets import define_closure, main_colour, mask_names
+from matloom.author.edit.targets import define_closure, main_colour, mask_names, param_layers
 from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
@@ -197,6 +197,8 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         scale = c.ew.f("spot_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
+    if within is None and _in_joints(c):  # "moss in the gaps": never spilled over the stones
+        raise c.refuse(f"no joints found in this program to put the {word} in")
     if within is not None and not amounts:  # the joints asked for are the joints it fills
         cover = c.ew.f("joint_cover")
     try:
@@ -231,7 +233,30 @@ def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
         if mask_coverage(c.program, mask) > 0.5:
             mask = A.BinOp("-", A.Num(1), mask)
         return mask, f" in the joints (of {name})"
+    # no joint width: the joints are what a joint-coloured base shows between the layers above
+    # ("Define(grout_r, ...)" paints the first layer; the tiles' layer covers the rest)
+    for p in c.params:
+        if p.kind != "colour" or not split_words(p.address.removeprefix("define:")) & c.ew["joint"]:
+            continue
+        if 0 in param_layers(p, c.program) and len(c.program.layers) > 1:
+            cover = c.program.layers[1].alpha
+            if cover is not None and mask_coverage(c.program, cover) > 0.5:
+                return A.BinOp(
+                    "-", A.Num(1), cover
+                ), " in the joints (where the layer above leaves them)"
     return None, ""
+
+
+#: Words before a joint noun that place something in the joints ("moss in the gaps").
+_PLACE = frozenset({"in", "into", "between", "along", "inside", "within"})
+
+
+def _in_joints(c: Context) -> bool:
+    ws = c.words
+    return any(
+        t in c.ew["joint"] and any(w in _PLACE for w in ws[max(0, i - 3) : i])
+        for i, t in enumerate(ws)
+    )
 
 
 def _floored(p: Param, v: float) -> float:

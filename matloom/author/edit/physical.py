@@ -25,7 +25,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from matloom.author.edit.lexicon import flipped, split_words, stem
-from matloom.author.edit.measure import feature_size, mask_map
+from matloom.author.edit.measure import SIZE, feature_size, mask_map
 from matloom.author.edit.plan import Context, Plan
 from matloom.author.edit.targets import layer_words, overlaps, own_words, param_layers, wanted
 from matloom.lang import ast as A
@@ -56,6 +56,9 @@ _LONG = frozenset({"long", "length", "longer", "shorter", "tall", "height"})
 #: Words before a size that make it the current one ("not these 1 m panels").
 _CURRENT = frozenset({"not", "these", "those", "from", "currently", "now", "instead", "existing"})
 #: Shape words that name a feature even when the program names nothing like them.
+#: A shape measured on the whole map smaller than the View's side / this (3 pixels of a
+#: 192-pixel preview) is its texture's grain, not the shape the request names.
+_FINEST = 64.0
 _SHAPES = frozenset(
     {"square", "check", "cell", "panel", "grid", "row", "line", "stripe", "band", "dot", "spot",
      "piece", "strip", "circle", "round", "hexagon", "diamond", "plank", "module"}
@@ -178,6 +181,15 @@ def _mask_of(c: Context, noun: str) -> A.Node | None:
     return None
 
 
+def _repeated(program: A.Program) -> A.Program:
+    """``program`` over a window twice as wide and tall when it tiles (else itself)."""
+    v = program.view
+    if v is None or not v.tileable:
+        return program
+    view = replace(v, x2=v.x1 + 2 * (v.x2 - v.x1), y2=v.y1 + 2 * (v.y2 - v.y1))
+    return replace(program, view=view)
+
+
 def _constant(node: A.Node) -> bool:
     return not any(isinstance(n, A.Call) or isinstance(n, A.Ref) for n in A.walk(node))
 
@@ -230,12 +242,16 @@ def _feature(c: Context, metres: float, at: int, current: float | None) -> Plan 
     sx, sy = abs(x2 - x1) or 1.0, abs(y2 - y1) or 1.0
     size: float | None = None
     noun = ""
+    # a tileable program is measured over two repeats each way: a feature the window's edge
+    # cuts (a checkerboard's squares, offset from the corner) shows whole there
+    whole = _repeated(c.program)
+    k = 2.0 if whole is not c.program else 1.0
     for noun in _nouns(c, at):
         mask = _mask_of(c, noun)
         if mask is None:
             continue
         rows = bool({stem(n) for n in c.nouns} & _ROWS)
-        size = feature_size(mask_map(c.program, mask), sx, sy, how, rows)
+        size = feature_size(mask_map(whole, mask, int(SIZE * k)), sx * k, sy * k, how, rows)
         if size:
             break
     else:
@@ -245,6 +261,9 @@ def _feature(c: Context, metres: float, at: int, current: float | None) -> Plan 
         noun = shapes[0]
         rows = stem(noun) in _ROWS
         size = feature_size(mask_map(c.program, None), sx, sy, how, rows)
+        if size and size < min(sx, sy) / _FINEST:
+            # the whole map's finest pattern (a pile's tufts) is no named shape
+            raise c.refuse(f"the {noun} cannot be measured: no part of the program draws them")
     if not size or not math.isfinite(size):
         return None
     unit_m = float(f"{metres / size:.6g}")

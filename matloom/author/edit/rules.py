@@ -36,7 +36,7 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
-from matloom.author.edit.apply import apply_edit, parse_program
+from matloom.author.edit.apply import apply_edit, parse_program, set_view
 from matloom.author.edit.colours import colour_rule
 from matloom.author.edit.conditions import amount_rule
 from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
@@ -87,6 +87,13 @@ def _tileable(c: Context) -> Plan | None:
         return None
     if c.program.view is not None and c.program.view.tileable:
         raise c.refuse("the program is tileable already")
+    seams = tileable_warnings(set_view(c.program, {"tileable": True}))
+    if seams:  # the flag alone would leave a visible edge: say so, do not pretend
+        raise c.refuse(
+            f"tileable=True alone would leave a seam ({seams[0].message.removeprefix('tileable: ')}"
+            f"{f' and {len(seams) - 1} more' if len(seams) > 1 else ''}); the program's "
+            "patterns must repeat with the View (use --model to rewrite them)"
+        )
     return Plan(
         "tileable", "View(..., tileable=True)", view={"tileable": True}, intended=("alpha",)
     )
@@ -344,6 +351,11 @@ def normalise(request: str) -> str:
     return asked
 
 
+#: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
+#: ("change the background to blue and make the stripes silver").
+_AND_VERB = r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color)\b)"
+_CLAUSE_RE = re.compile(rf"[,;]|{_AND_VERB}")
+
 #: Rules whose plans two clauses of one request may join ("olive drab, satin finish").
 _JOINABLE = frozenset({"colour", "roughness", "channel"})
 
@@ -352,7 +364,7 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
     """``plan`` and the plan of another clause of the request (split at commas and
     semicolons) by another joinable rule that changes other parameters: "paint the panels
     olive drab, satin finish" is a colour and a roughness."""
-    clauses = [s for s in re.split(r"[,;]", asked) if s.strip()]
+    clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
     if plan.rule not in _JOINABLE or len(clauses) < 2 or plan.view or plan.add:
         return plan
     for clause in clauses:
@@ -364,7 +376,7 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
         if (
             other is None
             or other.rule not in _JOINABLE
-            or other.rule == plan.rule
+            or (other.rule == plan.rule and plan.rule != "colour")
             or other.view
             or other.add
             or set(other.assignments) & set(plan.assignments)
@@ -408,9 +420,9 @@ def plan_edit(
     steps times ``strength``. Raises :class:`EditRefused` when no rule maps the request."""
     # "charcoal grout but keep the tiles white": what is to be kept is not what is to change
     asked = normalise(request)
-    c = Context(
-        request, tokens(asked), list(params), program, words(), strength, ew or edit_words()
-    )
+    # "make the tiles blue and make the grout white": the first part leads, the next joins
+    lead = re.split(_AND_VERB, asked)[0]
+    c = Context(request, tokens(lead), list(params), program, words(), strength, ew or edit_words())
     for rule in RULES:
         plan = rule(c)
         if plan is not None:
