@@ -31,6 +31,12 @@ from matloom.vocab import FUNCTIONS
 
 OVERLAY_DIR = Path(__file__).resolve().parent / "overlays"
 _FREQ_PARAMS = ("base_freq", "base_freq_x", "base_freq_y")
+#: Lengths an overlay's instanced motifs are drawn with (``Tile`` cells, shape radii, centres,
+#: feathers and strokes): scaled like the noise periods, so scratches drawn as shapes keep
+#: their size relative to the host's features, and their count per View (a tileable repeat).
+_LENGTH_PARAMS = frozenset(
+    {"width", "height", "rx", "ry", "cx", "cy", "feather", "radius", "x", "y", "w", "h"}
+)
 
 
 @dataclass(frozen=True)
@@ -148,10 +154,30 @@ def is_noise_call(node: A.Node) -> TypeGuard[A.Call]:
     return any(p.name == "base_freq" for p in FUNCTIONS[node.func].params)
 
 
+def _drawn(node: A.Node) -> TypeGuard[A.Call]:
+    """Is ``node`` a ``Tile`` or a shape (lengths, not frequencies, size it)?"""
+    return (
+        isinstance(node, A.Call)
+        and node.func in FUNCTIONS
+        and (node.func == "Tile" or FUNCTIONS[node.func].family == "shape")
+    )
+
+
 def scale_frequencies(node: A.Node, factor: float) -> A.Node:
-    """Multiply the frequency parameters of every noise call in ``node`` by ``factor``."""
+    """Multiply the frequency parameters of every noise call in ``node`` by ``factor`` (and
+    divide the number lengths of every ``Tile`` and shape by it)."""
 
     def fn(n: A.Node) -> A.Node:
+        if _drawn(n):
+            return replace(
+                n,
+                args=tuple(
+                    replace(a, value=_num(a.value.value / factor))
+                    if a.param in _LENGTH_PARAMS and isinstance(a.value, A.Num)
+                    else a
+                    for a in n.args
+                ),
+            )
         if not is_noise_call(n):
             return n
         args = []
