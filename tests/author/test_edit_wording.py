@@ -288,3 +288,28 @@ def test_two_colour_clauses_change_two_parts() -> None:
     r, g, b = after["define:tile"]  # type: ignore[misc]
     assert b > r and b > g
     assert min(after["define:grout"]) > 220  # type: ignore[arg-type]
+
+
+def test_a_finish_and_a_colour_in_one_clause_both_apply() -> None:
+    result = edit_offline(METAL, "make it polished brass")
+    after = _values(result.program)
+    r, g, b = after["define:metal"]  # type: ignore[misc]
+    assert r > b + 60  # brass, not steel grey
+    assert result.report.plan["rule"] == "roughness+colour"
+
+
+def test_added_stains_described_by_a_colour_are_stains() -> None:
+    result = edit_offline(TILED, "add some brownish baked-on grease stains")
+    assert result.report.plan["rule"] == "overlay"
+    assert _values(result.program)["define:tile"] == (180, 90, 60)
+
+
+def test_a_clause_after_a_colon_joins() -> None:
+    result = edit_offline(TILED, "wet look: darker and a bit shiny")
+    assert {"roughness", "basecolor"} <= set(result.report.plan["intended"])
+
+
+def test_more_before_a_named_colour_moves_towards_it() -> None:
+    towards = _values(edit_offline(TILED, "lighter, more honey-yellow tiles").program)
+    plain = _values(edit_offline(TILED, "lighter honey-yellow tiles").program)
+    assert towards["define:tile"] != plain["define:tile"]

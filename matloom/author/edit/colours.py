@@ -178,6 +178,12 @@ _LIKE = frozenset({"like", "towards", "toward"})
 _LIKE_SHARE = 0.6
 
 
+def _more_before(c: Context, rgb: RGB) -> bool:
+    """Whether "more" stands right before the named colour ("lighter, more honey-yellow")."""
+    found = _named_at(c)
+    return bool(found) and found[0][0] > 0 and c.words[found[0][0] - 1] == "more"
+
+
 #: Material words that are also colour names: a noun before a colour, not the colour.
 _NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
 #: Words after which a colour is the new one ("swap the emerald glaze for cobalt"), and before
@@ -458,7 +464,7 @@ def colour_rule(c: Context) -> Plan | None:
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
-            if step is not None and _LIKE & set(c.words):
+            if step is not None and (_LIKE & set(c.words) or _more_before(c, rgb)):
                 # "warmer, more like a honey sandstone": most of the way to the named colour
                 # from the current one (a name like "honey" is far more saturated than a stone)
                 lab = to_lab(_mix(current, named, _LIKE_SHARE))

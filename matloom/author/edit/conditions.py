@@ -357,7 +357,7 @@ def _direction(c: Context, word: str) -> bool | None:
     ws = c.words
     i = ws.index(word)
     near = ws[max(0, i - 3) : i]
-    if "add" in near:  # "add some oil stains": the colour describes what is added
+    if "add" in ws[:i]:  # "add some brownish grease stains": the colour describes what is added
         return True
     for t in reversed(near):
         if _is_property(c, t):

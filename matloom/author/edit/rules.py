@@ -354,7 +354,7 @@ def normalise(request: str) -> str:
 #: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
 #: ("change the background to blue and make the stripes silver").
 _AND_VERB = r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color)\b)"
-_CLAUSE_RE = re.compile(rf"[,;]|{_AND_VERB}")
+_CLAUSE_RE = re.compile(rf"[,;:]|{_AND_VERB}")
 
 #: Rules whose plans two clauses of one request may join ("olive drab, satin finish").
 _JOINABLE = frozenset({"colour", "roughness", "channel"})
@@ -365,12 +365,21 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
     semicolons) by another joinable rule that changes other parameters: "paint the panels
     olive drab, satin finish" is a colour and a roughness."""
     clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
-    if plan.rule not in _JOINABLE or len(clauses) < 2 or plan.view or plan.add:
+    if plan.rule not in _JOINABLE or plan.view or plan.add:
         return plan
+    single = len(clauses) < 2
+    if single:
+        # one clause, two properties: "polished brass" is a finish and a colour
+        clauses = [asked] if plan.rule in ("roughness", "channel") else []
     for clause in clauses:
         sub = replace(c, words=tokens(clause))
         try:
-            other = next((p for rule in RULES if (p := rule(sub)) is not None), None)
+            if single:
+                other = colour_rule(sub)
+            else:
+                other = next((p for rule in RULES if (p := rule(sub)) is not None), None)
+                if other is not None and other.rule == plan.rule != "colour":
+                    other = colour_rule(sub)  # "darker and a bit shiny": its colour part
         except EditRefused:
             continue
         if (
