@@ -279,3 +279,25 @@ def test_polish_objective_without_a_scorer(
         assert 2 <= polish.evaluations <= 3 and calls == polish.evaluations + guard
     else:
         assert polish.evaluations > 3 and calls == guard  # renders, not critic calls
+
+
+def test_offline_a_fit_to_a_photo_is_recorded_but_not_exported(tmp_path: Path) -> None:
+    """With no critic to check it (the offline library author), a fit to a photo's statistics
+    is not exported: judged blind, such fits looked less like the photo than the unfitted
+    programs. The record keeps the fit and says why."""
+    photo = tmp_path / "photo.png"
+    rgb = np.zeros((64, 64, 3), np.uint8)
+    rgb[..., 0], rgb[..., 1], rgb[..., 2] = 40, 70, 140  # a blue the brick entry is not
+    Image.fromarray(rgb).save(photo)
+    out = tmp_path / "run"
+    res = CliRunner().invoke(
+        cli,
+        ["generate", "brick wall", "-o", str(out), "--reference", str(photo), "--polish", "cmaes",
+         "--polish-evaluations", "12"],
+    )  # fmt: skip
+    assert res.exit_code == 0, res.output
+    record = json.loads((out / "record.json").read_text())
+    polish = record["polish"]
+    assert polish["objective"] == "reference" and polish["program"]
+    assert polish["kept"] is False and "no critic" in polish["reason"]
+    assert record["final"]["program"] != polish["program"]

@@ -19,7 +19,8 @@ previews show are fitted (:func:`visible_maps`): the others would drift at rando
 fitted program afresh (two stateless calls, the same inputs as in the rounds), and the fit is
 kept only when the critic does not score it lower: a proxy objective (a scorer, statistics)
 can be fitted into looking worse. A run without a critic (the offline library author) keeps
-an improving fit unchecked, and the record says so. ``RunRecord.polish`` holds what was
+an improving scorer fit unchecked, and the record says so; a fit to a reference photo it
+records but does not export (judged blind, such fits looked less like the photo). ``RunRecord.polish`` holds what was
 fitted, the values before and after, the objective and critic scores, and the decision; the
 export then takes the fitted program when it was kept (:func:`polished_final`).
 """
@@ -270,6 +271,17 @@ def _guard(run: Run, renderer: Renderer, entry: PolishRecord, base: FinalRecord)
     """Keep the fit only when the critic does not score it lower than the unfitted program."""
     assert entry.program is not None
     if run.critic is None or not run.config.effective_signals():
+        if entry.objective == "reference":
+            # measured: fitted to a photo's global statistics with nothing to check it, the
+            # programs looked less like the photo to blind judges (6 photos, 50 -> 43 of 100:
+            # the statistics cannot tell which part takes which colour, nor a scale from a
+            # texture); the fit is recorded, the unfitted program is exported
+            entry.reason = (
+                "the photo statistics improved, but no critic can check that the fit looks "
+                "more like the photo (unchecked fits looked less like it), so the unfitted "
+                "program is kept; the fitted one is in the record"
+            )
+            return
         entry.kept = True
         entry.reason = "the objective improved; no critic to check the fit (kept unchecked)"
         return
