@@ -85,6 +85,24 @@ def test_an_entry_deeper_in_the_ranking_that_covers_the_named_material_wins() ->
     assert r.rank > 1 and any("the better ones miss named material" in n for n in r.notes)
 
 
+def test_an_entry_named_by_the_material_word_wins_over_one_that_only_shares_words() -> None:
+    """ "Worn flagstones, dirt packed in the cracks": the soil entries share "dirt", "packed"
+    and "cracks" and rank first; the request's material word is the flagstone entry's name."""
+    r = author(
+        "medieval tavern floor - worn flagstones, irregular shapes, dirt packed in the cracks"
+    )
+    assert r.entry == "flagstone", r.explanation
+    assert "material word is its name" in r.explanation
+
+
+def test_a_best_entry_the_request_names_too_is_kept() -> None:
+    # "vinyl" is an entry's name, but the request names a leather and a crocodile pattern too:
+    # the best match stands (the name rule does not move it to the vinyl entry)
+    r = author("a black vinyl made to look like leather with a crocodile embossed pattern")
+    assert r.entry != "vinyl", r.explanation
+    assert "material word is its name" not in r.explanation
+
+
 @pytest.mark.parametrize(
     ("prompt", "base", "motif", "layout"),
     [

@@ -11,8 +11,10 @@ words: the retrieval index's terms) hold the part's words, stemmed:
 * each **motif** and **layout**: one of the words of its key, or the words said;
 * an **unknown motif** ("giraffe figures"): the word itself.
 
-:func:`decide` walks the best candidates: the first that covers the named material and the
-class is taken (a lower one is promoted past better-scored entries that only share words;
+:func:`decide` first takes a candidate whose name is the request's material word when the best
+candidate's words lack it and the request does not name the best one too ("worn flagstones,
+dirt packed in the cracks": ``flagstone``, not ``soil``). Then it walks the best candidates:
+the first that covers the named material and the class is taken (a lower one is promoted past better-scored entries that only share words;
 past the best ``TOP``, one scoring at least ``DEEP`` of the best); when none does, the request
 is composed from its parts (when the composer can build its base). A
 taken entry missing a requested motif or layout gives way to a candidate that shows it too, or
@@ -180,6 +182,12 @@ def decide(cands: Sequence[Candidate], lib: Library, parts: Parts) -> Verdict:
     c = _Cover(parts, lib)
     top = [lib.entry(x.name) for x in cands[:TOP]]
     covs = tuple(c.coverage(e) for e in top)
+    named = _entry_named(c, cands, covs)
+    if named is not None:
+        k = named
+        cov = covs[k] if k < len(covs) else c.coverage(lib.entry(cands[k].name))
+        why = f"took candidate {k + 1}: the request's material word is its name"
+        return Verdict(k, coverage=covs, taken=cov, notes=(why,))
     if cands and cands[0].score >= c.pw.strong_score:
         return _strong(c, cands, covs, top, lib)
     full = [k for k, cov in enumerate(covs) if not cov.essential]
@@ -264,6 +272,32 @@ def _strong(
     cov = covs[k] if k < len(covs) else c.coverage(lib.entry(cands[k].name))
     why = f"took candidate {k + 1}: the better ones miss {', '.join(covs[0].essential)}"
     return Verdict(k, coverage=covs, taken=cov, notes=(why,))
+
+
+def _entry_named(c: _Cover, cands: Sequence[Candidate], covs: tuple[Coverage, ...]) -> int | None:
+    """The candidate whose name is the request's material word ("worn flagstones": the
+    ``flagstone`` entry) when the best candidate's words lack that word (``soil``, on "dirt
+    packed in the cracks"), it is among the candidates scoring at least ``DEEP`` of the best,
+    and the request names no other material."""
+    said = c.parts.class_words
+    if not said or c.parts.named or not cands:
+        return None
+    stems = c.stems([said])
+    if stems <= c.idx.terms.get(cands[0].name, frozenset()):
+        return None  # the best candidate says the word itself
+    if c.stems([cands[0].name]) & c.stems([c.parts.prompt]):
+        return None  # the request names the best candidate too ("vinyl ... crocodile")
+    name = "-".join(sorted(stems))
+    floor = DEEP * cands[0].score
+    for k, cand in enumerate(cands[1:], start=1):
+        if cand.score < floor:
+            break
+        if "-".join(sorted(c.stems([cand.name]))) == name:
+            # not at the cost of a pattern the best shows ("vinyl ... with a crocodile
+            # embossed pattern", "hazard stripes on worn concrete")
+            mine = covs[k] if k < len(covs) else c.coverage(c.lib.entry(cand.name))
+            return k if len(mine.pattern) <= len(covs[0].pattern) else None
+    return None
 
 
 def _misses_named(cov: Coverage) -> bool:
