@@ -116,9 +116,12 @@ def _program(ref: str) -> str:
     return (ROOT / ref).read_text(encoding="utf-8")
 
 
-def _serve(folder: Path, file: Path) -> tuple[subprocess.Popen, str]:
+def serve(folder: Path, file: Path | None = None) -> tuple[subprocess.Popen, str]:
+    """Start ``matloom studio`` in ``folder`` (on ``file``, else the demo material, as
+    ``make studio`` does) without opening a browser; the process and the URL it serves."""
+    args = [str(file)] if file is not None else []
     proc = subprocess.Popen(
-        [sys.executable, "-m", "matloom", "studio", str(file), "--no-browser"],
+        [sys.executable, "-m", "matloom", "studio", *args, "--no-browser"],
         stderr=subprocess.PIPE,
         stdout=subprocess.DEVNULL,
         text=True,
@@ -227,7 +230,7 @@ def main() -> None:
                 folder = Path(tmp)
                 file = folder / f"{name}.mat"
                 file.write_text(_program(ref), encoding="utf-8")
-                proc, url = _serve(folder, file)
+                proc, url = serve(folder, file)
                 try:
                     for k in range(rounds):
                         order = variants if k % 2 == 0 else variants[::-1]

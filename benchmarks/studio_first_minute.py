@@ -16,7 +16,6 @@ No assertion on the times (see docs/studio.md for measured figures).
 from __future__ import annotations
 
 import json
-import re
 import shutil
 import subprocess
 import sys
@@ -25,33 +24,16 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-ARGS = ["--headless=new", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox"]
+sys.path.insert(0, str(ROOT))
+
+from benchmarks.studio import ARGS, serve  # noqa: E402
+
 READY = (
     "(after) => { const s = window.matloomStudio; const m = s && s.store.maps;"
     " return m && m.header.pass === 'full' && m.header.seq > after"
     " && s.lastShownAt.seq >= m.header.seq"
     " && (!s.lastRefinedAt || s.lastRefinedAt.seq >= m.header.seq); }"
 )
-
-
-def _start(folder: Path) -> tuple[subprocess.Popen, str]:
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "matloom", "studio", "--no-browser"],
-        stderr=subprocess.PIPE,
-        stdout=subprocess.DEVNULL,
-        text=True,
-        cwd=folder,
-    )
-    assert proc.stderr is not None
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline:
-        line = proc.stderr.readline()
-        if m := re.search(r"MatLoom studio at (\S+)", line):
-            return proc, m.group(1)
-        if not line:
-            break
-    proc.kill()
-    raise SystemExit("matloom studio did not start")
 
 
 def _validate(gltf: Path) -> str:
@@ -80,7 +62,7 @@ def main() -> None:
         folder = Path(tmp)
         t0 = time.monotonic()
         marks: list[tuple[str, float]] = []
-        proc, url = _start(folder)
+        proc, url = serve(folder)
         marks.append(("studio serving", time.monotonic() - t0))
         try:
             with sync_playwright() as pw:
