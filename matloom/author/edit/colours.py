@@ -178,7 +178,7 @@ _LIKE = frozenset({"like", "towards", "toward"})
 _LIKE_SHARE = 0.6
 
 
-def _more_before(c: Context, rgb: RGB) -> bool:
+def _more_before(c: Context) -> bool:
     """Whether "more" stands right before the named colour ("lighter, more honey-yellow")."""
     found = _named_at(c)
     return bool(found) and found[0][0] > 0 and c.words[found[0][0] - 1] == "more"
@@ -457,6 +457,8 @@ def colour_rule(c: Context) -> Plan | None:
             c, colours, nouns, comparative_all=rgb is None and step is not None
         )
     primary = targets[0]
+    # "warmer, more like honey", "lighter, more honey-yellow": the named colour is a direction
+    towards = rgb is not None and step is not None and bool(_LIKE & set(c.words) or _more_before(c))
     base_lab = to_lab(_value(primary))
     new: dict[Param, Value] = {}
     for p in targets:
@@ -464,7 +466,7 @@ def colour_rule(c: Context) -> Plan | None:
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
-            if step is not None and (_LIKE & set(c.words) or _more_before(c, rgb)):
+            if towards:
                 # "warmer, more like a honey sandstone": most of the way to the named colour
                 # from the current one (a name like "honey" is far more saturated than a stone)
                 lab = to_lab(_mix(current, named, _LIKE_SHARE))

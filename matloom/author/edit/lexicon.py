@@ -69,7 +69,9 @@ def edit_words() -> EditWords:
         words={k: frozenset(v) for k, v in w.items() if k != "joint_params"},
         joint_params=tuple(w["joint_params"]),
         nouns={k: frozenset(v) for k, v in raw["nouns"].items()},
-        conditions={k: tuple(v) for k, v in raw["conditions"].items()},
+        # an age word is the condition wear ("older": the worn overlay)
+        conditions={k: tuple(v) for k, v in raw["conditions"].items()}
+        | {k: ("wear", "worn") for k in w["age"] if k not in raw["conditions"]},
         finish={k: (int(v[0]), str(v[1])) for k, v in finish.items()},
         tactile=tactile,
         channels={k: frozenset(v) for k, v in raw["channels"].items()},

@@ -43,7 +43,7 @@ class _Candidate:
 _EDGES = (("below_at", "above_at"), ("lo", "hi"), ("edge0", "edge1"))
 
 
-_CUTOFF_RE = re.compile(r"define:(\w+)\..*Threshold(?:#\d+)?\.(below|above)_at$")
+_CUTOFF_RE = re.compile(r"define:(\w+)\..*Threshold(?:#(\d+))?\.(below|above)_at$")
 
 
 def _clamp_cutoff(program: A.Program, address: str) -> bool:
@@ -51,10 +51,16 @@ def _clamp_cutoff(program: A.Program, address: str) -> bool:
     cutoff is also its output value (``Threshold(x, below_at=0, above_at=1)`` is ``x`` clamped
     to 0..1), so moving it changes every value, not where the mask falls."""
     m = _CUTOFF_RE.match(address)
-    if m is None:
+    d = program.define(m.group(1)) if m is not None else None
+    if m is None or d is None:
         return False
-    d = next((d for d in program.defines if d.name == m.group(1)), None)
-    return d is not None and f"{m.group(2)}_to=" not in format_expr(d.expr)
+    # the n-th Threshold of the Define in source order, as the parameter list numbers them
+    calls = sorted(
+        (n for n in A.walk(d.expr) if isinstance(n, A.Call) and n.func == "Threshold"),
+        key=lambda n: n.span.start,
+    )
+    k = int(m.group(2) or 1) - 1
+    return k < len(calls) and f"{m.group(3)}_to" not in calls[k].written()
 
 
 def mask_coverage(program: A.Program, mask: A.Node) -> float:
