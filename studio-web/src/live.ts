@@ -17,12 +17,10 @@ export const DRAG_PREVIEW_SIZE = 192;
 const DRAG_PASS_MS = 32;
 const DRAG_MIN_SIZE = 128;
 
-/** A drag's first-pass size: `DRAG_PREVIEW_SIZE`, or smaller (in steps of 32 px, at least
- * `DRAG_MIN_SIZE`) for a program whose full pass is slow. */
+/** A drag's first-pass size: `DRAG_PREVIEW_SIZE`, or smaller (at least `DRAG_MIN_SIZE`) for a
+ * program whose full pass is slow. */
 export function dragSize(lastFullMs: number): number {
-  if (!Number.isFinite(lastFullMs) || lastFullMs <= 0) return DRAG_PREVIEW_SIZE;
-  const fit = FULL_SIZE * Math.sqrt(DRAG_PASS_MS / lastFullMs);
-  return Math.max(DRAG_MIN_SIZE, Math.min(DRAG_PREVIEW_SIZE, Math.floor(fit / 32) * 32));
+  return fittedSize(lastFullMs, DRAG_PASS_MS, DRAG_MIN_SIZE, DRAG_PREVIEW_SIZE);
 }
 
 /** Debounce of editor typing; panel drags and layer toggles go at once. */
@@ -37,12 +35,17 @@ const FIRST_PASS_MS = 120;
 /** The longest a drag's full pass waits for its first pass's frame to be presented. */
 const PRESENT_WAIT_MS = 250;
 
-/** First-pass size: 256 px, or smaller for a program whose full pass is slow (its time scales
- * with the texels), in steps of 32 px and at least 64 px. */
+/** First-pass size: 256 px, or smaller for a program whose full pass is slow, at least 64 px. */
 export function previewSize(lastFullMs: number): number {
-  if (!Number.isFinite(lastFullMs) || lastFullMs <= 0) return PREVIEW_SIZE;
-  const fit = FULL_SIZE * Math.sqrt(FIRST_PASS_MS / lastFullMs);
-  return Math.max(64, Math.min(PREVIEW_SIZE, Math.floor(fit / 32) * 32));
+  return fittedSize(lastFullMs, FIRST_PASS_MS, 64, PREVIEW_SIZE);
+}
+
+/** The size whose pass should take about `budgetMs`, scaled from the last full pass's time
+ * (which grows with the texels), in steps of 32 px within [lo, hi]; `hi` before any full pass. */
+function fittedSize(lastFullMs: number, budgetMs: number, lo: number, hi: number): number {
+  if (!Number.isFinite(lastFullMs) || lastFullMs <= 0) return hi;
+  const fit = FULL_SIZE * Math.sqrt(budgetMs / lastFullMs);
+  return Math.max(lo, Math.min(hi, Math.floor(fit / 32) * 32));
 }
 
 interface Job {
