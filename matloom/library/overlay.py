@@ -163,7 +163,7 @@ def _drawn(node: A.Node) -> TypeGuard[A.Call]:
     )
 
 
-def scale_frequencies(node: A.Node, factor: float) -> A.Node:
+def scale_features(node: A.Node, factor: float) -> A.Node:
     """Multiply the frequency parameters of every noise call in ``node`` by ``factor`` (and
     divide the number lengths of every ``Tile`` and shape by it)."""
 
@@ -257,7 +257,7 @@ def compose(
         replace(
             d,
             name=names.get(d.name, d.name),
-            expr=scale_frequencies(rename_refs(d.expr, names), factor / scale),
+            expr=scale_features(rename_refs(d.expr, names), factor / scale),
         )
         for d in ov.defines
         if d.name not in drop
