@@ -126,6 +126,8 @@ def run(args: argparse.Namespace) -> None:
             outside = [c.fraction for n, c in loc.maps.items() if n not in allowed]
             row.update(
                 status="applied" if not errors else "invalid",
+                rule=result.report.plan.get("rule", result.report.mode),
+                note=result.report.plan.get("note", ""),
                 changed=[c.to_json()["address"] for c in result.report.changes],
                 intended=list(loc.intended),
                 maps_changed=list(loc.changed),

@@ -176,6 +176,12 @@ _OVERALL = frozenset({"overall", "everything", "entire", "whole", "all"})
 #: more like honey"), and the share of the way the colour moves then.
 _LIKE = frozenset({"like", "towards", "toward"})
 _LIKE_SHARE = 0.6
+#: Words that ask for a tint of a colour ("a slight blue tint"), the share of the way it moves
+#: (times the intensity words: "slight" halves it) and the most it moves.
+_TINT = frozenset({"tint", "tinted", "tinge", "tinged", "hint", "cast", "wash"})
+_TINT_SHARE = 0.6
+_TINT_MAX = 0.85
+_TINT_STRONGER = 1.4
 
 
 def _more_before(c: Context) -> bool:
@@ -189,6 +195,17 @@ _NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
 #: Words after which a colour is the new one ("swap the emerald glaze for cobalt"), and before
 #: which it is the old one ("instead of charcoal").
 _TO_WORDS = frozenset({"for", "with", "to", "into"})
+
+
+def _tinted(current: RGB, named: RGB, share: float, least: float) -> Lab:
+    """``current`` with its hue and chroma ``share`` of the way to ``named``'s, its lightness
+    kept; a share too small to see (under ``least`` Delta E) grows up to ``_TINT_MAX``."""
+    cur, nl = to_lab(current), to_lab(named)
+    while True:
+        lab = (cur[0], cur[1] + (nl[1] - cur[1]) * share, cur[2] + (nl[2] - cur[2]) * share)
+        if delta_e(current, from_lab(lab)) >= least or share >= _TINT_MAX:
+            return lab
+        share = min(_TINT_MAX, share * 1.5)
 
 
 def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
@@ -238,6 +255,19 @@ def _colour_in(
             used.add(i)
             continue
         found.append((i, n, value, ish))
+    # "bleached coral, the ridges almost white": a material word that is also a colour names
+    # the material beside another colour, not the colour to paint
+    mats = [
+        f
+        for f in found
+        if f[1] == 1
+        and (ws[f[0]] in w.materials or ws[f[0]] in w.materialish)
+        and not _after_instead_of(c, f[0])
+        and not set(ws[f[0] + 1 : f[0] + 2]) & _TO_WORDS
+    ]
+    rest = [f for f in found if f not in mats and not _after_instead_of(c, f[0])]
+    if mats and rest:
+        found = [f for f in found if f not in mats]  # the material word stays a noun
     if found:
         # a colour before "for/with/to/into" or after "instead of" is the one to replace
         old = [
@@ -256,7 +286,12 @@ def _colour_in(
             and _names_part(c, f[0] + f[1])
             and any(g[0] > f[0] and g not in old for g in found)
         ]
-        new = [f for f in found if f not in old] or found
+        new = [f for f in found if f not in old]
+        if not new and any(_after_instead_of(c, f[0]) for f in old):
+            # "clear tape instead of brown": the colour named is the one to replace, and
+            # the new one is no colour the rules know
+            return None, None, None, used | {f[0] for f in old}, None
+        new = new or found
         if old and new is not found:
             source = old[0][2]
             for f in old:
@@ -424,10 +459,22 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
     return [p for _, _, p in close]
 
 
+#: Size words that make a colour word before a part the part's name ("thinner brass strips").
+_SIZE_WORDS = frozenset({"bigger", "smaller", "larger", "wider", "narrower", "thinner", "thicker"})
+
+
 def colour_rule(c: Context) -> Plan | None:
     rgb, tone, comp, used, source = _colour_in(c)
     if rgb is None and tone is None and comp is None:
         return None
+    if (
+        rgb is not None
+        and tone is None
+        and comp is None
+        and set(c.words) & (_SIZE_WORDS | c.ew["width"])
+        and any(named_in_program(c.program, [c.words[i]], c.ew) for i in used)
+    ):
+        return None  # "thinner brass strips": the size of the part the colour word names
     # three numbers each (a lone component named like a colour, ``tile_r`` beside a Define
     # ``tile``, is a number: not recoloured on its own)
     colours = [p for p in c.params if p.kind == "colour" and isinstance(p.value, tuple)]
@@ -459,6 +506,11 @@ def colour_rule(c: Context) -> Plan | None:
     primary = targets[0]
     # "warmer, more like honey", "lighter, more honey-yellow": the named colour is a direction
     towards = rgb is not None and step is not None and bool(_LIKE & set(c.words) or _more_before(c))
+    # "a slight blue tint": part of the way to the colour (slightly: less), not the colour
+    # ("a deeper blue-green tint": a stronger one)
+    tint = rgb is not None and not towards and bool(_TINT & set(c.words))
+    stronger = _TINT_STRONGER if tint and step is not None else 1.0
+    share = min(_TINT_MAX, _TINT_SHARE * c.intensity * stronger) if tint else _LIKE_SHARE
     base_lab = to_lab(_value(primary))
     new: dict[Param, Value] = {}
     for p in targets:
@@ -466,10 +518,12 @@ def colour_rule(c: Context) -> Plan | None:
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
-            if towards:
+            if tint:  # the hue and chroma move, the lightness stays ("clear ice, a blue tint")
+                lab = _tinted(current, named, share, c.ew.f("tint_min_de"))
+            elif towards:
                 # "warmer, more like a honey sandstone": most of the way to the named colour
                 # from the current one (a name like "honey" is far more saturated than a stone)
-                lab = to_lab(_mix(current, named, _LIKE_SHARE))
+                lab = to_lab(_mix(current, named, share))
             elif step is not None:  # "darker, purple-brown": the comparative on the named colour
                 lab = comparative(named, step, 1.0)
             if p is not primary:
@@ -480,7 +534,7 @@ def colour_rule(c: Context) -> Plan | None:
             lab = to_lab(apply_tone(clamp_rgb(current), tone or "", c.vocabulary.tones[tone or ""]))
         out = from_lab(lab)
         least = c.ew.f("colour_min_de") * min(1.0, c.intensity)  # "slightly": a smaller least
-        if delta_e(current, out) < least and step is not None:
+        if delta_e(current, out) < least and step is not None and not tint:
             lab = comparative(current, step, c.k * 2)
             out = from_lab(lab)
         new[p] = tuple(float(x) for x in out)  # type: ignore[assignment]

@@ -32,6 +32,7 @@ from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
+from matloom.lang.static import static_number
 from matloom.lang.tileable import tileable_warnings
 from matloom.library.overlay import Overlay
 
@@ -100,13 +101,14 @@ def overlay_lines(
     cover: float | None = None,
     scale: float = 1.0,
     within: A.Node | None = None,
+    colour: tuple[int, int, int] | None = None,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
     where a name is taken, its seeds re-derived where one is taken; its host colour bound to
     the program's main colour slot), and the channels a layer on top changes where it covers.
     ``cover``: the overlay's amount (None: its own); ``scale``: its feature size factor;
-    ``within``: a mask its layers are confined to (the joints). ValueError when it would break
-    the program's tiling."""
+    ``within``: a mask its layers are confined to (the joints); ``colour``: the colour of what
+    it adds (None: its own). ValueError when it would break the program's tiling."""
     from matloom.library.overlay import compose
     from matloom.library.passes.compose import reseed
 
@@ -122,7 +124,9 @@ def overlay_lines(
     def fresh(q: A.Program) -> A.Program:
         return reseed(q, f"edit+{overlay.name}", 1) if _seeds(q) & taken else q
 
-    composed = compose(program, overlay, main_colour=main, cover=cover, reseed=fresh, scale=scale)
+    composed = compose(
+        program, overlay, main_colour=main, cover=cover, colour=colour, reseed=fresh, scale=scale
+    )
     if within is not None:  # confined: each new layer covers only where `within` is
         layers = tuple(
             replace(
@@ -158,6 +162,18 @@ def library_overlays() -> dict[str, Overlay]:
 _LOOK = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "seems"})
 
 
+#: Words before a condition's word that make it a place ("weeds out of the cracks", "moss
+#: between the stones"), not what to add.
+_PLACE_BEFORE = frozenset({"in", "into", "between", "along", "inside", "within", "from"})
+
+
+def placed(words: Sequence[str], i: int) -> bool:
+    """Whether the word at ``i`` follows a place word ("out of the cracks", "in the rust"; not
+    "patches of moss")."""
+    near = [w for w in words[max(0, i - 3) : i] if w not in ("the", "a", "its", "their", "some")]
+    return bool(near) and (near[-1] in _PLACE_BEFORE or near[-2:] == ["out", "of"])
+
+
 def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     """A library overlay's one-word trigger in the request ("wet", "snowy", "faded") when the
     request asks for an amount of it (more, less, add, some ...), is that word alone or leads
@@ -168,7 +184,9 @@ def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     head = c.nouns[0] if c.nouns else None  # "make it look wet after rain": wet leads
     # "make the roof look wet": what it should look like
     said = {b for a, b in zip(c.words, c.words[1:], strict=False) if a in _LOOK}
-    for t in c.words:
+    for i, t in enumerate(c.words):
+        if placed(c.words, i):
+            continue
         for ov in _overlays():
             if t in ov.triggers and (alone or t == head or t in said or set(c.words) & direction):
                 return t, tuple(dict.fromkeys((stem(t), ov.name.removesuffix("y")[:5])))
@@ -202,10 +220,12 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     if within is not None and not amounts:  # the joints asked for are the joints it fills
         cover = c.ew.f("joint_cover")
     try:
-        add, channels = overlay_lines(c.program, ov, cover, scale, within)
+        add, channels = overlay_lines(c.program, ov, cover, scale, within, _look(c, word, ov))
     except ValueError as err:
         raise c.refuse(str(err)) from None
     amount = f" (amount {cover:g})" if cover is not None else ""
+    if (look := _look(c, word, ov)) is not None:
+        amount += f" coloured {look}"
     if scale != 1.0:
         amount += f" as spots (size x{scale:g})"
     amount += where
@@ -215,6 +235,38 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         add=add,
         intended=channels,
     )
+
+
+def _look(c: Context, word: str, ov: Overlay) -> tuple[int, int, int] | None:
+    """The colour of the condition ``word``'s overlay ``ov``: a colour the request names just
+    before it ("orange rust", "pale grey lichen"; half way from the overlay's own, which a
+    colour name's pure value would not resemble), else its own look in
+    ``[condition_colours]``."""
+    ws = c.words
+    i = ws.index(word) if word in ws else -1
+    named = c.vocabulary.named
+    for j in range(i - 1, max(-1, i - 3), -1):
+        t = ws[j]
+        base = c.vocabulary.ish.get(t, t) if t.endswith("ish") else t
+        if base in named and base not in c.ew.conditions:
+            rgb = named[base]
+            own = _own_colour(ov)
+            if own is not None:
+                rgb = tuple((a + b) / 2 for a, b in zip(rgb, own, strict=True))
+            return (round(rgb[0]), round(rgb[1]), round(rgb[2]))
+        if t not in c.vocabulary.tones and t not in c.ew["filler"]:
+            break
+    return c.ew.condition_colours.get(word)
+
+
+def _own_colour(ov: Overlay) -> tuple[float, float, float] | None:
+    """The overlay's own colour (its first colour slot that is not the host's)."""
+    slot = next((x for x in ov.colours if x != ov.host), None)
+    if slot is None:
+        return None
+    defines = [ov.ast.define(f"{slot}_{ch}") for ch in "rgb"]
+    values = [None if d is None else static_number(d.expr) for d in defines]
+    return None if None in values else tuple(float(v) for v in values)  # type: ignore[return-value]
 
 
 def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
@@ -277,7 +329,10 @@ def amount_rule(c: Context) -> Plan | None:
     if head & (size_words - {"fewer"}):
         return None  # "bigger chips", "finer cracks": the scale of a feature
     # a concrete condition before an age word ("older, with some moss": the moss first)
-    conds = sorted((t for t in c.words if t in c.ew.conditions), key=lambda t: t in c.ew["age"])
+    conds = sorted(
+        (t for i, t in enumerate(c.words) if t in c.ew.conditions and not placed(c.words, i)),
+        key=lambda t: t in c.ew["age"],
+    )
     if conds:
         word = conds[0]
         stems = c.ew.conditions[word]

@@ -266,15 +266,16 @@ def edit_offline(
     params = all_params(before)
     strength = 1.0
     plan: Plan = plan_edit(before, params, request, strength, ew)
-    calm = any(words().intensity.get(t, 1.0) < 1.0 for t in tokens(request))
+    calm = any(ew.intensity.get(t, words().intensity.get(t, 1.0)) < 1.0 for t in tokens(request))
     capped = False  # the strength ran out before the parameters reached their limits
     while True:
         new_text, warnings = apply_edit(before, plan.assignments, plan.view, plan.lines, plan.add)
         checked = verify(before, new_text, request, plan.intended, size, session)
         structural = bool(plan.assignments or plan.lines or plan.add)
-        shows = checked.shows(ew.f("visible_fraction"), plan.intended) or not (
-            structural or checked.locality.changed
-        )
+        # a condition's amount spreads over the surface: a change on a few texels reads as
+        # noise, so "more worn" must move more of them
+        frac = ew.f("amount_visible_fraction" if plan.rule == "amount" else "visible_fraction")
+        shows = checked.shows(frac, plan.intended) or not (structural or checked.locality.changed)
         # "slightly" starts from a smaller step and grows only until the change just shows
         if shows or not plan.graded:
             break

@@ -23,17 +23,45 @@ from matloom.lang.printer import format_layer
 _ROUGH_WORDS = frozenset({"roughness", "roughen", "glossiness", "shininess", "finish"})
 
 
+def _replaced(ws: list[str], i: int) -> bool:
+    """Whether the word at ``i`` names what is to be replaced ("frosted instead of polished",
+    "matte rather than glossy"): the finish asked for is the other one."""
+    return any(
+        ws[j : j + 2] in (["instead", "of"], ["rather", "than"])
+        for j in range(max(0, i - 4), i - 1)
+    )
+
+
+#: Size words ("coarser grain, twice as big", "coarser stipple with bigger bumps"): "coarser"
+#: then means bigger features, not a rougher finish.
+_SIZE_WORDS = frozenset(
+    {"big", "bigger", "large", "larger", "huge", "small", "smaller", "tiny", "enlarge", "shrink"}
+)
+
+
 def _finish_word(c: Context) -> tuple[int, str, str] | None:
-    """(direction, kind, word) of the request's finish word (flips applied)."""
+    """(direction, kind, word) of the request's finish word (flips applied). A finish named
+    as the one to replace is the other way; a finish word that is neither flipped nor replaced
+    ("knock the gloss down to a satin finish": satin) wins over one that is."""
     ws = c.words
+    found: list[tuple[int, str, str, bool]] = []
     for i, t in enumerate(ws):
         if t in c.ew.finish:
             d, kind = c.ew.finish[t]
-            if flipped(ws, i, c.ew["flip"]):
-                return (-d if d else 1), "step", t
+            if _replaced(ws, i) or flipped(ws, i, c.ew["flip"]):
+                found.append(((-d if d else 1), "step", t, True))
+                continue
             if any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
                 kind = "step"
-            return d, kind, t
+            found.append((d, kind, t, False))
+    if found:
+        if set(ws) & _SIZE_WORDS and all(f[2] in ("coarser", "coarse") for f in found):
+            return None  # "coarser grain, the speckles twice as big": a size
+        if set(ws) & set(c.ew.relief) and all(f[2] in c.ew.tactile for f in found):
+            return None  # "flatten the broom texture, nearly smooth": the relief
+        plain = [f for f in found if not f[3]]
+        d, kind, t, _ = (plain or found)[0]
+        return d, kind, t
     if "roughness" in ws or "roughen" in ws:
         if set(ws) & c.ew["lower"]:
             return -1, "step", "roughness"

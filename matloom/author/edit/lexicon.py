@@ -32,6 +32,10 @@ class EditWords:
     #: named colours the library's colour table lacks ("olive drab"), or has too far from
     #: their usual value; these win over the library's
     colours: dict[str, tuple[float, float, float]] = dataclasses.field(default_factory=dict)
+    #: the colour of a condition's overlay when its word names a look of its own ("lichen")
+    condition_colours: dict[str, tuple[int, int, int]] = dataclasses.field(default_factory=dict)
+    #: intensity words of edits beside the library's ("a slight tint", "heavily worn")
+    intensity: dict[str, float] = dataclasses.field(default_factory=dict)
 
     def __getitem__(self, key: str) -> frozenset[str]:
         return self.words[key]
@@ -84,6 +88,11 @@ def edit_words() -> EditWords:
         factors={k: float(v) for k, v in raw["factors"].items()},
         colours={
             k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw.get("colours", {}).items()
+        },
+        intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
+        condition_colours={
+            k: (int(v[0]), int(v[1]), int(v[2]))
+            for k, v in raw.get("condition_colours", {}).items()
         },
     )
 

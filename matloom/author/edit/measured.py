@@ -303,15 +303,17 @@ def measured_layer(
     want = {stem(n) for n in nouns}
     if not want:
         return None
-    for i, layer in enumerate(c.program.layers):
-        if i == 0 or layer.alpha is None:
-            continue
-        names = [n for n in mask_names(layer.alpha) if split_words(n) & want]
-        if names:
-            grow = (1.6, 0.03) if joint else (2.0, 0.05)
-            plan = measured_coverage(c, i, more, names[0], grow, prefer=names)
-            if plan is not None:
-                return plan
+    # the nouns in the request's order: "more weeds out of the cracks" is the weeds' layer
+    for noun in dict.fromkeys(stem(n) for n in nouns):
+        for i, layer in enumerate(c.program.layers):
+            if i == 0 or layer.alpha is None:
+                continue
+            names = [n for n in mask_names(layer.alpha) if noun in split_words(n)]
+            if names:
+                grow = (1.6, 0.03) if joint else (2.0, 0.05)
+                plan = measured_coverage(c, i, more, names[0], grow, prefer=names)
+                if plan is not None:
+                    return plan
     if joint:
         return None
     # a feature drawn inside the channels ("fewer blisters": a Define ``blister`` masks them)

@@ -93,7 +93,7 @@ class Context:
         """The product of the request's intensity words ("slightly" 0.5, "very" 1.4)."""
         k = 1.0
         for t in self.words:
-            k *= self.vocabulary.intensity.get(t, 1.0)
+            k *= self.ew.intensity.get(t, self.vocabulary.intensity.get(t, 1.0))
         return k
 
     @property

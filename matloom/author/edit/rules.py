@@ -196,10 +196,10 @@ def _joint_width(c: Context, ws: set[str], size: re.Match[str] | None) -> Plan |
 
 
 # ---- scale -----------------------------------------------------------------------------------
-def _zoom(c: Context, bigger: bool) -> Plan:
-    """Every feature bigger or smaller: the View's window shrinks or grows (x2 when the
-    program tiles, so the repeat stays whole)."""
-    f = c.ew.f("size") if not c.program.tileable else 2.0
+def _zoom(c: Context, bigger: bool, step: float | None = None) -> Plan:
+    """Every feature bigger or smaller: the View's window shrinks or grows by ``step`` (the
+    words' step when None; x2 when the program tiles, so the repeat stays whole)."""
+    f = (step or c.ew.f("size")) if not c.program.tileable else 2.0
     ratio = 1 / f if bigger else f
     win = zoomed(c, ratio)
     if not tiles(c, win):
@@ -252,7 +252,7 @@ def _scale(c: Context) -> Plan | None:
         # no parameter draws the named feature (hexagons drawn from constants), or no noun:
         # the View zooms, which scales every feature in step (scaling some noises and not
         # the constants that share their pattern turns a weave into a plaid)
-        return _zoom(c, bigger)
+        return _zoom(c, bigger, step)
     targets = _with_copies(targets, scalable)
     new = _tiling_sizes(c, targets, size_f)
     # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
@@ -325,13 +325,50 @@ _KEEP_RE = re.compile(
 
 #: Phrasal verbs read as the rules' words: "pull the verdigris back" is less verdigris, "scale
 #: the tiles up" bigger tiles.
+_DOWN_VERBS = r"(?:knock|tone|turn|bring|dial|take)"
+_GLOSS_WORDS = r"gloss|shine|shininess|glossiness|reflections?|sheen"
 _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     (re.compile(r"\b(?:pull|cut|dial|roll|hold|push)\s+((?:the\s+)?\w+)\s+back\b"), r"less \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?up\b"), r"bigger \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?down\b"), r"smaller \1"),
     (re.compile(r"\bscale\s+up\b"), "bigger"),
     (re.compile(r"\bscale\s+down\b"), "smaller"),
+    # "knock the gloss down", "tone down the shine": less of it
+    (re.compile(rf"\b{_DOWN_VERBS}\s+(?:the\s+)?({_GLOSS_WORDS})\s+down\b"), r"less \1"),
+    (re.compile(rf"\b{_DOWN_VERBS}\s+down\s+(?:the\s+)?({_GLOSS_WORDS})\b"), r"less \1"),
+    # "half the size", "double their size": the direction as well as the factor
+    (
+        re.compile(r"\b(half|halve)\s+(?:the|their|its)\s+(?:size|width|diameter|length)\b"),
+        r"smaller \1",
+    ),
+    (
+        re.compile(r"\b(double|twice)\s+(?:the|their|its)\s+(?:size|width|diameter|length)\b"),
+        r"bigger \1",
+    ),
 )
+
+#: "too <adjective>" asks for the opposite ("the hexes are too big": smaller ones).
+_TOO: dict[str, str] = {
+    "big": "smaller",
+    "large": "smaller",
+    "huge": "smaller",
+    "chunky": "smaller",
+    "small": "bigger",
+    "tiny": "bigger",
+    "dark": "lighter",
+    "light": "darker",
+    "pale": "richer",
+    "bright": "duller",
+    "thick": "thinner",
+    "thin": "thicker",
+    "wide": "narrower",
+    "narrow": "wider",
+    "dense": "sparser",
+    "busy": "sparser",
+    "crowded": "sparser",
+    "sparse": "denser",
+}
+_TOO_RE = re.compile(rf"\b(?:far\s+|way\s+|a\s+bit\s+|a\s+little\s+)?too\s+({'|'.join(_TOO)})\b")
 
 
 #: A clause that says a part stays as it is ("chips unchanged", "the rest as it is").
@@ -348,7 +385,7 @@ def normalise(request: str) -> str:
     asked = asked.lower()
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
-    return asked
+    return _TOO_RE.sub(lambda m: _TOO[m.group(1)], asked)
 
 
 #: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
@@ -373,6 +410,8 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
         clauses = [asked] if plan.rule in ("roughness", "channel") else []
     for clause in clauses:
         sub = replace(c, words=tokens(clause))
+        if not single and plan.rule.startswith("colour") and _describes(c, sub.words):
+            continue  # "the wires rusty, orange-brown": the colour of the same part
         try:
             if single:
                 other = colour_rule(sub)
@@ -402,6 +441,23 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             exact=plan.exact or other.exact,
         )
     return plan
+
+
+#: Words that open a clause describing the clause before it ("..., like a dark walnut stain").
+_SIMILE = frozenset({"like", "as"})
+
+
+def _describes(c: Context, words: list[str]) -> bool:
+    """Whether a clause only describes the colour of the one before: a simile, or colour and
+    tone words with no part of its own ("orange-brown", "a deep one")."""
+    if not words:
+        return True
+    if words[0] in _SIMILE:
+        return True
+    v = c.vocabulary
+    return all(
+        t in c.ew["filler"] or t in v.named or t in v.tones or t in c.ew.comparative for t in words
+    )
 
 
 #: The rules, in the order they are tried.

@@ -1,0 +1,156 @@
+"""Offline edits for wordings the v1-v10 edit sets showed misread: what a request replaces
+("frosted instead of polished", "clear tape instead of brown"), "too big" (smaller ones),
+"knock the gloss down", "coarser grain ... twice as big" (a size, not a finish), a colour word
+that names a part or the material ("thinner brass strips", "bleached coral"), a clause that
+only describes the one before ("the wires rusty, orange-brown"), tints ("a slight blue tint"
+keeps the lightness), looks of conditions ("lichen" is pale, "sooty" dark) and a condition
+word that says where ("weeds out of the cracks")."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+from matloom.author.edit import EditRefused, edit_offline
+from matloom.author.edit.apply import parse_program
+from matloom.author.edit.colours import to_lab
+from matloom.lang.params import list_params
+
+
+def _entry(name: str) -> str:
+    from matloom.library import load_library
+
+    return load_library().entry(name).program
+
+
+def _values(text: str) -> dict[str, object]:
+    return {p.address: p.value for p in list_params(parse_program(text))}
+
+
+def _plan(name: str, request: str) -> dict:
+    return edit_offline(_entry(name), request, size=32).report.plan
+
+
+def _window(text: str) -> float:
+    v = parse_program(text).view
+    return abs(v.x2 - v.x1)
+
+
+def test_too_big_asks_for_smaller_ones_and_half_the_size_halves_them() -> None:
+    before = _entry("hexagon-tiles")
+    after = edit_offline(before, "hexes are too big, make them about half the size", size=32)
+    assert _window(after.program) == pytest.approx(2 * _window(before))  # twice the window
+
+
+def test_knocking_the_gloss_down_to_satin_reaches_satin() -> None:
+    plan = _plan("toy-brick-stud-baseplate", "knock the gloss down to a satin finish")
+    assert plan["rule"] == "roughness"
+    assert "satin" in plan["note"] and "clearcoat down" in plan["note"]
+
+
+def test_the_finish_named_as_replaced_is_not_the_one_applied() -> None:
+    name = "wired-safety-glass"
+    before = _values(_entry(name))
+    plan = _plan(name, "frosted glass instead of polished")
+    assert plan["rule"] == "roughness"
+    for address, value in plan["assignments"].items():
+        if "rough" in address:
+            assert value > before[address]  # rougher, not glossier
+
+
+def test_a_coarser_grain_with_a_size_is_a_size_not_a_finish() -> None:
+    plan = _plan("granite", "coarser grain, the speckles about twice as big")
+    assert plan["rule"] == "scale"
+    assert not any("rough" in a for a in plan["assignments"])
+
+
+def test_flattening_a_texture_to_nearly_smooth_is_the_relief() -> None:
+    plan = _plan("sidewalk-slabs-expansion-joints", "flatten the broom texture, nearly smooth")
+    assert plan["rule"] == "relief"
+
+
+def test_a_colour_named_only_as_the_one_replaced_is_not_painted() -> None:
+    with pytest.raises(EditRefused):
+        edit_offline(_entry("cardboard-box-packing-tape"), "clear packing tape instead of brown")
+
+
+def test_a_colour_word_naming_a_part_with_a_size_word_is_the_part() -> None:
+    name = "terrazzo-floor-brass-strips"
+    result = edit_offline(_entry(name), "thinner brass strips, almost hairline", size=32)
+    assert result.report.plan["rule"] == "scale"
+    assert _values(result.program)["define:brass"] == _values(_entry(name))["define:brass"]
+
+
+def test_a_material_word_beside_another_colour_is_not_the_colour() -> None:
+    result = edit_offline(
+        _entry("brain-coral-meanders"), "bleached coral please - make the ridges almost white"
+    )
+    lab = to_lab(_values(result.program)["define:ridge"])  # type: ignore[arg-type]
+    assert lab[0] > 85 and abs(lab[1]) < 6 and abs(lab[2]) < 8  # near white, not coral
+
+
+def test_a_clause_that_describes_the_colour_joins_no_other_part() -> None:
+    name = "wired-safety-glass"
+    result = edit_offline(_entry(name), "make the wires look rusty, orange-brown", size=32)
+    before, after = _values(_entry(name)), _values(result.program)
+    assert after["define:wire"] != before["define:wire"]
+    assert after["define:glass"] == before["define:glass"]
+
+
+def test_a_slight_tint_keeps_the_lightness_and_moves_the_hue() -> None:
+    name = "ice-cubes-pile"
+    result = edit_offline(_entry(name), "give the ice a slight blue tint", size=32)
+    old = to_lab(_values(_entry(name))["define:ice"])  # type: ignore[arg-type]
+    new = to_lab(_values(result.program)["define:ice"])  # type: ignore[arg-type]
+    blue = to_lab((40, 80, 170))
+    assert abs(new[0] - old[0]) < 1.5  # as light as it was
+
+    def far(lab: tuple[float, float, float]) -> float:
+        return math.hypot(lab[1] - blue[1], lab[2] - blue[2])
+
+    assert far(new) < far(old) - 5  # its hue and chroma toward blue's
+    assert math.hypot(new[1] - old[1], new[2] - old[2]) >= 8  # a tint that shows
+
+
+@pytest.mark.parametrize(
+    ("request_", "overlay", "dark"),
+    [("more lichen on the rocks", "mossy", False), ("make it look sooty", "dirty", True)],
+)
+def test_a_condition_with_a_look_of_its_own_colours_its_overlay(
+    request_: str, overlay: str, dark: bool
+) -> None:
+    plan = _plan("rock-scree-slope", request_)
+    assert f"'{overlay}'" in plan["note"]
+    found = re.search(r"coloured \((\d+), (\d+), (\d+)\)", plan["note"])
+    assert found is not None
+    r, g, b = (int(x) for x in found.groups())
+    assert any(f"Define({n}_r, {r})" in plan["add"] for n in ("moss", "grime", "moss2", "grime2"))
+    assert (max(r, g, b) < 60) if dark else (min(r, g, b) > 120)  # soot dark, lichen pale
+
+
+def test_a_colour_named_before_a_condition_tints_its_overlay_half_way() -> None:
+    plan = _plan("polished-metal", "add some orange rust")
+    assert "'rusty'" in plan["note"] and "coloured" in plan["note"]
+
+
+def test_a_condition_word_after_a_place_word_is_where_not_what() -> None:
+    plan = _plan("cracked-concrete-weeds", "more weeds growing out of the cracks")
+    assert plan["rule"] == "amount" and "weeds" in plan["note"]
+    assert "cracked" not in plan["note"]
+
+
+def test_patches_of_moss_are_moss() -> None:
+    plan = _plan("river-rock-stones", "add some patches of moss between the stones")
+    assert "'mossy'" in plan["note"]
+
+
+def test_scuffs_and_dust_add_both() -> None:
+    plan = _plan("toy-brick-stud-baseplate", "add scuffs and dust, like it's been played with")
+    assert "'worn'" in plan["note"] and "'dusty'" in plan["note"]
+
+
+def test_a_finish_word_after_a_flipped_one_keeps_its_sense() -> None:
+    plan = _plan("muddy-field-puddles", "drier mud, kill most of the wet shine")
+    assert plan["note"].startswith("rougher")
