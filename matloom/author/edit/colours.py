@@ -148,6 +148,8 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if i in taken:
             continue
         word = w.ish.get(t, t) if t.endswith("ish") else t
+        if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
+            continue  # "a satin oil finish": the kind of finish, not a colour
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
             out.append((i, 1, named[word], word != t))
     return sorted(out)
@@ -189,6 +191,8 @@ def _more_before(c: Context) -> bool:
     found = _named_at(c)
     return bool(found) and found[0][0] > 0 and c.words[found[0][0] - 1] == "more"
 
+
+_ARTICLES = frozenset({"the", "its", "their", "this", "that"})
 
 #: Material words that are also colour names: a noun before a colour, not the colour.
 _NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
@@ -255,19 +259,12 @@ def _colour_in(
             used.add(i)
             continue
         found.append((i, n, value, ish))
-    # "bleached coral, the ridges almost white": a material word that is also a colour names
-    # the material beside another colour, not the colour to paint
-    mats = [
-        f
-        for f in found
-        if f[1] == 1
-        and (ws[f[0]] in w.materials or ws[f[0]] in w.materialish)
-        and not _after_instead_of(c, f[0])
-        and not set(ws[f[0] + 1 : f[0] + 2]) & _TO_WORDS
-    ]
-    rest = [f for f in found if f not in mats and not _after_instead_of(c, f[0])]
-    if mats and rest:
-        found = [f for f in found if f not in mats]  # the material word stays a noun
+    # "give the ice a slight blue tint", "make the brass strips gold": a material word after an
+    # article names the part beside another colour, it is not the colour
+    nouns = [f for f in found if f[1] == 1 and f[0] and ws[f[0] - 1] in _ARTICLES]
+    nouns = [f for f in nouns if ws[f[0]] in w.materialish]
+    if nouns and len(nouns) < len(found):
+        found = [f for f in found if f not in nouns]
     if found:
         # a colour before "for/with/to/into" or after "instead of" is the one to replace
         old = [
@@ -507,8 +504,9 @@ def colour_rule(c: Context) -> Plan | None:
     # "warmer, more like honey", "lighter, more honey-yellow": the named colour is a direction
     towards = rgb is not None and step is not None and bool(_LIKE & set(c.words) or _more_before(c))
     # "a slight blue tint": part of the way to the colour (slightly: less), not the colour
-    # ("a deeper blue-green tint": a stronger one)
-    tint = rgb is not None and not towards and bool(_TINT & set(c.words))
+    # ("a deeper blue-green tint": a stronger one); a tint asked for plainly is the colour
+    # ("tint the glass amber", "a dark smoky grey tint")
+    tint = rgb is not None and not towards and bool(_TINT & set(c.words)) and c.intensity < 1.0
     stronger = _TINT_STRONGER if tint and step is not None else 1.0
     share = min(_TINT_MAX, _TINT_SHARE * c.intensity * stronger) if tint else _LIKE_SHARE
     base_lab = to_lab(_value(primary))

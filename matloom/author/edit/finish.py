@@ -25,11 +25,19 @@ _ROUGH_WORDS = frozenset({"roughness", "roughen", "glossiness", "shininess", "fi
 
 def _replaced(ws: list[str], i: int) -> bool:
     """Whether the word at ``i`` names what is to be replaced ("frosted instead of polished",
-    "matte rather than glossy"): the finish asked for is the other one."""
+    "matte rather than glossy", "more satin than glossy"): the finish asked for is the other
+    one."""
+    if "than" in ws[max(0, i - 2) : i]:
+        return True
     return any(
         ws[j : j + 2] in (["instead", "of"], ["rather", "than"])
         for j in range(max(0, i - 4), i - 1)
     )
+
+
+#: Words before a finish word that make it the name of the surface's finish ("can the polish
+#: be duller"), not the finish asked for: another finish word of the request wins over it.
+_ARTICLES = frozenset({"the", "its", "this", "that", "their"})
 
 
 #: Size words ("coarser grain, twice as big", "coarser stipple with bigger bumps"): "coarser"
@@ -42,25 +50,25 @@ _SIZE_WORDS = frozenset(
 def _finish_word(c: Context) -> tuple[int, str, str] | None:
     """(direction, kind, word) of the request's finish word (flips applied). A finish named
     as the one to replace is the other way; a finish word that is neither flipped nor replaced
-    ("knock the gloss down to a satin finish": satin) wins over one that is."""
+    ("knock the gloss down to a satin finish": satin) wins over one that is, and over one
+    that names the surface's finish ("can the polish be duller": duller)."""
     ws = c.words
-    found: list[tuple[int, str, str, bool]] = []
+    found: list[tuple[int, str, str, int]] = []  # ..., its rank (the best is 0)
     for i, t in enumerate(ws):
         if t in c.ew.finish:
             d, kind = c.ew.finish[t]
             if _replaced(ws, i) or flipped(ws, i, c.ew["flip"]):
-                found.append(((-d if d else 1), "step", t, True))
+                found.append(((-d if d else 1), "step", t, 2))
                 continue
-            if any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
-                kind = "step"
-            found.append((d, kind, t, False))
+            if d and any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
+                kind = "step"  # "more polished": a step ("more satin" is still satin)
+            found.append((d, kind, t, 1 if i and ws[i - 1] in _ARTICLES else 0))
     if found:
         if set(ws) & _SIZE_WORDS and all(f[2] in ("coarser", "coarse") for f in found):
             return None  # "coarser grain, the speckles twice as big": a size
         if set(ws) & set(c.ew.relief) and all(f[2] in c.ew.tactile for f in found):
             return None  # "flatten the broom texture, nearly smooth": the relief
-        plain = [f for f in found if not f[3]]
-        d, kind, t, _ = (plain or found)[0]
+        d, kind, t, _ = min(found, key=lambda f: f[3])  # the first of the best rank
         return d, kind, t
     if "roughness" in ws or "roughen" in ws:
         if set(ws) & c.ew["lower"]:

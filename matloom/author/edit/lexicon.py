@@ -34,6 +34,8 @@ class EditWords:
     colours: dict[str, tuple[float, float, float]] = dataclasses.field(default_factory=dict)
     #: the colour of a condition's overlay when its word names a look of its own ("lichen")
     condition_colours: dict[str, tuple[int, int, int]] = dataclasses.field(default_factory=dict)
+    #: look words read as what they change everywhere ("wet": "darker overall, glossier")
+    looks: dict[str, str] = dataclasses.field(default_factory=dict)
     #: intensity words of edits beside the library's ("a slight tint", "heavily worn")
     intensity: dict[str, float] = dataclasses.field(default_factory=dict)
 
@@ -90,6 +92,7 @@ def edit_words() -> EditWords:
             k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw.get("colours", {}).items()
         },
         intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
+        looks={w: str(look["as"]) for look in raw.get("looks", {}).values() for w in look["words"]},
         condition_colours={
             k: (int(v[0]), int(v[1]), int(v[2]))
             for k, v in raw.get("condition_colours", {}).items()

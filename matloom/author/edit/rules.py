@@ -43,6 +43,7 @@ from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
 from matloom.author.edit.lexicon import (
     EditWords,
     edit_words,
+    flipped,
     split_words,
     tokens,
 )
@@ -385,7 +386,36 @@ def normalise(request: str) -> str:
     asked = asked.lower()
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
-    return _TOO_RE.sub(lambda m: _TOO[m.group(1)], asked)
+    asked = _TOO_RE.sub(lambda m: _TOO[m.group(1)], asked)
+    return _looks(asked)
+
+
+#: Words after which a look word is what the surface should look like ("look wet").
+_LOOK_BEFORE = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "seems"})
+
+
+def _looks(asked: str) -> str:
+    """The request with its first look word read as what it changes (``[looks]`` of
+    ``words.toml``: "make it look wet" is darker and glossier all over, "faded" paler): a wet
+    or faded surface changes everywhere, which an overlay's patches do not show. A look word
+    that is flipped ("less wet", "not faded") or names a finish ("the wet shine") stays."""
+    ew = edit_words()
+    ws = tokens(asked)
+    for i, t in enumerate(ws):
+        phrase = ew.looks.get(t)
+        if phrase is None or flipped(ws, i, ew["flip"]):
+            continue
+        if i + 1 < len(ws) and (ws[i + 1] in ew.finish or ws[i + 1] in ("shine", "sheen")):
+            continue
+        lead = next((w for w in ws if w not in ew["filler"]), None) == t
+        said = bool(_LOOK_BEFORE & set(ws[max(0, i - 3) : i])) or ws[i + 1 : i + 2] == ["look"]
+        made = any(w in ("make", "get", "it", "them", "more") for w in ws[max(0, i - 3) : i])
+        if not (lead or said or made):
+            continue  # "the sample from the wet room"
+        done = re.sub(rf"\b{re.escape(t)}\b", phrase, asked, count=1)
+        # the look's other words say it again ("damp, like it just rained"): once is enough
+        return done
+    return asked
 
 
 #: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
@@ -402,15 +432,17 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
     semicolons) by another joinable rule that changes other parameters: "paint the panels
     olive drab, satin finish" is a colour and a roughness."""
     clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
-    if plan.rule not in _JOINABLE or plan.view or plan.add:
-        return plan
+    if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
+        return plan  # an overlay joins a clause's colour or finish ("worn, faded")
     single = len(clauses) < 2
+    if single and plan.add:
+        return plan
     if single:
         # one clause, two properties: "polished brass" is a finish and a colour
         clauses = [asked] if plan.rule in ("roughness", "channel") else []
     for clause in clauses:
         sub = replace(c, words=tokens(clause))
-        if not single and plan.rule.startswith("colour") and _describes(c, sub.words):
+        if not single and plan.rule.startswith(("colour", "overlay")) and _describes(c, sub.words):
             continue  # "the wires rusty, orange-brown": the colour of the same part
         try:
             if single:
@@ -437,6 +469,7 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             assignments={**plan.assignments, **other.assignments},
             intended=tuple(dict.fromkeys(plan.intended + other.intended)),
             lines={**plan.lines, **other.lines},
+            add=plan.add,
             graded=plan.graded and other.graded,
             exact=plan.exact or other.exact,
         )
