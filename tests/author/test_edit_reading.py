@@ -176,3 +176,64 @@ def test_a_finish_named_with_an_article_yields_to_the_comparative() -> None:
 def test_an_oil_finish_is_no_colour() -> None:
     plan = _plan("burl-walnut-veneer", "tone down the gloss to a satin oil finish")
     assert plan["rule"] == "roughness" and "satin" in plan["note"]
+
+
+def test_fewer_and_larger_is_a_size() -> None:
+    assert _plan("hexagon-tiles", "fewer, larger hexagons")["rule"] == "scale"
+
+
+def test_algae_is_a_dark_moss() -> None:
+    plan = _plan("asphalt-shingles-three-tab", "add some dark algae")
+    assert "'mossy'" in plan["note"] and "coloured" in plan["note"]
+
+
+def test_the_material_named_with_an_article_is_the_subject_not_a_condition() -> None:
+    plan = _plan("snow", "make the snow look older")
+    assert "'snowy'" not in plan["note"]
+
+
+def test_muting_the_colours_lowers_every_colour_s_chroma() -> None:
+    name = "tartan-plaid-carpet"
+    plan = _plan(name, "mute the colours a little")
+    before = _values(_entry(name))
+    assert len(plan["assignments"]) >= 3
+    for address, value in plan["assignments"].items():
+        old, new = to_lab(before[address]), to_lab(value)  # type: ignore[arg-type]
+        assert math.hypot(new[1], new[2]) < math.hypot(old[1], old[2])
+
+
+def test_a_relief_and_a_colour_in_one_clause() -> None:
+    plan = _plan("cliff-rock-face", "make the joints between the blocks shallower and not so dark")
+    assert plan["rule"] == "relief+colour"
+
+
+def test_coarser_lines_are_bigger_lines() -> None:
+    assert _plan("anodized-metal", "make the brushing lines coarser")["rule"] == "scale"
+
+
+def test_scaling_the_texture_up_zooms_whatever_the_other_nouns() -> None:
+    name = "snow"
+    after = edit_offline(
+        _entry(name), "scale the texture up so the clumps read about twice as big", size=32
+    )
+    assert _window(after.program) == pytest.approx(_window(_entry(name)) / 2)
+
+
+def test_leaves_are_the_leaf_layer() -> None:
+    plan = _plan("swamp-duckweed-water", "scatter more dead leaves across the surface")
+    assert plan["rule"] == "amount" and "leaf" in plan["note"]
+
+
+def test_less_bleached_is_richer() -> None:
+    assert _plan("driftwood", "less bleached")["rule"] == "colour"
+
+
+def test_a_material_colour_word_naming_a_part_is_the_part() -> None:
+    name = "whitewashed-brick-wall"
+    plan = _plan(name, "the brick underneath should be a darker, more brownish red")
+    assert list(plan["assignments"]) == ["colour:brick"]
+
+
+def test_a_deeper_pile_is_no_colour_and_muting_joins_it() -> None:
+    plan = _plan("tartan-plaid-carpet", "give it a deeper, fluffier pile and mute the colours")
+    assert plan["rule"] == "relief+colour" and len(plan["assignments"]) >= 3

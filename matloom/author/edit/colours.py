@@ -172,7 +172,7 @@ def _explicit(c: Context) -> list[tuple[int, int, RGB, bool]]:
 
 
 #: Words that apply a tone comparative to every colour of the material.
-_OVERALL = frozenset({"overall", "everything", "entire", "whole", "all"})
+_OVERALL = frozenset({"overall", "everything", "entire", "whole", "all", "colours", "colors"})
 
 #: Words that make a named colour a direction, not a value, beside a comparative ("warmer,
 #: more like honey"), and the share of the way the colour moves then.
@@ -263,8 +263,10 @@ def _colour_in(
     # article names the part beside another colour, it is not the colour
     nouns = [f for f in found if f[1] == 1 and f[0] and ws[f[0] - 1] in _ARTICLES]
     nouns = [f for f in nouns if ws[f[0]] in w.materialish]
-    if nouns and len(nouns) < len(found):
-        found = [f for f in found if f not in nouns]
+    # ... and always when the program has a part of that name ("the brick ... darker")
+    named = [f for f in nouns if named_in_program(c.program, [ws[f[0]]], c.ew)]
+    if named or (nouns and len(nouns) < len(found)):
+        found = [f for f in found if f not in (named or nouns)]
     if found:
         # a colour before "for/with/to/into" or after "instead of" is the one to replace
         old = [

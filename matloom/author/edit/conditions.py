@@ -167,6 +167,22 @@ _LOOK = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "see
 _PLACE_BEFORE = frozenset({"in", "into", "between", "along", "inside", "within", "from"})
 
 
+def _subject(c: Context, i: int) -> bool:
+    """Whether the condition word at ``i`` names the material itself ("make the snow look
+    older": the snow is what ages, not snow to add): after an article, naming a Define or
+    layer of the program."""
+    from matloom.author.edit.targets import material_noun, named_in_program
+
+    word = c.words[i]
+    asked = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
+    return (
+        i > 0
+        and c.words[i - 1] in ("the", "this", "its")
+        and not asked & set(c.words[max(0, i - 3) : i - 1])  # "less the verdigris": what
+        and (named_in_program(c.program, [word], c.ew) or material_noun(c, [word]))
+    )
+
+
 def placed(words: Sequence[str], i: int) -> bool:
     """Whether the word at ``i`` follows a place word ("out of the cracks", "in the rust"; not
     "patches of moss")."""
@@ -322,15 +338,20 @@ def amount_rule(c: Context) -> Plan | None:
     # the first clause says what to do ("less peeling, only small chips": an amount)
     head = set(tokens(re.split(r"[,;]", c.request.lower())[0])) or ws
     size_words = sizes - set(c.vocabulary.amounts)  # "a little moss" is an amount
-    if "fewer" in head and not head & (size_words - c.ew["sparser"]):
+    # "fewer, larger medallions": a size word anywhere makes "fewer" their spacing
+    if "fewer" in head and not ws & (size_words - c.ew["sparser"]):
         plan = _more_of_layer(c)  # "fewer blisters": less of the layer they name, not bigger
         if plan is not None:
             return plan
-    if head & (size_words - {"fewer"}):
-        return None  # "bigger chips", "finer cracks": the scale of a feature
+    if head & (size_words - {"fewer"}) or "fewer" in head and ws & (size_words - {"fewer"}):
+        return None  # "bigger chips", "finer cracks", "fewer, larger medallions": a scale
     # a concrete condition before an age word ("older, with some moss": the moss first)
     conds = sorted(
-        (t for i, t in enumerate(c.words) if t in c.ew.conditions and not placed(c.words, i)),
+        (
+            t
+            for i, t in enumerate(c.words)
+            if t in c.ew.conditions and not placed(c.words, i) and not _subject(c, i)
+        ),
         key=lambda t: t in c.ew["age"],
     )
     if conds:

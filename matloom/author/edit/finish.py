@@ -15,7 +15,7 @@ from dataclasses import replace
 
 from matloom.author.edit.lexicon import flipped
 from matloom.author.edit.plan import Context, Plan, Value, assign, clamp
-from matloom.author.edit.targets import matching, param_layers
+from matloom.author.edit.targets import matching, named_in_program, param_layers
 from matloom.lang import ast as A
 from matloom.lang.params import Param
 from matloom.lang.printer import format_layer
@@ -47,6 +47,17 @@ _SIZE_WORDS = frozenset(
 )
 
 
+def _names_feature(c: Context) -> bool:
+    """Whether the request names a drawn part of the program ("the brushing lines coarser",
+    "coarser granules"): "coarser" is then its size."""
+    nouns = [
+        t
+        for t in c.nouns
+        if t not in c.ew.finish and t not in _ROUGH_WORDS and t not in ("surface", "texture")
+    ]
+    return bool(nouns) and named_in_program(c.program, nouns, c.ew)
+
+
 def _finish_word(c: Context) -> tuple[int, str, str] | None:
     """(direction, kind, word) of the request's finish word (flips applied). A finish named
     as the one to replace is the other way; a finish word that is neither flipped nor replaced
@@ -64,8 +75,10 @@ def _finish_word(c: Context) -> tuple[int, str, str] | None:
                 kind = "step"  # "more polished": a step ("more satin" is still satin)
             found.append((d, kind, t, 1 if i and ws[i - 1] in _ARTICLES else 0))
     if found:
-        if set(ws) & _SIZE_WORDS and all(f[2] in ("coarser", "coarse") for f in found):
-            return None  # "coarser grain, the speckles twice as big": a size
+        if all(f[2] in ("coarser", "coarse") for f in found) and (
+            set(ws) & _SIZE_WORDS or _names_feature(c)
+        ):
+            return None  # "coarser grain, the speckles twice as big", "coarser granules": a size
         if set(ws) & set(c.ew.relief) and all(f[2] in c.ew.tactile for f in found):
             return None  # "flatten the broom texture, nearly smooth": the relief
         d, kind, t, _ = min(found, key=lambda f: f[3])  # the first of the best rank

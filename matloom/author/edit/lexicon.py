@@ -36,6 +36,8 @@ class EditWords:
     condition_colours: dict[str, tuple[int, int, int]] = dataclasses.field(default_factory=dict)
     #: look words read as what they change everywhere ("wet": "darker overall, glossier")
     looks: dict[str, str] = dataclasses.field(default_factory=dict)
+    #: ... and what a flipped one changes ("less faded": "richer overall")
+    unlooks: dict[str, str] = dataclasses.field(default_factory=dict)
     #: intensity words of edits beside the library's ("a slight tint", "heavily worn")
     intensity: dict[str, float] = dataclasses.field(default_factory=dict)
 
@@ -93,6 +95,12 @@ def edit_words() -> EditWords:
         },
         intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
         looks={w: str(look["as"]) for look in raw.get("looks", {}).values() for w in look["words"]},
+        unlooks={
+            w: str(look["opposite"])
+            for look in raw.get("looks", {}).values()
+            if "opposite" in look
+            for w in look["words"]
+        },
         condition_colours={
             k: (int(v[0]), int(v[1]), int(v[2]))
             for k, v in raw.get("condition_colours", {}).items()
@@ -105,10 +113,16 @@ def tokens(request: str) -> list[str]:
     return re.findall(r"[a-z0-9]+(?:\.[0-9]+)?", request.lower())
 
 
+#: Plurals in -ves whose singular ends in -f ("leaves", not "grooves").
+_F_PLURALS = {"leaves": "leaf", "halves": "half", "shelves": "shelf", "loaves": "loaf"}
+
+
 def stem(word: str) -> str:
     """A plural's singular, roughly: ``tiles`` -> ``tile``, ``patches`` -> ``patch``."""
     if len(word) <= 3 or not word.endswith("s") or word.endswith("ss"):
         return word
+    if word in _F_PLURALS:
+        return _F_PLURALS[word]
     if word.endswith("ies"):
         return word[:-3] + "y"
     if word.endswith(("ches", "shes", "sses", "xes")):

@@ -234,14 +234,17 @@ def _scale(c: Context) -> Plan | None:
         if p.kind in ("size", "frequency") and not any(k in p.address.lower() for k in joint)
     ]
     skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | ew["width"]
-    skip |= {"feature", "features", "pattern", "scale", "size"}
-    nouns = [t for t in c.nouns if t not in skip]
+    skip |= {"feature", "features", "pattern", "scale", "size"} | _GENERIC
+    nouns = [t for t in _unlike(c.nouns) if t not in skip]
     # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else
     # those that shape its layer's coverage
     targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]
     if not targets and nouns:
         targets = coverage_params(scalable, nouns, c.program, ew)
-    if not targets and nouns and ws & (ew["denser"] | ew["sparser"]):
+    if ws & _WHOLE:
+        return _zoom(c, bigger, step)  # "scale the whole texture up": every feature
+    sized = bool(ws & ((ew["bigger"] | ew["smaller"]) - ew["denser"] - ew["sparser"]))
+    if not targets and nouns and ws & (ew["denser"] | ew["sparser"]) and not sized:
         # "fewer veins": a count, which zooming would turn into a size (thicker veins)
         raise c.refuse(
             f"no parameter draws the {' '.join(nouns)} (their number cannot change without "
@@ -259,6 +262,55 @@ def _scale(c: Context) -> Plan | None:
     # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
     # (a velvet's pile) would not show at any step
     return assign(c, "scale", f"features x{size_f:.3g}", new, affects(targets), graded=False)
+
+
+#: Words of a size request that name no part ("so the clumps read about twice as big", "the
+#: whole thing").
+_GENERIC = frozenset(
+    {
+        "read",
+        "reads",
+        "about",
+        "as",
+        "so",
+        "twice",
+        "double",
+        "half",
+        "up",
+        "down",
+        "around",
+        "roughly",
+        "approximately",
+        "thing",
+        "things",
+        "everything",
+        "further",
+        "apart",
+        "spaced",
+        "spacing",
+        "space",
+        "out",
+        "them",
+        "they",
+        "there",
+        "are",
+        "looks",
+        "now",
+        "right",
+    }
+)
+
+
+#: Words that scale everything ("scale the whole texture up", "everything smaller").
+_WHOLE = frozenset({"texture", "whole", "everything", "overall", "entire"})
+
+
+def _unlike(words: Sequence[str]) -> list[str]:
+    """The words before a simile ("... so it looks like we are seeing it from higher up")."""
+    for i, t in enumerate(words):
+        if t == "like" or (t == "as" and words[i + 1 : i + 2] in (["if"], ["though"])):
+            return list(words[:i])
+    return list(words)
 
 
 def _drawn(c: Context, nouns: Sequence[str]) -> bool:
@@ -330,20 +382,30 @@ _DOWN_VERBS = r"(?:knock|tone|turn|bring|dial|take)"
 _GLOSS_WORDS = r"gloss|shine|shininess|glossiness|reflections?|sheen"
 _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     (re.compile(r"\b(?:pull|cut|dial|roll|hold|push)\s+((?:the\s+)?\w+)\s+back\b"), r"less \1"),
-    (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?up\b"), r"bigger \1"),
-    (re.compile(r"\bscale\s+((?:the\s+)?\w+\s+)?down\b"), r"smaller \1"),
+    (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})up\b"), r"bigger \1"),
+    (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})down\b"), r"smaller \1"),
     (re.compile(r"\bscale\s+up\b"), "bigger"),
     (re.compile(r"\bscale\s+down\b"), "smaller"),
     # "knock the gloss down", "tone down the shine": less of it
     (re.compile(rf"\b{_DOWN_VERBS}\s+(?:the\s+)?({_GLOSS_WORDS})\s+down\b"), r"less \1"),
     (re.compile(rf"\b{_DOWN_VERBS}\s+down\s+(?:the\s+)?({_GLOSS_WORDS})\b"), r"less \1"),
+    # "spaced further apart", "space them out": sparser
+    (
+        re.compile(r"\b(?:spaced?|spread)\s+(?:\w+\s+)?(?:further|farther|more)\s+apart\b"),
+        "sparser",
+    ),
+    (re.compile(r"\bfurther\s+apart\b"), "sparser"),
     # "half the size", "double their size": the direction as well as the factor
     (
-        re.compile(r"\b(half|halve)\s+(?:the|their|its)\s+(?:size|width|diameter|length)\b"),
+        re.compile(
+            r"\b(half|halve)\s+(?:the|their|its)\s+(?:\w+\s+)?(?:size|width|diameter|length)\b"
+        ),
         r"smaller \1",
     ),
     (
-        re.compile(r"\b(double|twice)\s+(?:the|their|its)\s+(?:size|width|diameter|length)\b"),
+        re.compile(
+            r"\b(double|twice)\s+(?:the|their|its)\s+(?:\w+\s+)?(?:size|width|diameter|length)\b"
+        ),
         r"bigger \1",
     ),
 )
@@ -403,8 +465,14 @@ def _looks(asked: str) -> str:
     ws = tokens(asked)
     for i, t in enumerate(ws):
         phrase = ew.looks.get(t)
-        if phrase is None or flipped(ws, i, ew["flip"]):
+        if phrase is None:
             continue
+        if flipped(ws, i, ew["flip"]):  # "less bleached": the other way, if it has one
+            if t not in ew.unlooks:
+                continue
+            phrase = ew.unlooks[t]
+            flip = next(w for w in reversed(ws[max(0, i - 2) : i]) if w in ew["flip"])
+            asked = re.sub(rf"\b{flip}\s+(?:\w+\s+)?{re.escape(t)}\b", t, asked, count=1)
         if i + 1 < len(ws) and (ws[i + 1] in ew.finish or ws[i + 1] in ("shine", "sheen")):
             continue
         lead = next((w for w in ws if w not in ew["filler"]), None) == t
@@ -420,11 +488,14 @@ def _looks(asked: str) -> str:
 
 #: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
 #: ("change the background to blue and make the stripes silver").
-_AND_VERB = r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color)\b)"
+_AND_VERB = (
+    r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color|mute|darken|lighten|brighten"
+    r"|tint|dye)\b)"
+)
 _CLAUSE_RE = re.compile(rf"[,;:]|{_AND_VERB}")
 
 #: Rules whose plans two clauses of one request may join ("olive drab, satin finish").
-_JOINABLE = frozenset({"colour", "roughness", "channel"})
+_JOINABLE = frozenset({"colour", "roughness", "channel", "relief"})
 
 
 def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
@@ -439,7 +510,8 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
         return plan
     if single:
         # one clause, two properties: "polished brass" is a finish and a colour
-        clauses = [asked] if plan.rule in ("roughness", "channel") else []
+        # ("the joints shallower and not so dark": a relief and a colour)
+        clauses = [asked] if plan.rule in ("roughness", "channel", "relief") else []
     for clause in clauses:
         sub = replace(c, words=tokens(clause))
         if not single and plan.rule.startswith(("colour", "overlay")) and _describes(c, sub.words):
@@ -449,7 +521,11 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
                 other = colour_rule(sub)
             else:
                 other = next((p for rule in RULES if (p := rule(sub)) is not None), None)
-                if other is not None and other.rule == plan.rule != "colour":
+                if (
+                    other is not None
+                    and other.rule == plan.rule != "colour"
+                    and not set(sub.words) & set(c.ew.relief)  # "give it a deeper": no colour
+                ):
                     other = colour_rule(sub)  # "darker and a bit shiny": its colour part
         except EditRefused:
             continue
@@ -457,6 +533,8 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             other is None
             or other.rule not in _JOINABLE
             or (other.rule == plan.rule and plan.rule != "colour")
+            # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
+            or ("relief" in (plan.rule, other.rule) and "colour" not in (plan.rule, other.rule))
             or other.view
             or other.add
             or set(other.assignments) & set(plan.assignments)
@@ -489,7 +567,11 @@ def _describes(c: Context, words: list[str]) -> bool:
         return True
     v = c.vocabulary
     return all(
-        t in c.ew["filler"] or t in v.named or t in v.tones or t in c.ew.comparative for t in words
+        t in c.ew["filler"]
+        or (v.ish.get(t, t) if t.endswith("ish") else t) in v.named
+        or t in v.tones
+        or t in c.ew.comparative
+        for t in words
     )
 
 
