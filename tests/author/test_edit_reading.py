@@ -237,3 +237,16 @@ def test_a_material_colour_word_naming_a_part_is_the_part() -> None:
 def test_a_deeper_pile_is_no_colour_and_muting_joins_it() -> None:
     plan = _plan("tartan-plaid-carpet", "give it a deeper, fluffier pile and mute the colours")
     assert plan["rule"] == "relief+colour" and len(plan["assignments"]) >= 3
+
+
+def test_a_colour_given_as_a_value_takes_no_tone_of_its_words() -> None:
+    text = "View(0, 0, 1, 1)\nDefine(base_r, 120)\nDefine(base_g, 90)\nDefine(base_b, 60)\n"
+    text += "Material(\n  Layer(1)\n    .basecolor(base_r, base_g, base_b)\n)\n"
+    result = edit_offline(text, "change the base colour to a pale sage green, #D8E0CF", size=32)
+    assert _values(result.program)["define:base"] == (216, 224, 207)
+
+
+def test_a_condition_beside_a_colour_of_the_request_is_a_colour() -> None:
+    name = "wired-safety-glass"
+    plan = _plan(name, "make the wires look rusty, orange-brown")
+    assert plan["rule"] == "colour" and list(plan["assignments"]) == ["define:wire"]

@@ -308,8 +308,9 @@ def _colour_in(
             used |= set(range(j, j + m))
     tone: str | None = None
     comparative_word: str | None = None
+    exact = bool(_explicit(c))  # "a pale sage green, #D8E0CF": the value, not its words' tone
     for i, t in enumerate(ws):
-        if i in used:
+        if i in used or exact:
             continue
         if t in c.ew.towards or t in c.ew.comparative:
             comparative_word = t

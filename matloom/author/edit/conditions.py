@@ -449,11 +449,10 @@ def _property_word(c: Context, word: str) -> bool:
     """Whether the request names a property of something (a colour, a finish, a relief), other
     than the condition's word itself."""
     # another condition's word ("older, with some moss") is no colour, though "moss" names one;
-    # the words of its own clause say what of it changes ("drier mud", "make the mud a reddish
-    # clay"), not those of another clause ("worn, faded and a bit stained")
-    clauses = [tokens(part) for part in re.split(r"[,;:]", c.request.lower())]
-    near = next((ws for ws in clauses if word in ws), c.words) if word else c.words
-    return any(t != word and t not in c.ew.conditions and _is_property(c, t) for t in near)
+    # the request's own words count, not those a look was read as ("worn, faded and a bit
+    # stained": "faded" is read as "paler overall")
+    said = tokens(c.request)  # as written: a look read as colours ("faded") is none
+    return any(t != word and t not in c.ew.conditions and _is_property(c, t) for t in said)
 
 
 def _is_property(c: Context, t: str) -> bool:
