@@ -250,3 +250,8 @@ def test_a_condition_beside_a_colour_of_the_request_is_a_colour() -> None:
     name = "wired-safety-glass"
     plan = _plan(name, "make the wires look rusty, orange-brown")
     assert plan["rule"] == "colour" and list(plan["assignments"]) == ["define:wire"]
+
+
+def test_a_contracted_not_flips_the_finish() -> None:
+    plan = _plan("carved-jade-relief", "it shouldn't be glossy")
+    assert plan["note"].startswith("rougher")
