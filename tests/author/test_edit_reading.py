@@ -73,7 +73,7 @@ def test_flattening_a_texture_to_nearly_smooth_is_the_relief() -> None:
 
 
 def test_a_colour_named_only_as_the_one_replaced_is_not_painted() -> None:
-    with pytest.raises(EditRefused):
+    with pytest.raises(EditRefused, match="no offline rule understands it"):
         edit_offline(_entry("cardboard-box-packing-tape"), "clear packing tape instead of brown")
 
 
@@ -124,8 +124,18 @@ def test_a_condition_with_a_look_of_its_own_colours_its_overlay(
 
 
 def test_a_colour_named_before_a_condition_tints_its_overlay_half_way() -> None:
+    from matloom.author.edit.conditions import library_overlays
+    from matloom.library.data import words
+
     plan = _plan("polished-metal", "add some orange rust")
-    assert "'rusty'" in plan["note"] and "coloured" in plan["note"]
+    found = re.search(r"coloured \((\d+), (\d+), (\d+)\)", plan["note"])
+    assert "'rusty'" in plan["note"] and found is not None
+    rusty = library_overlays()["rusty"]
+    slot = next(x for x in rusty.colours if x != rusty.host)
+    own = [float(rusty.ast.define(f"{slot}_{ch}").expr.value) for ch in "rgb"]  # type: ignore[union-attr]
+    orange = words().named["orange"]
+    half = [round((a + b) / 2) for a, b in zip(own, orange, strict=True)]
+    assert [int(x) for x in found.groups()] == half
 
 
 def test_a_condition_word_after_a_place_word_is_where_not_what() -> None:
@@ -184,12 +194,15 @@ def test_fewer_and_larger_is_a_size() -> None:
 
 def test_algae_is_a_dark_moss() -> None:
     plan = _plan("asphalt-shingles-three-tab", "add some dark algae")
-    assert "'mossy'" in plan["note"] and "coloured" in plan["note"]
+    found = re.search(r"coloured \((\d+), (\d+), (\d+)\)", plan["note"])
+    assert "'mossy'" in plan["note"] and found is not None
+    r, g, b = (int(x) for x in found.groups())
+    assert max(r, g, b) < 90 and g > r and g > b  # a dark green
 
 
 def test_the_material_named_with_an_article_is_the_subject_not_a_condition() -> None:
     plan = _plan("snow", "make the snow look older")
-    assert "'snowy'" not in plan["note"]
+    assert "'snowy'" not in plan["note"] and "'worn'" in plan["note"]
 
 
 def test_muting_the_colours_lowers_every_colour_s_chroma() -> None:
@@ -225,7 +238,13 @@ def test_leaves_are_the_leaf_layer() -> None:
 
 
 def test_less_bleached_is_richer() -> None:
-    assert _plan("driftwood", "less bleached")["rule"] == "colour"
+    name = "driftwood"
+    plan = _plan(name, "less bleached")
+    before = _values(_entry(name))
+    assert plan["rule"] == "colour" and plan["assignments"]
+    for address, value in plan["assignments"].items():
+        old, new = to_lab(before[address]), to_lab(value)  # type: ignore[arg-type]
+        assert math.hypot(new[1], new[2]) > math.hypot(old[1], old[2])
 
 
 def test_a_material_colour_word_naming_a_part_is_the_part() -> None:
@@ -255,3 +274,25 @@ def test_a_condition_beside_a_colour_of_the_request_is_a_colour() -> None:
 def test_a_contracted_not_flips_the_finish() -> None:
     plan = _plan("carved-jade-relief", "it shouldn't be glossy")
     assert plan["note"].startswith("rougher")
+
+
+def test_a_keep_clause_is_no_property_of_the_condition() -> None:
+    plan = _plan("cracked-concrete-weeds", "more weeds, keep the concrete grey")
+    assert plan["rule"] == "amount" and "weeds" in plan["note"]
+
+
+def test_covered_in_moss_is_moss() -> None:
+    plan = _plan("slate-roof-tiles", "make it covered in moss")
+    assert "moss" in plan["note"]
+
+
+def test_a_look_naming_a_finish_is_not_read_as_a_look() -> None:
+    # "less wet sheen": not "less darker overall, glossier sheen" (which would be glossier)
+    with pytest.raises(EditRefused):
+        edit_offline(_entry("muddy-field-puddles"), "less wet sheen", size=32)
+
+
+def test_a_tint_is_bounded_whatever_the_intensity_words() -> None:
+    request = "give the ice a " + "slight " * 1100 + "blue tint"
+    result = edit_offline(_entry("ice-cubes-pile"), request, size=32)
+    assert result.report.plan["rule"] == "colour"

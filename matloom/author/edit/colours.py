@@ -178,9 +178,8 @@ _OVERALL = frozenset({"overall", "everything", "entire", "whole", "all", "colour
 #: more like honey"), and the share of the way the colour moves then.
 _LIKE = frozenset({"like", "towards", "toward"})
 _LIKE_SHARE = 0.6
-#: Words that ask for a tint of a colour ("a slight blue tint"), the share of the way it moves
+#: The share of the way a tint ("a slight blue tint", ``tint`` words of ``words.toml``) moves
 #: (times the intensity words: "slight" halves it) and the most it moves.
-_TINT = frozenset({"tint", "tinted", "tinge", "tinged", "hint", "cast", "wash"})
 _TINT_SHARE = 0.6
 _TINT_MAX = 0.85
 _TINT_STRONGER = 1.4
@@ -191,8 +190,6 @@ def _more_before(c: Context) -> bool:
     found = _named_at(c)
     return bool(found) and found[0][0] > 0 and c.words[found[0][0] - 1] == "more"
 
-
-_ARTICLES = frozenset({"the", "its", "their", "this", "that"})
 
 #: Material words that are also colour names: a noun before a colour, not the colour.
 _NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
@@ -205,11 +202,13 @@ def _tinted(current: RGB, named: RGB, share: float, least: float) -> Lab:
     """``current`` with its hue and chroma ``share`` of the way to ``named``'s, its lightness
     kept; a share too small to see (under ``least`` Delta E) grows up to ``_TINT_MAX``."""
     cur, nl = to_lab(current), to_lab(named)
-    while True:
+    share = max(share, 0.05)
+    for _ in range(12):  # 0.05 * 1.5 ** 12 > _TINT_MAX: bounded whatever the share
         lab = (cur[0], cur[1] + (nl[1] - cur[1]) * share, cur[2] + (nl[2] - cur[2]) * share)
         if delta_e(current, from_lab(lab)) >= least or share >= _TINT_MAX:
-            return lab
+            break
         share = min(_TINT_MAX, share * 1.5)
+    return lab
 
 
 def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
@@ -261,7 +260,7 @@ def _colour_in(
         found.append((i, n, value, ish))
     # "give the ice a slight blue tint", "make the brass strips gold": a material word after an
     # article names the part beside another colour, it is not the colour
-    nouns = [f for f in found if f[1] == 1 and f[0] and ws[f[0] - 1] in _ARTICLES]
+    nouns = [f for f in found if f[1] == 1 and f[0] and ws[f[0] - 1] in c.ew["articles"]]
     nouns = [f for f in nouns if ws[f[0]] in w.materialish]
     # ... and always when the program has a part of that name ("the brick ... darker")
     named = [f for f in nouns if named_in_program(c.program, [ws[f[0]]], c.ew)]
@@ -459,10 +458,6 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
     return [p for _, _, p in close]
 
 
-#: Size words that make a colour word before a part the part's name ("thinner brass strips").
-_SIZE_WORDS = frozenset({"bigger", "smaller", "larger", "wider", "narrower", "thinner", "thicker"})
-
-
 def colour_rule(c: Context) -> Plan | None:
     rgb, tone, comp, used, source = _colour_in(c)
     if rgb is None and tone is None and comp is None:
@@ -471,7 +466,7 @@ def colour_rule(c: Context) -> Plan | None:
         rgb is not None
         and tone is None
         and comp is None
-        and set(c.words) & (_SIZE_WORDS | c.ew["width"])
+        and set(c.words) & (c.ew["size"] | c.ew["width"])
         and any(named_in_program(c.program, [c.words[i]], c.ew) for i in used)
     ):
         return None  # "thinner brass strips": the size of the part the colour word names
@@ -506,10 +501,11 @@ def colour_rule(c: Context) -> Plan | None:
     primary = targets[0]
     # "warmer, more like honey", "lighter, more honey-yellow": the named colour is a direction
     towards = rgb is not None and step is not None and bool(_LIKE & set(c.words) or _more_before(c))
-    # "a slight blue tint": part of the way to the colour (slightly: less), not the colour
-    # ("a deeper blue-green tint": a stronger one); a tint asked for plainly is the colour
-    # ("tint the glass amber", "a dark smoky grey tint")
-    tint = rgb is not None and not towards and bool(_TINT & set(c.words)) and c.intensity < 1.0
+    # "a slight blue tint": part of the way to the colour, not the colour ("a slight but
+    # deeper tint": a stronger part); a tint asked for plainly is the colour ("tint the glass
+    # amber", "a dark smoky grey tint")
+    tint = rgb is not None and not towards and bool(c.ew["tint"] & set(c.words)) and c.intensity < 1
+
     stronger = _TINT_STRONGER if tint and step is not None else 1.0
     share = min(_TINT_MAX, _TINT_SHARE * c.intensity * stronger) if tint else _LIKE_SHARE
     base_lab = to_lab(_value(primary))

@@ -159,14 +159,6 @@ def library_overlays() -> dict[str, Overlay]:
     return {ov.name: ov for ov in _overlays()}
 
 
-_LOOK = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "seems"})
-
-
-#: Words before a condition's word that make it a place ("weeds out of the cracks", "moss
-#: between the stones"), not what to add.
-_PLACE_BEFORE = frozenset({"in", "into", "between", "along", "inside", "within", "from"})
-
-
 def _subject(c: Context, i: int) -> bool:
     """Whether the condition word at ``i`` names the material itself ("make the snow look
     older": the snow is what ages, not snow to add): after an article, naming a Define or
@@ -177,29 +169,34 @@ def _subject(c: Context, i: int) -> bool:
     asked = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
     return (
         i > 0
-        and c.words[i - 1] in ("the", "this", "its")
+        and c.words[i - 1] in c.ew["articles"]
         and not asked & set(c.words[max(0, i - 3) : i - 1])  # "less the verdigris": what
         and (named_in_program(c.program, [word], c.ew) or material_noun(c, [word]))
     )
 
 
 def placed(words: Sequence[str], i: int) -> bool:
-    """Whether the word at ``i`` follows a place word ("out of the cracks", "in the rust"; not
-    "patches of moss")."""
-    near = [w for w in words[max(0, i - 3) : i] if w not in ("the", "a", "its", "their", "some")]
-    return bool(near) and (near[-1] in _PLACE_BEFORE or near[-2:] == ["out", "of"])
+    """Whether the word at ``i`` follows a place word ("weeds out of the cracks", "moss between
+    the stones": where, not what to add; not "patches of moss", "covered in moss")."""
+    ew = edit_words()
+    skip = ew["articles"] | {"a", "some"}
+    near = [w for w in words[max(0, i - 3) : i] if w not in skip]
+    if near[-2:] == ["out", "of"]:
+        return True
+    covered = len(near) > 1 and near[-2] in ew["covered"]
+    return bool(near) and near[-1] in ew["place"] and not covered
 
 
 def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     """A library overlay's one-word trigger in the request ("wet", "snowy", "faded") when the
     request asks for an amount of it (more, less, add, some ...), is that word alone or leads
-    it (its first word that is not filler: "make it look wet after rain"), with
+    it (its first word that is not filler: "make it look snowy after a storm"), with
     the stems its layers would be named by."""
     direction = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
     alone = len([n for n in c.nouns if n not in direction]) == 1
-    head = c.nouns[0] if c.nouns else None  # "make it look wet after rain": wet leads
-    # "make the roof look wet": what it should look like
-    said = {b for a, b in zip(c.words, c.words[1:], strict=False) if a in _LOOK}
+    head = c.nouns[0] if c.nouns else None  # "make it look snowy after a storm": it leads
+    # "make the roof look snowy": what it should look like
+    said = {b for a, b in zip(c.words, c.words[1:], strict=False) if a in c.ew["look"]}
     for i, t in enumerate(c.words):
         if placed(c.words, i):
             continue
@@ -230,17 +227,18 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
         scale = c.ew.f("spot_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
+    look = _look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
     if within is None and _in_joints(c):  # "moss in the gaps": never spilled over the stones
         raise c.refuse(f"no joints found in this program to put the {word} in")
     if within is not None and not amounts:  # the joints asked for are the joints it fills
         cover = c.ew.f("joint_cover")
     try:
-        add, channels = overlay_lines(c.program, ov, cover, scale, within, _look(c, word, ov))
+        add, channels = overlay_lines(c.program, ov, cover, scale, within, look)
     except ValueError as err:
         raise c.refuse(str(err)) from None
     amount = f" (amount {cover:g})" if cover is not None else ""
-    if (look := _look(c, word, ov)) is not None:
+    if look is not None:
         amount += f" coloured {look}"
     if scale != 1.0:
         amount += f" as spots (size x{scale:g})"
@@ -451,7 +449,7 @@ def _property_word(c: Context, word: str) -> bool:
     # another condition's word ("older, with some moss") is no colour, though "moss" names one;
     # the request's own words count, not those a look was read as ("worn, faded and a bit
     # stained": "faded" is read as "paler overall")
-    said = tokens(c.request)  # as written: a look read as colours ("faded") is none
+    said = c.said or tokens(c.request)  # as written: a look read as colours is none
     return any(t != word and t not in c.ew.conditions and _is_property(c, t) for t in said)
 
 

@@ -26,6 +26,7 @@ from matloom.author.edit.apply import (
     set_view,
 )
 from matloom.author.edit.lexicon import edit_words, tokens
+from matloom.author.edit.plan import word_intensity
 from matloom.author.edit.rules import EditRefused, Plan, plan_edit
 from matloom.author.edit.visible import VISIBLE_SIZE, lit_changes, visible_changes
 from matloom.engine.evaluate import evaluate
@@ -266,7 +267,7 @@ def edit_offline(
     params = all_params(before)
     strength = 1.0
     plan: Plan = plan_edit(before, params, request, strength, ew)
-    calm = any(ew.intensity.get(t, words().intensity.get(t, 1.0)) < 1.0 for t in tokens(request))
+    calm = any(word_intensity(t, ew, words()) < 1.0 for t in tokens(request))
     capped = False  # the strength ran out before the parameters reached their limits
     while True:
         new_text, warnings = apply_edit(before, plan.assignments, plan.view, plan.lines, plan.add)

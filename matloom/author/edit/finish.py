@@ -35,18 +35,6 @@ def _replaced(ws: list[str], i: int) -> bool:
     )
 
 
-#: Words before a finish word that make it the name of the surface's finish ("can the polish
-#: be duller"), not the finish asked for: another finish word of the request wins over it.
-_ARTICLES = frozenset({"the", "its", "this", "that", "their"})
-
-
-#: Size words ("coarser grain, twice as big", "coarser stipple with bigger bumps"): "coarser"
-#: then means bigger features, not a rougher finish.
-_SIZE_WORDS = frozenset(
-    {"big", "bigger", "large", "larger", "huge", "small", "smaller", "tiny", "enlarge", "shrink"}
-)
-
-
 def _names_feature(c: Context) -> bool:
     """Whether the request names a drawn part of the program ("the brushing lines coarser",
     "coarser granules"): "coarser" is then its size."""
@@ -73,11 +61,11 @@ def _finish_word(c: Context) -> tuple[int, str, str] | None:
                 continue
             if d and any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
                 kind = "step"  # "more polished": a step ("more satin" is still satin)
-            found.append((d, kind, t, 1 if i and ws[i - 1] in _ARTICLES else 0))
+            # "can the polish be duller": after an article, the surface's finish, not the one
+            # asked for; another finish word of the request wins over it
+            found.append((d, kind, t, 1 if i and ws[i - 1] in c.ew["articles"] else 0))
     if found:
-        if all(f[2] in ("coarser", "coarse") for f in found) and (
-            set(ws) & _SIZE_WORDS or _names_feature(c)
-        ):
+        if all(f[2] == "coarser" for f in found) and (set(ws) & c.ew["size"] or _names_feature(c)):
             return None  # "coarser grain, the speckles twice as big", "coarser granules": a size
         if set(ws) & set(c.ew.relief) and all(f[2] in c.ew.tactile for f in found):
             return None  # "flatten the broom texture, nearly smooth": the relief

@@ -34,6 +34,8 @@ class EditWords:
     colours: dict[str, tuple[float, float, float]] = dataclasses.field(default_factory=dict)
     #: the colour of a condition's overlay when its word names a look of its own ("lichen")
     condition_colours: dict[str, tuple[int, int, int]] = dataclasses.field(default_factory=dict)
+    #: "too <adjective>" -> the comparative it asks for ("too big": smaller)
+    too: dict[str, str] = dataclasses.field(default_factory=dict)
     #: look words read as what they change everywhere ("wet": "darker overall, glossier")
     looks: dict[str, str] = dataclasses.field(default_factory=dict)
     #: ... and what a flipped one changes ("less faded": "richer overall")
@@ -94,6 +96,7 @@ def edit_words() -> EditWords:
             k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw.get("colours", {}).items()
         },
         intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
+        too={k: str(v) for k, v in raw.get("too", {}).items()},
         looks={w: str(look["as"]) for look in raw.get("looks", {}).values() for w in look["words"]},
         unlooks={
             w: str(look["opposite"])

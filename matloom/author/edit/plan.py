@@ -70,11 +70,18 @@ def _json_value(v: Value) -> Any:
     return list(v) if isinstance(v, tuple) else v
 
 
+def word_intensity(word: str, ew: EditWords, vocabulary: Words) -> float:
+    """An intensity word's factor ("slightly" 0.5, "very" 1.4; 1 for any other word): the
+    edits' own ``[intensity]`` over the library's."""
+    return ew.intensity.get(word, vocabulary.intensity.get(word, 1.0))
+
+
 @dataclass(frozen=True)
 class Context:
     """A request as the rules read it: its words, the program and its parameters, the
     library's vocabulary, the edit words, and the step strength (1 at first, more when the
-    edit escalates a change too small to see; "slightly" halves it)."""
+    edit escalates a change too small to see; "slightly" halves it), and the request's own
+    words (``said``)."""
 
     request: str
     words: list[str]
@@ -83,6 +90,9 @@ class Context:
     vocabulary: Words
     strength: float = 1.0
     ew: EditWords = field(default_factory=edit_words)
+    #: the request's own words, what it keeps cut off (a look's reading, "wet" as "darker
+    #: overall, glossier", is not in them); empty: the words of ``request``
+    said: tuple[str, ...] = ()
 
     @property
     def nouns(self) -> list[str]:
@@ -93,7 +103,7 @@ class Context:
         """The product of the request's intensity words ("slightly" 0.5, "very" 1.4)."""
         k = 1.0
         for t in self.words:
-            k *= self.ew.intensity.get(t, self.vocabulary.intensity.get(t, 1.0))
+            k *= word_intensity(t, self.ew, self.vocabulary)
         return k
 
     @property

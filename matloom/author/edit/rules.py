@@ -234,14 +234,14 @@ def _scale(c: Context) -> Plan | None:
         if p.kind in ("size", "frequency") and not any(k in p.address.lower() for k in joint)
     ]
     skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | ew["width"]
-    skip |= {"feature", "features", "pattern", "scale", "size"} | _GENERIC
+    skip |= {"feature", "features", "pattern", "scale", "size"} | ew["not_parts"]
     nouns = [t for t in _unlike(c.nouns) if t not in skip]
     # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else
     # those that shape its layer's coverage
     targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]
     if not targets and nouns:
         targets = coverage_params(scalable, nouns, c.program, ew)
-    if ws & _WHOLE:
+    if ws & ew["scale_all"]:
         return _zoom(c, bigger, step)  # "scale the whole texture up": every feature
     sized = bool(ws & ((ew["bigger"] | ew["smaller"]) - ew["denser"] - ew["sparser"]))
     if not targets and nouns and ws & (ew["denser"] | ew["sparser"]) and not sized:
@@ -262,47 +262,6 @@ def _scale(c: Context) -> Plan | None:
     # not graded: a feature x1.5 shows wherever the preview resolves it, and a finer one
     # (a velvet's pile) would not show at any step
     return assign(c, "scale", f"features x{size_f:.3g}", new, affects(targets), graded=False)
-
-
-#: Words of a size request that name no part ("so the clumps read about twice as big", "the
-#: whole thing").
-_GENERIC = frozenset(
-    {
-        "read",
-        "reads",
-        "about",
-        "as",
-        "so",
-        "twice",
-        "double",
-        "half",
-        "up",
-        "down",
-        "around",
-        "roughly",
-        "approximately",
-        "thing",
-        "things",
-        "everything",
-        "further",
-        "apart",
-        "spaced",
-        "spacing",
-        "space",
-        "out",
-        "them",
-        "they",
-        "there",
-        "are",
-        "looks",
-        "now",
-        "right",
-    }
-)
-
-
-#: Words that scale everything ("scale the whole texture up", "everything smaller").
-_WHOLE = frozenset({"texture", "whole", "everything", "overall", "entire"})
 
 
 def _unlike(words: Sequence[str]) -> list[str]:
@@ -410,29 +369,6 @@ _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     ),
 )
 
-#: "too <adjective>" asks for the opposite ("the hexes are too big": smaller ones).
-_TOO: dict[str, str] = {
-    "big": "smaller",
-    "large": "smaller",
-    "huge": "smaller",
-    "chunky": "smaller",
-    "small": "bigger",
-    "tiny": "bigger",
-    "dark": "lighter",
-    "light": "darker",
-    "pale": "richer",
-    "bright": "duller",
-    "thick": "thinner",
-    "thin": "thicker",
-    "wide": "narrower",
-    "narrow": "wider",
-    "dense": "sparser",
-    "busy": "sparser",
-    "crowded": "sparser",
-    "sparse": "denser",
-}
-_TOO_RE = re.compile(rf"\b(?:far\s+|way\s+|a\s+bit\s+|a\s+little\s+)?too\s+({'|'.join(_TOO)})\b")
-
 
 #: A clause that says a part stays as it is ("chips unchanged", "the rest as it is").
 _AS_IS_RE = re.compile(
@@ -441,48 +377,53 @@ _AS_IS_RE = re.compile(
 )
 
 
-def normalise(request: str) -> str:
-    """The request with what it keeps cut off and its phrasal verbs read as plain words."""
+def _kept_off(request: str) -> str:
+    """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged")."""
     asked = _KEEP_RE.sub("", request) or request
-    asked = _AS_IS_RE.sub("", asked) or asked
-    asked = asked.lower()
+    return _AS_IS_RE.sub("", asked) or asked
+
+
+def normalise(request: str) -> str:
+    """The request with what it keeps cut off, its phrasal verbs read as plain words and its
+    first look read as what it changes."""
+    asked = _kept_off(request).lower()
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
-    asked = _TOO_RE.sub(lambda m: _TOO[m.group(1)], asked)
+    too = edit_words().too  # "far too big": smaller ("a bit too dark": a bit lighter)
+    too_re = re.compile(rf"\b(?:far\s+|way\s+)?too\s+({'|'.join(too)})\b")
+    asked = too_re.sub(lambda m: too[m.group(1)], asked)
     return _looks(asked)
-
-
-#: Words after which a look word is what the surface should look like ("look wet").
-_LOOK_BEFORE = frozenset({"look", "looks", "looking", "appear", "appears", "seem", "seems"})
 
 
 def _looks(asked: str) -> str:
     """The request with its first look word read as what it changes (``[looks]`` of
     ``words.toml``: "make it look wet" is darker and glossier all over, "faded" paler): a wet
-    or faded surface changes everywhere, which an overlay's patches do not show. A look word
-    that is flipped ("less wet", "not faded") or names a finish ("the wet shine") stays."""
+    or faded surface changes everywhere, which an overlay's patches do not show. A flipped look
+    ("less bleached") is read as its opposite when it has one, else left as it is; a look word
+    that names a finish ("the wet shine") or is no look ("the wet room") is left too."""
     ew = edit_words()
     ws = tokens(asked)
     for i, t in enumerate(ws):
         phrase = ew.looks.get(t)
         if phrase is None:
             continue
-        if flipped(ws, i, ew["flip"]):  # "less bleached": the other way, if it has one
-            if t not in ew.unlooks:
-                continue
-            phrase = ew.unlooks[t]
-            flip = next(w for w in reversed(ws[max(0, i - 2) : i]) if w in ew["flip"])
-            asked = re.sub(rf"\b{flip}\s+(?:\w+\s+)?{re.escape(t)}\b", t, asked, count=1)
         if i + 1 < len(ws) and (ws[i + 1] in ew.finish or ws[i + 1] in ("shine", "sheen")):
             continue
         lead = next((w for w in ws if w not in ew["filler"]), None) == t
-        said = bool(_LOOK_BEFORE & set(ws[max(0, i - 3) : i])) or ws[i + 1 : i + 2] == ["look"]
-        made = any(w in ("make", "get", "it", "them", "more") for w in ws[max(0, i - 3) : i])
+        said = bool(ew["look"] & set(ws[max(0, i - 3) : i])) or ws[i + 1 : i + 2] == ["look"]
+        made = any(
+            w in ("make", "get", "it", "them", "more", "less") for w in ws[max(0, i - 3) : i]
+        )
         if not (lead or said or made):
             continue  # "the sample from the wet room"
-        done = re.sub(rf"\b{re.escape(t)}\b", phrase, asked, count=1)
-        # the look's other words say it again ("damp, like it just rained"): once is enough
-        return done
+        if not flipped(ws, i, ew["flip"]):
+            return re.sub(rf"\b{re.escape(t)}\b", phrase, asked, count=1)
+        flip = next(w for w in reversed(ws[max(0, i - 2) : i]) if w in ew["flip"])
+        if t not in ew.unlooks or not re.fullmatch(r"[a-z]+", flip) or len(flip) < 2:
+            return asked  # no opposite, or a contraction ("shouldn't be wet"): as it is
+        # "less bleached": the flip word and the look give way to the opposite
+        span = rf"\b{flip}\s+(?:\w+\s+)?{re.escape(t)}\b"
+        return re.sub(span, ew.unlooks[t], asked, count=1)
     return asked
 
 
@@ -534,7 +475,10 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             or other.rule not in _JOINABLE
             or (other.rule == plan.rule and plan.rule != "colour")
             # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
-            or ("relief" in (plan.rule, other.rule) and "colour" not in (plan.rule, other.rule))
+            or (
+                "relief" in plan.rule.split("+") + other.rule.split("+")
+                and "colour" not in plan.rule.split("+") + other.rule.split("+")
+            )
             or other.view
             or other.add
             or set(other.assignments) & set(plan.assignments)
@@ -602,7 +546,10 @@ def plan_edit(
     asked = normalise(request)
     # "make the tiles blue and make the grout white": the first part leads, the next joins
     lead = re.split(_AND_VERB, asked)[0]
-    c = Context(request, tokens(lead), list(params), program, words(), strength, ew or edit_words())
+    said = tuple(tokens(_kept_off(request)))
+    c = Context(
+        request, tokens(lead), list(params), program, words(), strength, ew or edit_words(), said
+    )
     for rule in RULES:
         plan = rule(c)
         if plan is not None:
