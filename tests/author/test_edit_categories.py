@@ -217,7 +217,7 @@ def test_keep_clause_and_mixed_colour() -> None:
 
 
 def test_greyer_less_named_colour_reduces_chroma() -> None:
-    from matloom.author.edit.colours import to_lab
+    from matloom.author.edit.lab import to_lab
 
     before = dict((p.address, p.value) for p in all_params(parse_program(program("painted"))))
     plan = edit_offline(program("painted"), "greyer paint, less red", size=32).report.plan

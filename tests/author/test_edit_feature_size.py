@@ -9,7 +9,7 @@ import pytest
 
 from matloom.author.edit import edit_offline
 from matloom.author.edit.apply import parse_program
-from matloom.author.edit.colours import delta_e
+from matloom.author.edit.lab import delta_e
 from matloom.author.edit.measure import feature_size
 
 

@@ -16,7 +16,7 @@ import pytest
 
 from matloom.author.edit import EditRefused, edit_offline
 from matloom.author.edit.apply import parse_program
-from matloom.author.edit.colours import to_lab
+from matloom.author.edit.lab import to_lab
 from matloom.lang.params import list_params
 
 

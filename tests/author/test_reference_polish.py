@@ -66,7 +66,7 @@ def _critic_reply(score: int) -> str:
 def test_cmaes_recovers_a_flat_colour_from_the_photo_statistics() -> None:
     """The reference objective (statistics distance to a target render made with known values)
     brings a colour Delta E 28 off back to within a few units; a seeded fit repeats exactly."""
-    from matloom.author.edit.colours import delta_e
+    from matloom.author.edit.lab import delta_e
 
     renderer = Renderer()
     target = image_stats(renderer.image("Material(Layer(1).basecolor(170, 110, 60))", 32))

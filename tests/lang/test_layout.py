@@ -55,11 +55,9 @@ def test_a_layer_literal_changes_in_place() -> None:
 
 
 def test_added_defines_and_layers_are_inserted_and_nothing_else_moves() -> None:
-    after = (
-        WRITTEN.replace(
-            "Material(", "Define(dirt, fBm(octaves=3, base_freq=4, to_01=True, seed=9))\nMaterial("
-        ).replace("    .roughness(0.9)\n)", "    .roughness(0.9),\n  Layer(dirt)\n    .roughness(1)\n)")
-    )
+    after = WRITTEN.replace(
+        "Material(", "Define(dirt, fBm(octaves=3, base_freq=4, to_01=True, seed=9))\nMaterial("
+    ).replace("    .roughness(0.9)\n)", "    .roughness(0.9),\n  Layer(dirt)\n    .roughness(1)\n)")
     canonical = format_program(parse(after), comments=True)
     kept = keep_layout(WRITTEN, canonical)
     assert all(line.startswith("+") for line in _changed_lines(WRITTEN, kept) if line[0] == "+")

@@ -50,9 +50,7 @@ def test_scratches_tile_and_run_in_every_direction() -> None:
     program = compose(host, LIB.overlays["scratched"], main_colour="base", cover=0.8)
     assert program.tileable and tileable_warnings(program) == []
     top = program.layers[-1]
-    probe = replace(
-        program, layers=(A.Layer(None, (A.ChannelSet("roughness", (top.alpha,)),)),)
-    )
+    probe = replace(program, layers=(A.Layer(None, (A.ChannelSet("roughness", (top.alpha,)),)),))
     m = np.asarray(evaluate(probe, 256, 256).roughness, np.float64)
     gy, gx = np.gradient(m)
     mag = np.hypot(gx, gy)
