@@ -296,3 +296,24 @@ def test_a_tint_is_bounded_whatever_the_intensity_words() -> None:
     request = "give the ice a " + "slight " * 1100 + "blue tint"
     result = edit_offline(_entry("ice-cubes-pile"), request, size=32)
     assert result.report.plan["rule"] == "colour"
+
+
+@pytest.mark.parametrize(
+    ("name", "request_", "named"),
+    [
+        ("cracked-earth", "reddish desert clay colour", "red"),
+        ("graph-paper-millimetre-grid", "age the paper: yellow the cream ground", "yellow"),
+    ],
+)
+def test_an_ish_colour_or_a_colour_verb_moves_part_of_the_way(
+    name: str, request_: str, named: str
+) -> None:
+    from matloom.library.data import words
+
+    plan = _plan(name, request_)
+    before = _values(_entry(name))
+    target = to_lab(words().named[named])
+    (address, value), *_ = plan["assignments"].items()
+    old, new = to_lab(before[address]), to_lab(value)  # type: ignore[arg-type]
+    assert 0 < math.dist(new, old) < math.dist(target, old)  # moved, not all the way
+    assert math.dist(new, target) < math.dist(old, target)

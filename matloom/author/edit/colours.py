@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import replace
 
@@ -155,6 +156,13 @@ def _tinted(current: RGB, named: RGB, share: float, least: float) -> Lab:
     return lab
 
 
+def _as_verb(c: Context, word: str) -> bool:
+    """Whether the colour ``word`` is a verb in the request ("yellow the cream ground", "age
+    it: yellow the paper"): first in its clause, before an article."""
+    pattern = rf"(?:^|[,:;.!]|\band|\bthen)\s*{re.escape(word)}\s+(?:the|its|their|this)\b"
+    return re.search(pattern, c.request.lower()) is not None
+
+
 def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
     la, lb = to_lab(a), to_lab(b)
     return from_lab(tuple(x + (y - x) * t for x, y in zip(la, lb, strict=True)))  # type: ignore[arg-type]
@@ -187,7 +195,7 @@ def _names_part(c: Context, k: int) -> bool:
 
 def _colour_in(
     c: Context,
-) -> tuple[RGB | None, str | None, str | None, set[int], RGB | None]:
+) -> tuple[RGB | None, str | None, str | None, set[int], RGB | None, bool]:
     """The named colour, the tone word (``tone`` an absolute tone of the library, a comparative
     of ``words.toml``), the word indices used, and the old colour a swap names ("swap the
     yellow for orange", "navy instead of charcoal": it selects the part to recolour)."""
@@ -196,6 +204,7 @@ def _colour_in(
     used: set[int] = set()
     rgb: RGB | None = None
     source: RGB | None = None
+    partial = False
     found = []
     for i, n, value, ish in _named_at(c):
         if flipped(ws, i, c.ew["flip"]):  # "less beige": not a colour to paint
@@ -232,7 +241,7 @@ def _colour_in(
         if not new and any(_after_instead_of(c, f[0]) for f in old):
             # "clear tape instead of brown": the colour named is the one to replace, and
             # the new one is no colour the rules know
-            return None, None, None, used | {f[0] for f in old}, None
+            return None, None, None, used | {f[0] for f in old}, None, False
         new = new or found
         if old and new is not found:
             source = old[0][2]
@@ -249,6 +258,10 @@ def _colour_in(
             j, m, other, _ = rest[0]  # brown": the mix (an -ish colour a third of it)
             rgb = _mix(rgb, other, 0.67 if ish else 0.5)
             used |= set(range(j, j + m))
+        else:
+            # "a reddish sandstone" (an -ish colour alone), "yellow the cream ground" (a colour
+            # as a verb): part of the way there, not the colour name's pure value
+            partial = ish or _as_verb(c, ws[i])
     tone: str | None = None
     comparative_word: str | None = None
     exact = bool(_explicit(c))  # "a pale sage green, #D8E0CF": the value, not its words' tone
@@ -271,7 +284,7 @@ def _colour_in(
             tone = t
             used.add(i)
             break
-    return rgb, tone, comparative_word, used, source
+    return rgb, tone, comparative_word, used, source, partial
 
 
 #: Address prefix of a derived colour slot (:func:`_derived`): set by rewriting its lines.
@@ -403,7 +416,7 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
 
 
 def colour_rule(c: Context) -> Plan | None:
-    rgb, tone, comp, used, source = _colour_in(c)
+    rgb, tone, comp, used, source, partial = _colour_in(c)
     if rgb is None and tone is None and comp is None:
         return None
     if (
@@ -445,6 +458,7 @@ def colour_rule(c: Context) -> Plan | None:
     primary = targets[0]
     # "warmer, more like honey", "lighter, more honey-yellow": the named colour is a direction
     towards = rgb is not None and step is not None and bool(_LIKE & set(c.words) or _more_before(c))
+    towards = towards or (rgb is not None and partial and tone is None)
     # "a slight blue tint": part of the way to the colour, not the colour ("a slight but
     # deeper tint": a stronger part); a tint asked for plainly is the colour ("tint the glass
     # amber", "a dark smoky grey tint")
