@@ -317,3 +317,29 @@ def test_an_ish_colour_or_a_colour_verb_moves_part_of_the_way(
     old, new = to_lab(before[address]), to_lab(value)  # type: ignore[arg-type]
     assert 0 < math.dist(new, old) < math.dist(target, old)  # moved, not all the way
     assert math.dist(new, target) < math.dist(old, target)
+
+
+@pytest.mark.parametrize(
+    ("name", "request_"),
+    [
+        ("speckled-laminate-countertop", "add more of the dark flecks"),
+        ("rubber-gym-floor-flecks", "more of the blue flecks"),
+        ("pine-needle-forest-floor", "thin out the needle cover so more of the dark soil shows"),
+    ],
+)
+def test_a_colour_naming_a_part_by_its_look_is_no_colour_to_paint(name: str, request_: str) -> None:
+    try:
+        plan = _plan(name, request_)
+    except EditRefused:
+        return  # refused is honest; painting the named colour on is not
+    assert not any(isinstance(v, list) for v in plan["assignments"].values()), plan
+
+
+def test_too_before_a_condition_asks_for_less_of_it() -> None:
+    with pytest.raises(EditRefused, match="no rusty in this program to reduce"):
+        edit_offline(_entry("pine-needle-forest-floor"), "it's too uniformly rusty", size=32)
+
+
+def test_a_colour_said_of_a_named_part_is_the_colour_to_paint() -> None:
+    plan = _plan("glowing-circuit-traces", "make the board green like a regular PCB")
+    assert plan["rule"] == "colour" and "define:board" in plan["assignments"]

@@ -156,6 +156,41 @@ def _tinted(current: RGB, named: RGB, share: float, least: float) -> Lab:
     return lab
 
 
+def describes_part(c: Context, i: int, n: int = 1) -> bool:
+    """Whether the colour or tone words ``i .. i+n`` name a part by its look, as an adjective
+    after an article ("more of the dark flecks", "the gold pads bigger", "the fresh tan
+    needles"): followed by a noun, not by another colour, tone, comparative or a word that
+    makes the colour the new one ("the red to blue")."""
+    ws = c.words
+    before = ws[max(0, i - 2) : i]
+    if not before:
+        return False
+    # "the dark flecks", or "the fresh tan needles" (an adjective between; "the board green"
+    # has a part's name there, which the colour is said of)
+    adjective = (
+        len(before) == 2
+        and before[0] in c.ew["articles"]
+        and not named_in_program(c.program, [before[1]], c.ew)
+    )
+    if before[-1] not in c.ew["articles"] and not adjective:
+        return False
+    after = ws[i + n] if i + n < len(ws) else None
+    v = c.vocabulary
+    if after is None or not after.isalpha():
+        return False
+    return not (
+        after in v.named
+        or after in v.tones
+        or after in c.ew.comparative
+        or after in c.ew.towards
+        or after in c.ew.finish
+        or after in c.ew["filler"]
+        or after in _TO_WORDS
+        or after in ("instead", "rather", "and", "or", "but", "than", "please", "like", "as")
+        or (after.endswith("ish") and v.ish.get(after) in v.named)
+    )
+
+
 def _as_verb(c: Context, word: str) -> bool:
     """Whether the colour ``word`` is a verb in the request ("yellow the cream ground", "age
     it: yellow the paper"): first in its clause, before an article."""
@@ -237,13 +272,20 @@ def _colour_in(
             and _names_part(c, f[0] + f[1])
             and any(g[0] > f[0] and g not in old for g in found)
         ]
+        # a colour naming a part by its look ("more of the dark flecks", "the gold pads
+        # bigger"): the part, never the colour to paint
+        said = [f for f in found if f not in old and describes_part(c, f[0], f[1])]
+        old += said
         new = [f for f in found if f not in old]
         if not new and any(_after_instead_of(c, f[0]) for f in old):
             # "clear tape instead of brown": the colour named is the one to replace, and
             # the new one is no colour the rules know
             return None, None, None, used | {f[0] for f in old}, None, False
+        if not new and said:  # no colour to paint: the part it names, for a comparative
+            used |= {k for f in said for k in range(f[0], f[0] + f[1])}
+            found, source = [], said[0][2]
         new = new or found
-        if old and new is not found:
+        if old and new and new is not found:
             source = old[0][2]
             for f in old:
                 used |= set(range(f[0], f[0] + f[1]))
@@ -251,17 +293,18 @@ def _colour_in(
             if j >= 0 and ws[j] in w.tones and j not in used:
                 source = apply_tone(source, ws[j], w.tones[ws[j]])
                 used.add(j)
-        i, n, rgb, ish = new[0]
-        used |= set(range(i, i + n))
-        rest = [f for f in new[1:] if f[0] <= i + n + 2]
-        if rest and rest[0][0] == i + n or (ish and rest):  # "purple brown", "reddish clay
-            j, m, other, _ = rest[0]  # brown": the mix (an -ish colour a third of it)
-            rgb = _mix(rgb, other, 0.67 if ish else 0.5)
-            used |= set(range(j, j + m))
-        else:
-            # "a reddish sandstone" (an -ish colour alone), "yellow the cream ground" (a colour
-            # as a verb): part of the way there, not the colour name's pure value
-            partial = ish or _as_verb(c, ws[i])
+        if new:
+            i, n, rgb, ish = new[0]
+            used |= set(range(i, i + n))
+            rest = [f for f in new[1:] if f[0] <= i + n + 2]
+            if rest and rest[0][0] == i + n or (ish and rest):  # "purple brown", "reddish clay
+                j, m, other, _ = rest[0]  # brown": the mix (an -ish colour a third of it)
+                rgb = _mix(rgb, other, 0.67 if ish else 0.5)
+                used |= set(range(j, j + m))
+            else:
+                # "a reddish sandstone" (an -ish colour alone), "yellow the cream ground" (a colour
+                # as a verb): part of the way there, not the colour name's pure value
+                partial = ish or _as_verb(c, ws[i])
     tone: str | None = None
     comparative_word: str | None = None
     exact = bool(_explicit(c))  # "a pale sage green, #D8E0CF": the value, not its words' tone
@@ -280,6 +323,7 @@ def _colour_in(
             t in w.tones
             and t not in ("medium",)
             and (rgb is not None or t in ("dark", "light", "pale", "bright"))
+            and not describes_part(c, i, 1)  # "more of the dark soil": a part, not a tone
         ):
             tone = t
             used.add(i)

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from matloom.author.edit.apply import add_lines, all_params
+from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
@@ -431,6 +432,8 @@ def _direction(c: Context, word: str) -> bool | None:
     ws = c.words
     i = ws.index(word)
     near = ws[max(0, i - 3) : i]
+    if "too" in near[-2:]:  # "it's too uniformly rusty": less of it
+        return False
     if "add" in ws[:i]:  # "add some brownish grease stains": the colour describes what is added
         return True
     for t in reversed(near):
@@ -449,8 +452,12 @@ def _property_word(c: Context, word: str) -> bool:
     # another condition's word ("older, with some moss") is no colour, though "moss" names one;
     # the request's own words count, not those a look was read as ("worn, faded and a bit
     # stained": "faded" is read as "paler overall")
-    said = c.said or tokens(c.request)  # as written: a look read as colours is none
-    return any(t != word and t not in c.ew.conditions and _is_property(c, t) for t in said)
+    said = list(c.said) or tokens(c.request)  # as written: a look read as colours is none
+    sub = replace(c, words=said)  # "more of the dark flecks": a part's look, no property
+    return any(
+        t != word and t not in c.ew.conditions and _is_property(c, t) and not describes_part(sub, i)
+        for i, t in enumerate(said)
+    )
 
 
 def _is_property(c: Context, t: str) -> bool:
