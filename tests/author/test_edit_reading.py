@@ -172,10 +172,10 @@ def test_a_wet_look_is_darker_and_glossier_everywhere() -> None:
             assert value < before[address]
 
 
-def test_faded_joins_the_overlays_of_the_other_clauses() -> None:
+def test_every_condition_of_the_request_adds_its_overlay() -> None:
     plan = _plan("hotel-carpet-swirl", "it needs to look worn, faded and a bit stained")
-    assert plan["rule"] == "overlay+colour"
-    assert "'worn'" in plan["note"] and "'stained'" in plan["note"]
+    assert plan["rule"] == "overlay"
+    assert all(f"'{name}'" in plan["note"] for name in ("worn", "faded", "stained"))
 
 
 def test_a_finish_named_with_an_article_yields_to_the_comparative() -> None:
@@ -343,3 +343,27 @@ def test_too_before_a_condition_asks_for_less_of_it() -> None:
 def test_a_colour_said_of_a_named_part_is_the_colour_to_paint() -> None:
     plan = _plan("glowing-circuit-traces", "make the board green like a regular PCB")
     assert plan["rule"] == "colour" and "define:board" in plan["assignments"]
+
+
+@pytest.mark.parametrize(
+    ("name", "request_"),
+    [
+        ("cliff-rock-face", "the holes should be deeper"),
+        ("cliff-rock-face", "the cracks are too subtle, make them deeper"),
+    ],
+)
+def test_a_deeper_relief_is_no_darker_colour_and_too_subtle_no_calm_step(
+    name: str, request_: str
+) -> None:
+    plan = _plan(name, request_)
+    assert plan["rule"] == "relief" and "x2" in plan["note"]
+
+
+def test_a_flipped_finish_that_leads_wins_over_the_one_it_is_compared_with() -> None:
+    plan = _plan("velvet", "it reads too matte for satin, give it more sheen")
+    assert plan["note"].startswith("glossier")
+
+
+def test_a_look_it_should_not_have_is_not_applied() -> None:
+    plan = _plan("velvet", "tone down the shine a bit, more like satin than wet-look")
+    assert "colour" not in plan["rule"]

@@ -56,14 +56,20 @@ def _finish_word(c: Context) -> tuple[int, str, str] | None:
     for i, t in enumerate(ws):
         if t in c.ew.finish:
             d, kind = c.ew.finish[t]
-            if _replaced(ws, i) or flipped(ws, i, c.ew["flip"]):
+            if _replaced(ws, i):  # "frosted instead of polished": any other finish word wins
                 found.append(((-d if d else 1), "step", t, 2))
+                continue
+            if flipped(ws, i, c.ew["flip"]):  # "too matte for satin": the first word leads
+                found.append(((-d if d else 1), "step", t, 0))
                 continue
             if d and any(w in c.ew["more"] for w in ws[max(0, i - 2) : i]):
                 kind = "step"  # "more polished": a step ("more satin" is still satin)
             # "can the polish be duller": after an article, the surface's finish, not the one
-            # asked for; another finish word of the request wins over it
-            found.append((d, kind, t, 1 if i and ws[i - 1] in c.ew["articles"] else 0))
+            # asked for, and any other finish word wins over it; "knock the gloss down to a
+            # satin finish": the finish it goes to wins over the one it leaves
+            to = any(w in ("to", "into") for w in ws[max(0, i - 2) : i])
+            rank = -1 if to else 1 if i and ws[i - 1] in c.ew["articles"] else 0
+            found.append((d, kind, t, rank))
     if found:
         if all(f[2] == "coarser" for f in found) and (set(ws) & c.ew["size"] or _names_feature(c)):
             return None  # "coarser grain, the speckles twice as big", "coarser granules": a size

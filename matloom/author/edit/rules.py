@@ -416,6 +416,8 @@ def _looks(asked: str) -> str:
         )
         if not (lead or said or made):
             continue  # "the sample from the wet room"
+        if {"than", "instead"} & set(ws[max(0, i - 3) : i]):
+            continue  # "more like satin than wet-look": the look it should not have
         if not flipped(ws, i, ew["flip"]):
             return re.sub(rf"\b{re.escape(t)}\b", phrase, asked, count=1)
         flip = next(w for w in reversed(ws[max(0, i - 2) : i]) if w in ew["flip"])
@@ -455,10 +457,17 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
         clauses = [asked] if plan.rule in ("roughness", "channel", "relief") else []
     for clause in clauses:
         sub = replace(c, words=tokens(clause))
-        if not single and plan.rule.startswith(("colour", "overlay")) and _describes(c, sub.words):
+        overlay = plan.rule.startswith("overlay")
+        if (
+            not single
+            and (plan.rule.startswith("colour") or overlay)
+            and _describes(c, sub.words, comparatives=not overlay)
+        ):
             continue  # "the wires rusty, orange-brown": the colour of the same part
         try:
             if single:
+                if plan.rule == "relief" and not _names_colour(c, sub.words):
+                    continue  # "the holes should be deeper": a relief, no darker colour
                 other = colour_rule(sub)
             else:
                 other = next((p for rule in RULES if (p := rule(sub)) is not None), None)
@@ -498,13 +507,25 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
     return plan
 
 
+def _names_colour(c: Context, words: list[str]) -> bool:
+    """Whether the words name a colour, a tone or a colour comparative other than a relief's
+    ("deeper" is both)."""
+    v = c.vocabulary
+    return any(
+        (t not in c.ew.relief)
+        and (t in v.named or t in v.tones or t in c.ew.comparative or t in c.ew.towards)
+        for t in words
+    )
+
+
 #: Words that open a clause describing the clause before it ("..., like a dark walnut stain").
 _SIMILE = frozenset({"like", "as"})
 
 
-def _describes(c: Context, words: list[str]) -> bool:
+def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:
     """Whether a clause only describes the colour of the one before: a simile, or colour and
-    tone words with no part of its own ("orange-brown", "a deep one")."""
+    tone words with no part of its own ("orange-brown", "a deep one"); ``comparatives``: a bare
+    comparative describes too (after an overlay, "slightly lighter" is a change of its own)."""
     if not words:
         return True
     if words[0] in _SIMILE:
@@ -514,7 +535,7 @@ def _describes(c: Context, words: list[str]) -> bool:
         t in c.ew["filler"]
         or (v.ish.get(t, t) if t.endswith("ish") else t) in v.named
         or t in v.tones
-        or t in c.ew.comparative
+        or (comparatives and t in c.ew.comparative)
         for t in words
     )
 
