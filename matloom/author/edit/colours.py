@@ -20,7 +20,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.lab import Lab, delta_e, from_lab, to_lab
+from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
 from matloom.author.edit.targets import (
@@ -143,19 +143,6 @@ _NOT_COLOURS = frozenset({"sand", "stone", "slate", "metal"})
 _TO_WORDS = frozenset({"for", "with", "to", "into"})
 
 
-def _tinted(current: RGB, named: RGB, share: float, least: float) -> Lab:
-    """``current`` with its hue and chroma ``share`` of the way to ``named``'s, its lightness
-    kept; a share too small to see (under ``least`` Delta E) grows up to ``_TINT_MAX``."""
-    cur, nl = to_lab(current), to_lab(named)
-    share = max(share, 0.05)
-    for _ in range(12):  # 0.05 * 1.5 ** 12 > _TINT_MAX: bounded whatever the share
-        lab = (cur[0], cur[1] + (nl[1] - cur[1]) * share, cur[2] + (nl[2] - cur[2]) * share)
-        if delta_e(current, from_lab(lab)) >= least or share >= _TINT_MAX:
-            break
-        share = min(_TINT_MAX, share * 1.5)
-    return lab
-
-
 def describes_part(c: Context, i: int, n: int = 1) -> bool:
     """Whether the colour or tone words ``i .. i+n`` name a part by its look, as an adjective
     after an article ("more of the dark flecks", "the gold pads bigger", "the fresh tan
@@ -196,11 +183,6 @@ def _as_verb(c: Context, word: str) -> bool:
     it: yellow the paper"): first in its clause, before an article."""
     pattern = rf"(?:^|[,:;.!]|\band|\bthen)\s*{re.escape(word)}\s+(?:the|its|their|this)\b"
     return re.search(pattern, c.request.lower()) is not None
-
-
-def _mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
-    la, lb = to_lab(a), to_lab(b)
-    return from_lab(tuple(x + (y - x) * t for x, y in zip(la, lb, strict=True)))  # type: ignore[arg-type]
 
 
 def _after_instead_of(c: Context, k: int) -> bool:
@@ -299,7 +281,7 @@ def _colour_in(
             rest = [f for f in new[1:] if f[0] <= i + n + 2]
             if rest and rest[0][0] == i + n or (ish and rest):  # "purple brown", "reddish clay
                 j, m, other, _ = rest[0]  # brown": the mix (an -ish colour a third of it)
-                rgb = _mix(rgb, other, 0.67 if ish else 0.5)
+                rgb = mix(rgb, other, 0.67 if ish else 0.5)
                 used |= set(range(j, j + m))
             else:
                 # "a reddish sandstone" (an -ish colour alone), "yellow the cream ground" (a colour
@@ -518,11 +500,11 @@ def colour_rule(c: Context) -> Plan | None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
             if tint:  # the hue and chroma move, the lightness stays ("clear ice, a blue tint")
-                lab = _tinted(current, named, share, c.ew.f("tint_min_de"))
+                lab = tinted(current, named, share, c.ew.f("tint_min_de"), _TINT_MAX)
             elif towards:
                 # "warmer, more like a honey sandstone": most of the way to the named colour
                 # from the current one (a name like "honey" is far more saturated than a stone)
-                lab = to_lab(_mix(current, named, share))
+                lab = to_lab(mix(current, named, share))
             elif step is not None:  # "darker, purple-brown": the comparative on the named colour
                 lab = comparative(named, step, 1.0)
             if p is not primary:

@@ -63,3 +63,22 @@ def from_lab(lab: Lab) -> RGB:
 def delta_e(a: Sequence[float], b: Sequence[float]) -> float:
     la, lb = to_lab(a), to_lab(b)
     return math.dist(la, lb)
+
+
+def mix(a: RGB, b: RGB, t: float = 0.5) -> RGB:
+    """``t`` of the way from ``a`` to ``b`` in CIELAB."""
+    la, lb = to_lab(a), to_lab(b)
+    return from_lab(tuple(x + (y - x) * t for x, y in zip(la, lb, strict=True)))  # type: ignore[arg-type]
+
+
+def tinted(current: RGB, named: RGB, share: float, least: float, most: float) -> Lab:
+    """``current`` with its hue and chroma ``share`` of the way to ``named``'s, its lightness
+    kept; a share too small to see (under ``least`` Delta E) grows up to ``most``."""
+    cur, nl = to_lab(current), to_lab(named)
+    share = max(share, 0.05)
+    for _ in range(12):  # 0.05 * 1.5 ** 12 > most: bounded whatever the share
+        lab = (cur[0], cur[1] + (nl[1] - cur[1]) * share, cur[2] + (nl[2] - cur[2]) * share)
+        if delta_e(current, from_lab(lab)) >= least or share >= most:
+            break
+        share = min(most, share * 1.5)
+    return lab
