@@ -117,26 +117,15 @@ def _numbers(old: A.Node, new: A.Node) -> list[Edit] | None:
     if isinstance(old, A.BinOp) and isinstance(new, A.BinOp):
         if old.op != new.op:
             return None
-        left, right = _numbers(old.left, new.left), _numbers(old.right, new.right)
-        return None if left is None or right is None else left + right
+        return _all_numbers([(old.left, new.left), (old.right, new.right)])
     if isinstance(old, A.Call) and isinstance(new, A.Call):
         if old.func != new.func or len(old.extra) != len(new.extra):
             return None
         olds = {a.param: a.value for a in old.args}
         if any(a.param not in olds for a in new.args):
             return None  # a keyword written now that was not: no place to put it
-        out: list[Edit] = []
-        for a in new.args:
-            sub = _numbers(olds[a.param], a.value)
-            if sub is None:
-                return None
-            out += sub
-        for x, y in zip(old.extra, new.extra, strict=True):
-            sub = _numbers(x, y)
-            if sub is None:
-                return None
-            out += sub
-        return out
+        pairs = [(olds[a.param], a.value) for a in new.args]
+        return _all_numbers(pairs + list(zip(old.extra, new.extra, strict=True)))
     return [] if old == new else None
 
 
@@ -144,20 +133,24 @@ def _layer_numbers(old: A.Layer, new: A.Layer) -> list[Edit] | None:
     """:func:`_numbers` over a layer's coverage and channels (the same channels in order)."""
     if (old.alpha is None) != (new.alpha is None) or len(old.channels) != len(new.channels):
         return None
-    out: list[Edit] = []
+    pairs: list[tuple[A.Node, A.Node]] = []
     if old.alpha is not None and new.alpha is not None:
-        sub = _numbers(old.alpha, new.alpha)
-        if sub is None:
-            return None
-        out += sub
+        pairs.append((old.alpha, new.alpha))
     for a, b in zip(old.channels, new.channels, strict=True):
         if a.name != b.name or len(a.args) != len(b.args):
             return None
-        for x, y in zip(a.args, b.args, strict=True):
-            sub = _numbers(x, y)
-            if sub is None:
-                return None
-            out += sub
+        pairs += zip(a.args, b.args, strict=True)
+    return _all_numbers(pairs)
+
+
+def _all_numbers(pairs: list[tuple[A.Node, A.Node]]) -> list[Edit] | None:
+    """:func:`_numbers` over each (old, new) pair, joined; None when any pair is None."""
+    out: list[Edit] = []
+    for old, new in pairs:
+        sub = _numbers(old, new)
+        if sub is None:
+            return None
+        out += sub
     return out
 
 
