@@ -154,11 +154,6 @@ def test_scuffs_and_dust_add_both() -> None:
     assert "'worn'" in plan["note"] and "'dusty'" in plan["note"]
 
 
-def test_a_finish_word_after_a_flipped_one_keeps_its_sense() -> None:
-    plan = _plan("muddy-field-puddles", "drier mud, kill most of the wet shine")
-    assert plan["note"].startswith("rougher")
-
-
 def test_a_wet_look_is_darker_and_glossier_everywhere() -> None:
     name = "river-rock-stones"
     result = edit_offline(_entry(name), "make it look wet, like after rain", size=32)
@@ -176,11 +171,6 @@ def test_every_condition_of_the_request_adds_its_overlay() -> None:
     plan = _plan("hotel-carpet-swirl", "it needs to look worn, faded and a bit stained")
     assert plan["rule"] == "overlay"
     assert all(f"'{name}'" in plan["note"] for name in ("worn", "faded", "stained"))
-
-
-def test_a_finish_named_with_an_article_yields_to_the_comparative() -> None:
-    plan = _plan("carved-jade-relief", "can the polish be a bit duller, more satin than glossy")
-    assert plan["note"].startswith("rougher")
 
 
 def test_an_oil_finish_is_no_colour() -> None:
@@ -271,11 +261,6 @@ def test_a_condition_beside_a_colour_of_the_request_is_a_colour() -> None:
     assert plan["rule"] == "colour" and list(plan["assignments"]) == ["define:wire"]
 
 
-def test_a_contracted_not_flips_the_finish() -> None:
-    plan = _plan("carved-jade-relief", "it shouldn't be glossy")
-    assert plan["note"].startswith("rougher")
-
-
 def test_a_keep_clause_is_no_property_of_the_condition() -> None:
     plan = _plan("cracked-concrete-weeds", "more weeds, keep the concrete grey")
     assert plan["rule"] == "amount" and "weeds" in plan["note"]
@@ -359,11 +344,23 @@ def test_a_deeper_relief_is_no_darker_colour_and_too_subtle_no_calm_step(
     assert plan["rule"] == "relief" and "x2" in plan["note"]
 
 
-def test_a_flipped_finish_that_leads_wins_over_the_one_it_is_compared_with() -> None:
-    plan = _plan("velvet", "it reads too matte for satin, give it more sheen")
-    assert plan["note"].startswith("glossier")
-
-
 def test_a_look_it_should_not_have_is_not_applied() -> None:
     plan = _plan("velvet", "tone down the shine a bit, more like satin than wet-look")
     assert "colour" not in plan["rule"]
+
+
+@pytest.mark.parametrize(
+    ("name", "request_", "way"),
+    [
+        # a finish word after a flipped one keeps its sense
+        ("muddy-field-puddles", "drier mud, kill most of the wet shine", "rougher"),
+        # "the polish" names the surface's finish: the comparative wins
+        ("carved-jade-relief", "can the polish be a bit duller, more satin than glossy", "rougher"),
+        # a contracted not flips the finish
+        ("carved-jade-relief", "it shouldn't be glossy", "rougher"),
+        # a flipped finish that leads wins over the one it is compared with
+        ("velvet", "it reads too matte for satin, give it more sheen", "glossier"),
+    ],
+)
+def test_which_way_the_finish_goes(name: str, request_: str, way: str) -> None:
+    assert _plan(name, request_)["note"].startswith(way)
