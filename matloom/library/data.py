@@ -90,6 +90,10 @@ class Words:
     synonyms: dict[str, tuple[str, ...]]
     preset_sets: dict[str, dict[str, dict[str, PresetValue]]]
 
+    def ish_base(self, word: str) -> str:
+        """The colour word an ``-ish`` form is of ("reddish" -> "red"); any other word as it is."""
+        return self.ish.get(word, word) if word.endswith("ish") else word
+
     def colour(self, name: str) -> RGB | None:
         """The colour of a single word or phrase, or None."""
         key = name.lower().strip()

@@ -54,6 +54,11 @@ class Overlay:
     weak: tuple[str, ...] = ()
     scalars: dict[str, str] = field(default_factory=dict)
 
+    @property
+    def accent_slot(self) -> str | None:
+        """The colour slot of what the overlay adds: its first that is not the host's."""
+        return next((c for c in self.colours if c != self.host), None)
+
     @functools.cached_property
     def ast(self) -> A.Program:
         """The parsed program (cached)."""
@@ -232,7 +237,7 @@ def compose(
     if cover is not None and overlay.cover:
         ov = define_value(ov, overlay.cover, cover)
     if colour is not None and overlay.colours:
-        slot = next((c for c in overlay.colours if c != overlay.host), None)
+        slot = overlay.accent_slot
         if slot is not None:
             for ch, v in zip("rgb", colour, strict=True):
                 ov = define_value(ov, f"{slot}_{ch}", v)

@@ -92,7 +92,7 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     for i, t in enumerate(ws):
         if i in taken:
             continue
-        word = w.ish.get(t, t) if t.endswith("ish") else t
+        word = w.ish_base(t)
         if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
             continue  # "a satin oil finish": the kind of finish, not a colour
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
@@ -174,7 +174,7 @@ def describes_part(c: Context, i: int, n: int = 1) -> bool:
         or after in c.ew["filler"]
         or after in _TO_WORDS
         or after in ("instead", "rather", "and", "or", "but", "than", "please", "like", "as")
-        or (after.endswith("ish") and v.ish.get(after) in v.named)
+        or v.ish_base(after) in v.named
     )
 
 

@@ -28,7 +28,14 @@ from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
-from matloom.author.edit.targets import define_closure, main_colour, mask_names, param_layers
+from matloom.author.edit.targets import (
+    define_closure,
+    main_colour,
+    mask_names,
+    material_noun,
+    named_in_program,
+    param_layers,
+)
 from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
@@ -164,8 +171,6 @@ def _subject(c: Context, i: int) -> bool:
     """Whether the condition word at ``i`` names the material itself ("make the snow look
     older": the snow is what ages, not snow to add): after an article, naming a Define or
     layer of the program."""
-    from matloom.author.edit.targets import material_noun, named_in_program
-
     word = c.words[i]
     asked = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
     return (
@@ -262,7 +267,7 @@ def _look(c: Context, word: str, ov: Overlay) -> tuple[int, int, int] | None:
     named = c.vocabulary.named
     for j in range(i - 1, max(-1, i - 3), -1):
         t = ws[j]
-        base = c.vocabulary.ish.get(t, t) if t.endswith("ish") else t
+        base = c.vocabulary.ish_base(t)
         if base in named and base not in c.ew.conditions:
             rgb = named[base]
             own = _own_colour(ov)
@@ -276,7 +281,7 @@ def _look(c: Context, word: str, ov: Overlay) -> tuple[int, int, int] | None:
 
 def _own_colour(ov: Overlay) -> tuple[float, float, float] | None:
     """The overlay's own colour (its first colour slot that is not the host's)."""
-    slot = next((x for x in ov.colours if x != ov.host), None)
+    slot = ov.accent_slot
     if slot is None:
         return None
     defines = [ov.ast.define(f"{slot}_{ch}") for ch in "rgb"]
@@ -450,8 +455,8 @@ def _property_word(c: Context, word: str) -> bool:
     """Whether the request names a property of something (a colour, a finish, a relief), other
     than the condition's word itself."""
     # another condition's word ("older, with some moss") is no colour, though "moss" names one;
-    # the request's own words count, not those a look was read as ("worn, faded and a bit
-    # stained": "faded" is read as "paler overall")
+    # the request's own words count, not those a look was read as ("worn and a bit wet":
+    # "wet" is read as "darker overall, glossier")
     said = list(c.said) or tokens(c.request)  # as written: a look read as colours is none
     sub = replace(c, words=said)  # "more of the dark flecks": a part's look, no property
     return any(
@@ -462,7 +467,7 @@ def _property_word(c: Context, word: str) -> bool:
 
 def _is_property(c: Context, t: str) -> bool:
     w = c.vocabulary
-    base = w.ish.get(t, t) if t.endswith("ish") else t
+    base = w.ish_base(t)
     return (
         base in w.named
         or t in c.ew.comparative

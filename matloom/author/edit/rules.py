@@ -31,6 +31,7 @@ changed: never a silent no-op. So does a rule whose parameters are already at th
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Callable, Sequence
@@ -390,9 +391,14 @@ def normalise(request: str) -> str:
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
     too = edit_words().too  # "far too big": smaller ("a bit too dark": a bit lighter)
-    too_re = re.compile(rf"\b(?:far\s+|way\s+)?too\s+({'|'.join(too)})\b")
-    asked = too_re.sub(lambda m: too[m.group(1)], asked)
+    asked = _too_re().sub(lambda m: too[m.group(1)], asked)
     return _looks(asked)
+
+
+@functools.cache
+def _too_re() -> re.Pattern[str]:
+    """ "(far) too <adjective>" of ``[too]`` (compiled once)."""
+    return re.compile(rf"\b(?:far\s+|way\s+)?too\s+({'|'.join(edit_words().too)})\b")
 
 
 def _looks(asked: str) -> str:
@@ -484,10 +490,7 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             or other.rule not in _JOINABLE
             or (other.rule == plan.rule and plan.rule != "colour")
             # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
-            or (
-                "relief" in plan.rule.split("+") + other.rule.split("+")
-                and "colour" not in plan.rule.split("+") + other.rule.split("+")
-            )
+            or _rule_parts(plan, other) & {"relief", "colour"} == {"relief"}
             or other.view
             or other.add
             or set(other.assignments) & set(plan.assignments)
@@ -505,6 +508,11 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             exact=plan.exact or other.exact,
         )
     return plan
+
+
+def _rule_parts(*plans: Plan) -> set[str]:
+    """The rules the plans are made of ("relief+colour": relief, colour)."""
+    return {part for plan in plans for part in plan.rule.split("+")}
 
 
 def _names_colour(c: Context, words: list[str]) -> bool:
@@ -533,7 +541,7 @@ def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:
     v = c.vocabulary
     return all(
         t in c.ew["filler"]
-        or (v.ish.get(t, t) if t.endswith("ish") else t) in v.named
+        or v.ish_base(t) in v.named
         or t in v.tones
         or (comparatives and t in c.ew.comparative)
         for t in words
