@@ -360,10 +360,24 @@ def pow_(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return _pow_general(x, y)
 
 
+def _pow_exact(x: np.ndarray, y: float) -> np.ndarray | None:
+    """x ** y for the exponents whose every case :func:`_pow_general` answers without its main
+    path: x ** 2 is ``x * x`` (+-0, +-1 and +-inf included) and x ** 1 is ``x``, NaN staying
+    the operand itself in both; None for other exponents."""
+    if y == 2.0:
+        return np.where(x != x, x, x * x)
+    if y == 1.0:
+        return x.copy()
+    return None
+
+
 def _pow_scalar_exponent(x: np.ndarray, y: float) -> np.ndarray:
     """:func:`pow_` for one exponent (the sRGB curves): the special cases are decided once, and
     only the elements with a special base go through :func:`_pow_general`."""
-    if not np.isfinite(y) or y in (0.0, 1.0, -1.0, 2.0, 0.5):
+    exact = _pow_exact(x, y)
+    if exact is not None:
+        return exact
+    if not np.isfinite(y) or y in (0.0, -1.0, 0.5):
         return _pow_general(x, y)
     ax = np.abs(x)
     regular = (ax > 0.0) & (ax < np.inf) & (ax != 1.0)

@@ -137,6 +137,20 @@ def test_special_values_follow_numpy():
         assert np.all(_same(got, want) | close)
 
 
+@pytest.mark.parametrize("exponent", [2.0, 1.0])
+def test_a_square_or_first_power_of_an_array_keeps_the_general_paths_bits(exponent):
+    # pow_ answers x ** 2 and x ** 1 without fdlibm's main path (x * x, x): the same bits as
+    # the general path on finite, huge, tiny, signed-zero, infinite and NaN bases
+    rng = np.random.default_rng(7)
+    x = np.concatenate(
+        [rng.standard_normal(4000) * 10, rng.standard_normal(200) * 1e160]
+        + [rng.standard_normal(200) * 1e-160, np.array(SPECIAL), -np.array(SPECIAL)]
+    )
+    with np.errstate(all="ignore"):
+        fast, general = pm.pow_(x, exponent), pm._pow_general(x, exponent)
+    assert np.array_equal(fast.view(np.uint64), general.view(np.uint64))
+
+
 def test_made_nans_are_the_engines_nan():
     bits = np.array([K.NAN]).view(np.uint64)
     for made in (pm.sin(np.array([np.inf])), pm.log(np.array([-1.0])), pm.pow_(-2.0, 0.5)):
