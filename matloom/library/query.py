@@ -301,8 +301,8 @@ class _Reader:
                 return j + n, self.w.phrases[phrase], phrase
         w = self.at(j)
         if w in self.w.ish and self.colour_word_at(j + 1):
-            nxt = self.at(j + 1)
-            rgb = C.mix(self.w.named[self.w.ish[w]], self.w.named[nxt], 0.65)
+            nxt = self.at(j + 1)  # a colour, an -ish one or a plural ("reddish browns")
+            rgb = C.mix(self.w.named[self.w.ish[w]], self.w.named[self.w.ish.get(nxt, nxt)], 0.65)
             return j + 2, rgb, f"{w} {nxt}"
         if w in self.w.tones and w not in self.w.named:
             return None

@@ -34,6 +34,14 @@ def test_metal_colour_after_a_colour_noun_and_a_copula_is_a_colour() -> None:
     assert any("'silver'" in a for a in r.adaptations), r.explanation
 
 
+def test_an_ish_colour_before_a_plural_colour_is_one_colour() -> None:
+    # "reddish browns" raised a KeyError in the reader (the plural looked up as a colour name)
+    assert colours("wood in reddish browns") == ["reddish browns"]
+    assert colours("greyish greens and bluish whites") == ["greyish greens", "bluish whites"]
+    (r,) = req("reddish browns").colours
+    assert r.rgb == req("reddish brown").colours[0].rgb
+
+
 def test_colour_names_after_in_are_colours_but_not_material_nouns() -> None:
     assert colours("herringbone tweed in charcoal and cream") == ["charcoal", "cream"]
     assert colours("fish scales in copper") == ["copper"]
