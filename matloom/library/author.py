@@ -31,6 +31,7 @@ from matloom.library.passes.choose import Choice, choose
 from matloom.library.passes.compose import compose_overlays
 from matloom.library.passes.composition import compose_request
 from matloom.library.passes.fit import fit
+from matloom.library.passes.motif import draw_motifs, without_motif_colours
 from matloom.library.passes.tile import place, tile
 from matloom.library.query import Request, read
 from matloom.library.retrieval import Candidate
@@ -124,6 +125,15 @@ class LibraryResult:
         return "\n".join(lines)
 
 
+def _drawn_colour(dropped: str, motifs: tuple[str, ...], parts: Parts | None) -> bool:
+    """Is ``dropped`` ("white (the colour of 'stars')") the colour of a motif drawn on the
+    entry (so it was shown, not ignored)?"""
+    if not motifs or parts is None:
+        return False
+    said = {p.words.split()[-1] for p in parts.motifs if p.key in motifs}
+    return any(dropped.endswith(f"(the colour of '{w}')") for w in said)
+
+
 def search(text: str, lib: Library | None = None) -> list[Candidate]:
     """Entries ranked for ``text`` (best first), as :func:`author` ranks them."""
     lib = lib or library()
@@ -160,21 +170,25 @@ def author(
     base = lib.ast(entry.name)
     presets = lib.presets(entry, w.preset_sets)
     fitted = fit(req, entry, lib, w, presets, matched=choice.rank > 0)
-    reading = fitted.reading(req)
+    reading = without_motif_colours(fitted.reading(req), choice.motifs, parts)
     adapted = adapt(entry, base, reading, w, presets, fitted.absorbed)
     tiling = tile(adapted.program, adapted.view, entry, view_width(base), tileable)
     placed = place(adapted.program, tiling, entry, base)
     composed = compose_overlays(placed, fitted.applied, entry, lib, seed, tiling.tileable)
-    used = lib.index.understood(reading, entry.name) | adapted.used
+    main = entry.colours[0] if entry.colours else None
+    drawn = draw_motifs(composed.program, choice.motifs, parts, entry.name, main, seed)
+    used = lib.index.understood(reading, entry.name) | adapted.used | drawn.used
     for m in req.overlays:
         used.update(range(m.index, m.index + len(m.word.split())))
     header = [f"# library entry: {entry.name} ({entry.category}) - {entry.description}"]
     header += [f"# adapted: {a}" for a in adapted.notes]
     header += [f"# overlay: {u.note}" for u in composed.overlays]
+    header += [f"# drawn: {n}" for n in drawn.notes]
+    foreign = [f for f in fitted.foreign if not _drawn_colour(f, drawn.motifs, parts)]
     return LibraryResult(
         prompt=prompt,
-        program="\n".join(header) + "\n" + format_program(composed.program),
-        ast=composed.program,
+        program="\n".join(header) + "\n" + format_program(drawn.program),
+        ast=drawn.program,
         entry=entry.name,
         category=entry.category,
         description=entry.description,
@@ -189,9 +203,10 @@ def author(
         overlay_notes=[u.note for u in composed.overlays],
         absorbed=[f"{n} (amount {a:g})" for n, a in fitted.absorbed],
         ignored=_not_twice(_ignored(reading, used, w.stop_words), choice.missing)
-        + [*adapted.unused, *fitted.foreign],
+        + [*adapted.unused, *foreign],
         notes=[*_origin(lib, entry.name), *choice.notes, *fitted.notes, *tiling.notes]
-        + list(composed.notes),
+        + list(composed.notes)
+        + list(drawn.notes),
         parts=parts,
         dropped=list(choice.missing),
         misses={c.name: c.missing for c in choice.coverage if c.missing},

@@ -45,6 +45,13 @@ class PartsWords:
     colour_layouts: dict[str, str]
     #: words after a motif word that make it a technique ("cross stitch"), not a motif
     techniques: frozenset[str] = frozenset()
+    #: words that make a motif drawn on an entry a relief, not a print ("embossed stars")
+    motif_relief: frozenset[str] = frozenset()
+    #: words of an entry's description that say it shows a pattern of its own
+    pattern_words: frozenset[str] = frozenset()
+    #: words just before / after a motif said in passing that make it depicted (drawn)
+    depicted_before: frozenset[str] = frozenset()
+    depicted_after: frozenset[str] = frozenset()
     #: a best candidate scoring at least this is kept whatever class or pattern it misses
     strong_score: float = 20.0
 
@@ -87,6 +94,10 @@ def parts_words() -> PartsWords:
         motifs=strings("motifs"),
         figures=frozenset(_table(data, "figures").get("words", [])),
         techniques=frozenset(_table(data, "techniques").get("words", [])),
+        motif_relief=frozenset(_table(data, "motif_relief").get("words", [])),
+        pattern_words=frozenset(_table(data, "motif_depicted").get("patterned", [])),
+        depicted_before=frozenset(_table(data, "motif_depicted").get("before", [])),
+        depicted_after=frozenset(_table(data, "motif_depicted").get("after", [])),
         motif_adjectives=frozenset(_table(data, "motif_adjectives").get("words", [])),
         motif_intro=frozenset(_table(data, "motif_intro").get("words", [])),
         translucency={

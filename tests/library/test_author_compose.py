@@ -142,7 +142,7 @@ def test_explain_reports_a_motif_nothing_can_show() -> None:
 
 
 def test_explain_reports_what_a_composed_program_drops() -> None:
-    r = author("blue linen with white stars and hearts")
+    r = author("obsidian volcanic glass with white stars and hearts")
     assert r.composed, r.explanation
     assert any("heart" in d and "one motif" in d for d in r.dropped), r.dropped
     assert "ignored: nothing" not in r.explanation

@@ -3,12 +3,12 @@ a composed program when no candidate covers the request's parts (:mod:`cover`)."
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from matloom.library.entry import Entry
 from matloom.library.index import Library
 from matloom.library.parts import Parts
-from matloom.library.passes.cover import Coverage, cover, decide
+from matloom.library.passes.cover import Coverage, cover, decide, drawable_missing, patterned
 from matloom.library.retrieval import Candidate
 
 #: the entry used when no entry matched the request
@@ -29,6 +29,8 @@ class Choice:
     #: what each of the best candidates misses (for the explanation)
     coverage: tuple[Coverage, ...] = ()
     why: tuple[str, ...] = field(default=())
+    #: motifs (composer keys) to draw onto the entry (:mod:`.motif`)
+    motifs: tuple[str, ...] = ()
 
     @property
     def notes(self) -> tuple[str, ...]:
@@ -59,8 +61,19 @@ def choose(
             return Choice(entry, 0.0, 0, v.compose, (), v.coverage, v.notes)
         if v.index is not None:
             c = cands[v.index]
+            if v.taken is not None and not v.motifs and not patterned(lib.entry(c.name)):
+                drawn = drawable_missing(v.taken, parts)
+                if drawn:
+                    v = replace(v, motifs=drawn, notes=(*v.notes, f"drew {', '.join(drawn)}"))
             return Choice(
-                lib.entry(c.name), c.score, v.index + 1, None, v.missing(), v.coverage, v.notes
+                lib.entry(c.name),
+                c.score,
+                v.index + 1,
+                None,
+                v.missing(),
+                v.coverage,
+                v.notes,
+                v.motifs,
             )
     if cands:
         return Choice(lib.entry(cands[0].name), cands[0].score, 1)

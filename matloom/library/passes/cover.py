@@ -19,17 +19,19 @@ past the best ``TOP``, one scoring at least ``DEEP`` of the best); when none doe
 is composed from its parts (when the composer can build its base). A
 taken entry missing a requested motif or layout gives way to a candidate that shows it too, or
 else to a composed program of the entry's own class that shows it. Nothing composable: the best
-candidate, with what it misses reported.
+candidate, with what it misses reported. A plain entry (:func:`patterned`) that lacks only a
+motif the composer draws keeps its place and gets the motif drawn on top (:mod:`.motif`).
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 from matloom.library.entry import Entry
 from matloom.library.index import Library
-from matloom.library.parts import Parts
+from matloom.library.parts import Parts, Pattern
 from matloom.library.parts_words import class_words, composer_tables, parts_words, words_for
 from matloom.library.retrieval import Candidate
 
@@ -72,10 +74,17 @@ class Verdict:
     #: what the candidate taken misses (None when composing or when nothing was taken)
     taken: Coverage | None = None
     notes: tuple[str, ...] = ()
+    #: motifs (composer keys) drawn onto the taken candidate, which shows the request's
+    #: material but not them
+    motifs: tuple[str, ...] = ()
 
     def missing(self) -> tuple[str, ...]:
-        """What the taken candidate misses (nothing when composing: the composer reports)."""
-        return self.taken.missing if self.taken is not None and self.compose is None else ()
+        """What the taken candidate misses (nothing when composing: the composer reports),
+        less the motifs drawn onto it."""
+        if self.taken is None or self.compose is not None:
+            return ()
+        drawn = {f"motif {key}" for key in self.motifs}
+        return tuple(m for m in self.taken.missing if m.split(" (")[0] not in drawn)
 
 
 def composer_keys() -> tuple[frozenset[str], frozenset[str], frozenset[str]] | None:
@@ -220,7 +229,9 @@ def _pattern(
     notes: list[str],
 ) -> Verdict:
     """Candidate ``k`` is taken unless it lacks a requested motif or layout the composer can
-    show: then a candidate of ``full`` that shows it too, or a program composed on its base."""
+    show: then a candidate of ``full`` that shows it too; else, when all it lacks are motifs
+    the composer draws, it is taken with them drawn on top (:mod:`.motif`: the request's
+    material with its print); else a program composed on its base."""
     if covs[k].composable:
         floor = PROMOTE * cands[k].score
         shows = [
@@ -232,6 +243,10 @@ def _pattern(
             j = shows[0]
             notes.append(f"took candidate {j + 1}: it shows {', '.join(covs[k].composable)}")
             return Verdict(j, coverage=covs, taken=covs[j], notes=tuple(notes))
+        drawn = _drawable(covs[k]) if not patterned(top[k]) else ()
+        if drawn:
+            notes.append(f"drew {', '.join(drawn)} onto {top[k].name}")
+            return Verdict(k, coverage=covs, taken=covs[k], notes=tuple(notes), motifs=drawn)
         base = c.base_for(top[k])
         if base is not None:
             notes.append(f"composed: {top[k].name} does not show {', '.join(covs[k].composable)}")
@@ -298,6 +313,71 @@ def _entry_named(c: _Cover, cands: Sequence[Candidate], covs: tuple[Coverage, ..
             mine = covs[k] if k < len(covs) else c.coverage(c.lib.entry(cand.name))
             return k if len(mine.pattern) <= len(covs[0].pattern) else None
     return None
+
+
+def _drawable(cov: Coverage) -> tuple[str, ...]:
+    """The motif keys to draw onto an entry that lacks only motifs the composer draws as
+    shapes (a lattice pattern, a maze or a wave, replaces the surface: composed instead);
+    () when it lacks a layout too."""
+    from matloom.library.compose.motifs import MOTIFS
+
+    keys = [part.split(" ", 1)[1] for part in cov.composable]
+    if any(not part.startswith("motif ") for part in cov.composable):
+        return ()
+    if any(key not in MOTIFS or MOTIFS[key].kind != "shape" for key in keys):
+        return ()
+    return tuple(dict.fromkeys(keys))[:1]  # one motif, as a composed program
+
+
+@functools.cache
+def _described_pattern(description: str) -> bool:
+    from matloom.library.parts import read_parts
+
+    said = read_parts(description)
+    pw = parts_words()
+    if said.motifs or any(not pw.weak(p.words) for p in said.layouts):
+        return True
+    return bool(pw.pattern_words & set(said.request.tokens))
+
+
+def patterned(entry: Entry) -> bool:
+    """Does ``entry`` show a pattern of its own (its description names a motif or a layout:
+    argyle diamonds, a plaid's checks, a floral print)? A requested motif is drawn onto a plain
+    entry; a patterned one gives way to a composed program, whose only pattern is the one
+    asked for."""
+    return _described_pattern(entry.description)
+
+
+def drawable_missing(cov: Coverage, parts: Parts) -> tuple[str, ...]:
+    """The motifs the request asks for explicitly ("with white stars", in any sentence) that
+    the entry of ``cov`` does not show and the composer draws as shapes: drawn onto it."""
+    from matloom.library.compose.motifs import MOTIFS
+
+    missing = {m.split(" (")[0] for m in cov.pattern}
+    keys = [
+        p.key
+        for p in parts.motifs
+        if (p.explicit or _depicted(p, parts))
+        and f"motif {p.key}" in missing
+        and p.key in MOTIFS
+        and MOTIFS[p.key].kind == "shape"
+    ]
+    return tuple(dict.fromkeys(keys))[:1]
+
+
+#: how far (tokens) a ``[motif_depicted]`` word may stand from the motif's words
+_DEPICTED_REACH = 4
+
+
+def _depicted(p: Pattern, parts: Parts) -> bool:
+    """Is motif ``p``, said in passing, depicted on the surface ("there are tiny dots", "cats
+    ... printed all over"; ``[motif_depicted]``)?"""
+    pw = parts_words()
+    tokens = parts.request.tokens
+    end = p.index + len(p.words.split())
+    before = tokens[max(0, p.index - _DEPICTED_REACH) : p.index]
+    after = tokens[end : end + _DEPICTED_REACH]
+    return bool(pw.depicted_before & set(before)) or bool(pw.depicted_after & set(after))
 
 
 def _misses_named(cov: Coverage) -> bool:
