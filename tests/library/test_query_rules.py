@@ -206,3 +206,35 @@ def test_a_measured_row_sets_the_scale_and_is_not_ignored() -> None:
 
 def test_after_rain_adds_wet() -> None:
     assert "wet" in author("slate roof after rain").overlays
+
+
+# ---------------------------------------------------------------- a colour names its part
+def _given(prompt: str) -> dict[str, str]:
+    """Slot -> the colour words the author gave it."""
+    out = {}
+    for a in author(prompt).adaptations:
+        if a.startswith("colour ") and " = '" in a:
+            slot, rest = a[len("colour ") :].split(" = '", 1)
+            out[slot] = rest.split("'", 1)[0]
+    return out
+
+
+def test_a_colour_before_a_noun_naming_an_entry_slot_goes_to_that_slot() -> None:
+    # the noun after the colour is one of the entry's colour slots: bole, line, crust, mortar
+    assert _given("gold leaf gilding with red bole showing in the gaps") == {"bole": "red"}
+    assert _given("tartan wool in green and navy with thin red lines")["line"] == "red"
+    lava = _given("glowing orange lava with black crust")
+    assert lava["crust_col"] == "black" and lava["glow"] == "orange"
+    # a second colour before the same noun keeps its own role ("black and gray lines")
+    spalted = _given("spalted wood with black and gray line patterns")
+    assert spalted["line"] == "black" and spalted["decay_col"] == "gray"
+
+
+def test_the_colour_of_a_patterned_entrys_motifs_is_its_pattern_colour() -> None:
+    given = _given("azulejo tiles painted with blue floral motifs on a white ground")
+    assert given["glaze"] == "white" and given["cobalt"] == "blue"
+
+
+def test_olive_drab_and_whitewashed_are_colours() -> None:
+    assert colours("tent canvas, olive drab") == ["olive drab"]
+    assert _given("old whitewashed boards with peeling paint") == {"paint": "whitewashed"}

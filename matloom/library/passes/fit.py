@@ -24,7 +24,9 @@ from types import MappingProxyType
 from matloom.library.data import Words
 from matloom.library.entry import Entry, PresetValue
 from matloom.library.index import Library
-from matloom.library.query import ColourMention, OverlayMention, Request
+from matloom.library.parts_words import parts_words, vocabulary
+from matloom.library.passes.cover import patterned
+from matloom.library.query import ColourMention, OverlayMention, Request, plural_stem
 
 MAX_OVERLAYS = 3
 
@@ -136,6 +138,23 @@ def _entry_colour(cm: ColourMention, m: OverlayMention, entry: Entry) -> ColourM
     return cm
 
 
+def _pattern_noun(noun: str) -> bool:
+    """Does ``noun`` name a motif or a figure ("floral", "flowers", "motifs", "pattern")?"""
+    pw = parts_words()
+    said = {noun, plural_stem(noun)}
+    return bool(said & (pw.figures | pw.motif_adjectives | set(vocabulary("motifs"))))
+
+
+def _slot_named(noun: str, entry: Entry) -> str | None:
+    """The entry's colour slot ``noun`` names ("bole" for ``bole``, "grout" for
+    ``grout_col``): a slot name part of four letters or more that the noun or its singular is."""
+    said = {noun, plural_stem(noun)}
+    for slot in entry.colours:
+        if any(len(p) >= 4 and p in said for p in slot.split("_")):
+            return slot
+    return None
+
+
 def _foreign_colours(
     req: Request,
     colours: list[ColourMention],
@@ -166,6 +185,13 @@ def _foreign_colours(
         ):
             j += 1
         noun = tokens[j] if j < len(tokens) else ""
+        slot = _slot_named(noun, entry) if m.slot is None and noun.isalpha() else None
+        if slot is not None:  # "red bole underneath" on gilding: the entry's bole
+            keep.append(replace(m, slot=slot))
+            continue
+        if _pattern_noun(noun) and patterned(entry):  # "blue floral motifs" on azulejo
+            keep.append(m)
+            continue
         roleless = m.role is None or (
             m.role not in {"grout", "overlay"}
             and not any(entry.role(s) == m.role for s in entry.colours)
