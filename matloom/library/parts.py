@@ -234,6 +234,7 @@ class _PartsReader:
                     i += n - 1
                     break
             i += 1
+        found = [f for f in found if not self.names_a_part(f[1])]
         head = [f for f in found if f[0] < end]
         if not head:  # a named material after the head ("velvet with gold dots") is a detail
             if any(self.is_material(w) for w in self.t[:end]):
@@ -255,6 +256,15 @@ class _PartsReader:
         """Is ``word`` a class word or a material noun ("carpet", "lacquer" is not)?"""
         table, nouns = class_words(), self.w.materials
         return any(w in table or w in nouns for w in (word, plural_stem(word)))
+
+    def names_a_part(self, j: int) -> bool:
+        """Is the named phrase ending at ``j`` the kind of a plant part rather than the material
+        ("oak and maple leaves", "pine needles", "walnut shells": ``[named_parts]``)?"""
+        k = j
+        if self.at(k) in _JOIN and k + 1 < len(self.t):  # "oak and maple leaves"
+            k += 2
+        nxt = self.at(k)
+        return nxt in parts_words().named_parts or plural_stem(nxt) in parts_words().named_parts
 
     def names_material(self, i: int, j: int) -> bool:
         """Does the named phrase at ``i:j`` after the head name the material: not a metal's

@@ -47,6 +47,8 @@ class PartsWords:
     techniques: frozenset[str] = frozenset()
     #: words that make a motif drawn on an entry a relief, not a print ("embossed stars")
     motif_relief: frozenset[str] = frozenset()
+    #: plant parts a named material's word may only qualify ("oak leaves": not oak wood)
+    named_parts: frozenset[str] = frozenset()
     #: words of an entry's description that say it shows a pattern of its own
     pattern_words: frozenset[str] = frozenset()
     #: words just before / after a motif said in passing that make it depicted (drawn)
@@ -95,6 +97,7 @@ def parts_words() -> PartsWords:
         figures=frozenset(_table(data, "figures").get("words", [])),
         techniques=frozenset(_table(data, "techniques").get("words", [])),
         motif_relief=frozenset(_table(data, "motif_relief").get("words", [])),
+        named_parts=frozenset(_table(data, "named_parts").get("words", [])),
         pattern_words=frozenset(_table(data, "motif_depicted").get("patterned", [])),
         depicted_before=frozenset(_table(data, "motif_depicted").get("before", [])),
         depicted_after=frozenset(_table(data, "motif_depicted").get("after", [])),

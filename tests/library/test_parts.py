@@ -302,3 +302,21 @@ def test_translucency_and_metalness_are_read() -> None:
     assert C.luminance(read_parts("dark red silk").colours[0].rgb) < C.luminance(
         words().named["red"]
     )
+
+
+@pytest.mark.parametrize(
+    "prompt",
+    [
+        "forest floor with fallen oak and maple leaves",
+        "a carpet of pine needles",
+        "crushed walnut shells",
+    ],
+)
+def test_a_material_word_before_a_plant_part_names_the_plant(prompt: str) -> None:
+    # "oak leaves" are leaves: not the material oak (which composed a wood with leaves)
+    assert read_parts(prompt).named is None
+
+
+def test_a_material_word_before_its_material_noun_is_still_the_material() -> None:
+    assert read_parts("oak planks").named == "oak"
+    assert read_parts("walnut veneer").named == "walnut"
