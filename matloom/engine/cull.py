@@ -19,7 +19,10 @@ it cannot prove safe makes the field computed everywhere. So the maps are bit-id
 unculled evaluation (tests/engine/test_cull.py compares every fixture program and random ones).
 
 For the paper's tile program the grout noise is only computed in the mortar lines and the glaze
-noises only on the tiles: about a third of the noise work at any size.
+noises only on the tiles: about a third of the noise work at any size. The masks are themselves
+work (every alpha above the field's layer materialised with numpy): when they would take more
+than :data:`MASK_OPS_PER_OCTAVE` passes per octave they could save, the fields are computed in
+full instead.
 """
 
 from __future__ import annotations
@@ -36,6 +39,12 @@ from matloom.ops import Bounds
 
 #: Channel bounds beyond this magnitude count as unsafe (float32 rounding overflows at 3.4e38).
 BOUND_LIMIT = 1e37
+#: Build the coverage masks only when their alphas need at most this many element-wise numpy
+#: passes per octave of the fields they would cull (``benchmarks/library_entries.py``, both ways
+#: alternating on the 169 library entries above 4: 12 saved the most; a persian rug whose masks
+#: take 354 passes for 10 octaves went from 0.95 to 0.21 s at 512). Either way the maps are the
+#: same: culling only skips work.
+MASK_OPS_PER_OCTAVE = 12
 #: Compute a field everywhere when it is needed on more than this share of the band (the dense
 #: kernels beat the masked ones above it); a field can set its own (``DeferredField.full_share``).
 FULL_SHARE = 0.85
@@ -97,6 +106,22 @@ def channel_bounds(value: Any, memo: dict[int, Bounds]) -> Bounds:
     return result
 
 
+def _mask_ops(layers: list[Any]) -> int:
+    """Element-wise operations the numpy masks of ``layers`` materialise (their alphas' Lazy
+    nodes, each shared node once)."""
+    seen: set[int] = set()
+    count = 0
+    stack = [layer.alpha for layer in layers]
+    while stack:
+        value = stack.pop()
+        if not isinstance(value, Lazy) or id(value) in seen:
+            continue
+        seen.add(id(value))
+        count += 1
+        stack.extend(value.args)
+    return count
+
+
 def _deferred_in(value: Any) -> list[DeferredField]:
     return [v for v in leaves(value) if isinstance(v, DeferredField) and v.array is None]
 
@@ -154,6 +179,10 @@ def resolve(layers: list[Any], shape: tuple[int, ...], concrete: Callable[[Any],
     pending = [f for f in fields.values() if f.array is None]
     if any(len(shape_of(layer.alpha)) > len(shape) for layer in layers):
         pending = []  # coverage differs per seed (sweeps): not worth a mask per candidate
+    if pending:
+        lowest = min(i for f in pending for i in gated.get(id(f), []) + height_of.get(id(f), []))
+        if _mask_ops(layers[lowest:]) > MASK_OPS_PER_OCTAVE * sum(f.octaves for f in pending):
+            pending = []  # the masks would cost more than culling can save: computed in full
     if pending:
         visible, covers = _visibility_masks(
             layers,

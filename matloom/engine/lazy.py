@@ -76,6 +76,8 @@ class DeferredField:
     array: np.ndarray | None = None
     #: Needed share above which the field is computed everywhere (None: ``cull.FULL_SHARE``).
     full_share: float | None = None
+    #: Its octaves: what culling can save (``cull.resolve`` weighs it against the masks' cost).
+    octaves: int = 1
 
     def full(self) -> np.ndarray:
         if self.array is None:
@@ -190,7 +192,8 @@ def defer_fbm(
         shape = (seeds, *shape)
     low = 0.0 if kw["to_01"] else -1.0
     finite = finite_noise_coords(x, y, kw)
-    return DeferredField(compute, shape, low, 1.0, finite, full_share=full_share)
+    octaves = max(1, int(kw.get("octaves", 1) or 1))
+    return DeferredField(compute, shape, low, 1.0, finite, full_share=full_share, octaves=octaves)
 
 
 class LazyEvaluator(Evaluator):

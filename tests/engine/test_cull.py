@@ -113,6 +113,36 @@ def test_noise_in_alpha_is_always_computed_in_full() -> None:
     assert stats.noise_texels_computed == stats.noise_texels
 
 
+def _long_alpha(ops: int) -> tuple[str, str]:
+    """(Defines, alpha): a coverage of about ``ops`` element-wise operations on a pattern, 0 in
+    its joints (a mask that costs that many full-size numpy passes to materialise), as chains
+    of 10 Defines (the nesting limit) joined by Min."""
+    lines, ends = [], []
+    for c in range(max(1, ops // 20)):
+        lines.append(f"Define(c{c}_0, ({BRICK} * {1 + c / 100}))")
+        steps = min(10, ops // 2)
+        for k in range(1, steps + 1):
+            lines.append(f"Define(c{c}_{k}, ((c{c}_{k - 1} * 0.99) * 1.01))")
+        ends.append(f"c{c}_{steps}")
+    alpha = ends[0] if len(ends) == 1 else f"Min({', '.join(ends)})"
+    return "\n".join(lines), f"Clamp({alpha})"
+
+
+@pytest.mark.parametrize(("ops", "culled"), [(4, True), (120, False)])
+def test_noise_is_culled_only_when_the_masks_cost_less_than_it_saves(ops, culled) -> None:  # noqa: ANN001
+    # a 2-octave noise under a coverage of ``ops`` operations: the masks are worth building
+    # for a short coverage, not for a long one (cull.MASK_OPS_PER_OCTAVE); the maps are the
+    # unculled ones either way
+    defines, alpha = _long_alpha(ops)
+    text = (
+        f"View(0, 0, 2, 2)\n{defines}\nMaterial(\n  Layer(1).basecolor(90, 90, 90),\n"
+        f"  Layer({alpha}).roughness(fBm(octaves=2, base_freq=9, to_01=True, seed=5)"
+        " * 0.5 + 0.1)\n)"
+    )
+    stats = _check(text)
+    assert (stats.noise_texels_computed < stats.noise_texels) == culled, stats
+
+
 @pytest.mark.slow
 def test_random_programs_culled_equal_unculled() -> None:
     for seed in range(60):
