@@ -71,6 +71,8 @@ class Words:
     natural: frozenset[str]
     #: categories whose other colours follow the request's palette
     patterned: frozenset[str]
+    #: art-style words ("stylized", "cartoon"): entries tagged so are styles, asked for by name
+    styles: frozenset[str]
     #: the reader's grammar words ([grammar] of words.toml; each list is described there)
     clause_end: frozenset[str]
     head_end: frozenset[str]
@@ -188,6 +190,7 @@ def words() -> Words:
         tone_roles=dict(w.get("tone_roles", {})),
         natural=_word_set(w.get("categories", {}), "natural"),
         patterned=_word_set(w.get("categories", {}), "patterned"),
+        styles=_word_set(w.get("styles", {}), "words"),
         clause_end=_word_set(grammar, "clause_end"),
         head_end=_word_set(grammar, "head_end"),
         list_join=_word_set(grammar, "list_join"),

@@ -124,16 +124,19 @@ def constant(program: A.Program, name: str) -> float | None:
 
 def prune_defines(program: A.Program) -> A.Program:
     """``program`` without the Defines that no layer uses, directly or through other Defines
-    (what the checker's W001 reports): adaptation can leave some ("scagliola" sets a derived
+    (what the checker's W001 reports; a parameterised Define is used by a call of its name):
+    adaptation can leave some ("scagliola" sets a derived
     colour to a constant, so the luminance its expression read is used no more)."""
     by_name = {d.name: d for d in program.defines}
     used: set[str] = set()
     stack = [e for owner, e in A.program_expressions(program) if owner[0] == "layer"]
     while stack:
         for n in A.walk(stack.pop()):
-            if isinstance(n, A.Ref) and n.name in by_name and n.name not in used:
-                used.add(n.name)
-                stack.append(by_name[n.name].expr)
+            # a Ref, or a Call of a parameterised Define ("thread(d)", language 3)
+            name = n.name if isinstance(n, A.Ref) else n.func if isinstance(n, A.Call) else None
+            if name is not None and name in by_name and name not in used:
+                used.add(name)
+                stack.append(by_name[name].expr)
     if len(used) == len(program.defines):
         return program
     return replace(program, defines=tuple(d for d in program.defines if d.name in used))

@@ -57,6 +57,10 @@ CATEGORY_BOOST = 1.3
 DEFAULT_BOOST = 1.25
 #: entries that show a condition (rusted metal, peeling paint) rank lower unless it is asked for
 CONDITION_PENALTY = 0.75
+#: entries in an art style (tagged "stylized", "cartoon" ...: ``[styles]`` of words.toml) rank
+#: this much lower unless the request asks for a style ("painted wooden door" is no
+#: hand-painted texture)
+STYLE_PENALTY = 0.3
 #: a material noun ("leather", "cobblestone") weighs this many times its word's weight; when the
 #: request names materials, entries with none of them (nor their category) rank lower
 MATERIAL_WEIGHT = 1.25
@@ -77,6 +81,13 @@ UNASKED_MOTIF = 0.85
 REASONS = frozenset({"plain", "head", "overlay", "form", "term", "later"})
 _WORD_RE = re.compile(r"[a-z0-9]+")
 
+
+
+def _style_said(tokens: list[str], styles: frozenset[str]) -> bool:
+    """Do ``tokens`` name an art style ("stylized", "hand painted", "hand-painted")?"""
+    if any(t in styles for t in tokens):
+        return True
+    return any(f"{a}{b}" in styles for a, b in zip(tokens, tokens[1:], strict=False))
 
 @dataclass(frozen=True)
 class Candidate:
@@ -105,6 +116,8 @@ class Index:
         self.defaults = words.defaults
         self.categories: dict[str, str] = {}
         self.absorbs: dict[str, frozenset[str]] = {}
+        self.styled: dict[str, bool] = {}
+        self.style_words = words.styles
         self.name_stems: dict[str, frozenset[str]] = {}
         docs: list[list[str]] = []
         self.terms: dict[str, frozenset[str]] = {}
@@ -113,6 +126,7 @@ class Index:
             self.names.append(e.name)
             self.categories[e.name] = e.category
             self.absorbs[e.name] = frozenset(e.absorbs)
+            self.styled[e.name] = any(_style_said(t.lower().split(), words.styles) for t in e.tags)
             self.name_stems[e.name] = frozenset(self.stems(e.name.replace("-", " ")))
             parts = [
                 e.name.replace("-", " "),
@@ -279,6 +293,7 @@ class Index:
         words_in = {w for _, w in req.words_at()}
         hit = {c for c, ws in self.category_words.items() if ws & words_in}
         asked = {m.name for m in req.overlays}
+        styled = _style_said(list(req.tokens), self.style_words)
         finish_stems = {self.stem(word) for _, word in req.finishes}
         materials = self.material_words(req)
         specific = [st for st in materials if not st & self.category_stems]
@@ -308,6 +323,8 @@ class Index:
                 scores[k] *= DEFAULT_BOOST
             if self.absorbs[name] and not self.absorbs[name] & asked:
                 scores[k] *= CONDITION_PENALTY
+            if self.styled[name] and not styled:
+                scores[k] *= STYLE_PENALTY
         out = [
             Candidate(self.names[k], round(float(scores[k]), 4), tuple(sorted(matched.get(k, ()))))
             for k in range(len(self.names))

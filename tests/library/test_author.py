@@ -85,3 +85,21 @@ def test_long_descriptive_prompt() -> None:
     )
     assert library().entry(r.entry).category == "fabric"
     assert matloom.check(r.program) == []
+
+
+def test_a_parameterised_define_survives_the_author() -> None:
+    # language 3's Define(name(a), expr) is used by calls of its name, not by Refs: pruning the
+    # unused Defines dropped it, and `matloom generate` failed with E030 on such entries
+    from matloom.lang.api import parse
+    from matloom.library.overlay import prune_defines
+
+    text = (
+        "Define(ring(d), Clamp(((0.1 - d) * 10), 0, 1))\nDefine(unused, 3)\n"
+        "Material(Layer(1).basecolor((ring(Abs(X())) * 255), 0, 0))"
+    )
+    pruned = prune_defines(parse(text))
+    assert [d.name for d in pruned.defines] == ["ring"]
+    for request in ("sashiko stitching", "amethyst geode crystal cluster"):
+        r = author(request)
+        assert any(d.params for d in r.ast.defines), r.entry  # an entry that uses them
+        assert matloom.check(r.program) == [], r.explanation

@@ -170,3 +170,21 @@ def test_a_repeated_word_counts_as_one_mention(prompt: str, word: str) -> None:
     assert all(math.isfinite(c.score) for c in many.candidates)
     # scale words too: the size they ask for is the one-mention size, not 0.45**1500
     assert many.unit_m == once.unit_m and many.overlay_notes == once.overlay_notes
+
+
+@pytest.mark.parametrize(
+    ("prompt", "styled"),
+    [
+        ("stylized wood planks, chunky grain", True),
+        ("hand painted wooden planks for a fantasy tavern", True),
+        ("cartoon grass ground", True),
+        ("blue painted wooden door, paint cracking", False),
+        ("wood planks", False),
+        ("green grass", False),
+    ],
+)
+def test_an_art_style_entry_is_taken_only_when_a_style_is_asked_for(prompt, styled) -> None:  # noqa: ANN001
+    # entries tagged with a [styles] word ("stylized") rank far lower unless the request names
+    # a style; "painted" alone is no style
+    r = author(prompt)
+    assert r.entry.startswith("stylized-") == styled, (prompt, r.entry)
