@@ -82,12 +82,12 @@ REASONS = frozenset({"plain", "head", "overlay", "form", "term", "later"})
 _WORD_RE = re.compile(r"[a-z0-9]+")
 
 
-
 def _style_said(tokens: list[str], styles: frozenset[str]) -> bool:
     """Do ``tokens`` name an art style ("stylized", "hand painted", "hand-painted")?"""
     if any(t in styles for t in tokens):
         return True
     return any(f"{a}{b}" in styles for a, b in zip(tokens, tokens[1:], strict=False))
+
 
 @dataclass(frozen=True)
 class Candidate:
