@@ -42,6 +42,12 @@ from matloom.render.api import preview
 PER_SHEET = 6
 
 
+def _maps_of(program: object) -> str:
+    """What decides a program's maps: its text without comment lines (two builds whose programs
+    differ only in their ``# adapted:`` notes made the same material, judged once)."""
+    return "\n".join(x for x in str(program).splitlines() if not x.lstrip().startswith("#"))
+
+
 def _prompts(path: Path) -> list[tuple[str, str, str]]:
     data = json.loads(path.read_text(encoding="utf-8"))
     items = data["prompts"] if isinstance(data, dict) else data
@@ -90,11 +96,13 @@ def pack(
     if systems:  # a program two builds share is judged once, for both ("before+after")
         merged: dict[tuple[str, str, str], list[str]] = {}
         for s_, file, pid, _source, _text in rows:
-            merged.setdefault((file, pid, str(systems[s_][file][pid]["program"])), []).append(s_)
+            merged.setdefault((file, pid, _maps_of(systems[s_][file][pid]["program"])), []).append(
+                s_
+            )
         seen: set[tuple[str, str, str]] = set()
         unique = []
         for s_, file, pid, source, text in rows:
-            k = (file, pid, str(systems[s_][file][pid]["program"]))
+            k = (file, pid, _maps_of(systems[s_][file][pid]["program"]))
             if k not in seen:
                 seen.add(k)
                 unique.append(("+".join(merged[k]), file, pid, source, text))
