@@ -52,8 +52,9 @@ class PartsWords:
     #: words of an entry's description that say it shows a pattern of its own
     pattern_words: frozenset[str] = frozenset()
     #: words just before / after a motif said in passing that make it depicted (drawn)
-    depicted_before: frozenset[str] = frozenset()
     depicted_after: frozenset[str] = frozenset()
+    #: words that make a named material a look-alike ("faux leather" looks like leather)
+    imitation: frozenset[str] = frozenset()
     #: a best candidate scoring at least this is kept whatever class or pattern it misses
     strong_score: float = 20.0
 
@@ -99,7 +100,7 @@ def parts_words() -> PartsWords:
         motif_relief=frozenset(_table(data, "motif_relief").get("words", [])),
         named_parts=frozenset(_table(data, "named_parts").get("words", [])),
         pattern_words=frozenset(_table(data, "motif_depicted").get("patterned", [])),
-        depicted_before=frozenset(_table(data, "motif_depicted").get("before", [])),
+        imitation=frozenset(_table(data, "imitation").get("words", [])),
         depicted_after=frozenset(_table(data, "motif_depicted").get("after", [])),
         motif_adjectives=frozenset(_table(data, "motif_adjectives").get("words", [])),
         motif_intro=frozenset(_table(data, "motif_intro").get("words", [])),

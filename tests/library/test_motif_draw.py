@@ -107,3 +107,17 @@ def test_drawing_is_deterministic_and_follows_the_seed() -> None:
     b = author("navy silk satin with small white stars", seed=4)
     c = author("navy silk satin with small white stars", seed=5)
     assert a.program == b.program and a.program != c.program
+
+
+def test_worn_spots_are_wear_not_a_motif() -> None:
+    # "there are some faded spots where ..." described wear; drawing dots on canvas was wrong
+    r = author("A heavy olive canvas. There are some faded spots where the colour wore off.")
+    assert not any(n.startswith("motif ") for n in r.notes), r.explanation
+
+
+def test_a_missing_layout_draws_no_motif_and_faux_is_the_look_of_the_material() -> None:
+    # "faux leather with a quilted diamond pattern": the quilted leather entry covers faux
+    # leather; no diamonds are drawn onto plain leather
+    r = author("black faux leather with a quilted diamond pattern, puffy")
+    assert r.entry == "quilted-diamond-leather", r.explanation
+    assert not any(n.startswith("motif ") for n in r.notes)

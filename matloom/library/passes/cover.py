@@ -144,8 +144,10 @@ class _Cover:
     def coverage(self, entry: Entry) -> Coverage:
         p, terms = self.parts, self.idx.terms.get(entry.name, frozenset())
         essential: list[str] = []
+        imitation = self.pw.imitation
         if p.named and not any(
-            self.stems([w for w in said.split() if w not in self.idx.stop]) <= terms
+            self.stems([w for w in said.split() if w not in self.idx.stop and w not in imitation])
+            <= terms
             for said in {p.named, p.named_words}
         ):
             essential.append(f"named material {p.named}")
@@ -354,6 +356,8 @@ def drawable_missing(cov: Coverage, parts: Parts) -> tuple[str, ...]:
     from matloom.library.compose.motifs import MOTIFS
 
     missing = {m.split(" (")[0] for m in cov.pattern}
+    if any(m.startswith("layout ") for m in missing):
+        return ()  # "a quilted diamond pattern": the layout is the point, not a motif on top
     keys = [
         p.key
         for p in parts.motifs
@@ -370,14 +374,14 @@ _DEPICTED_REACH = 4
 
 
 def _depicted(p: Pattern, parts: Parts) -> bool:
-    """Is motif ``p``, said in passing, depicted on the surface ("there are tiny dots", "cats
-    ... printed all over"; ``[motif_depicted]``)?"""
+    """Is motif ``p``, said in passing, depicted on the surface ("tiny dots scattered across
+    it", "cats ... printed all over"; ``[motif_depicted] after``)? "There are some faded spots
+    where the colour has worn" is wear, not a motif."""
     pw = parts_words()
     tokens = parts.request.tokens
     end = p.index + len(p.words.split())
-    before = tokens[max(0, p.index - _DEPICTED_REACH) : p.index]
     after = tokens[end : end + _DEPICTED_REACH]
-    return bool(pw.depicted_before & set(before)) or bool(pw.depicted_after & set(after))
+    return bool(pw.depicted_after & set(after))
 
 
 def _misses_named(cov: Coverage) -> bool:
