@@ -30,6 +30,7 @@ from matloom.engine.limits import (
     Usage,
     check_request,
     check_size,
+    program_cost,
 )
 from matloom.engine.maps import MaterialMaps, View
 from matloom.engine.schedules.dense import evaluate_dense
@@ -112,7 +113,12 @@ def evaluate(
     program = prepare(program_or_text, program_seed, session=s)
     check_size(width, height, limits=limits)
     s.evaluations += 1
-    be = backend if isinstance(backend, Backend) else session_backend(s, backend, width * height)
+    if isinstance(backend, Backend):
+        be = backend
+    else:
+        cap = min(limits.max_expanded_nodes, limits.max_node_texels // (width * height))
+        work = width * height * program_cost(program, cap, usage.batched).nodes
+        be = session_backend(s, backend, width * height, work)
     check_request(program, width, height, fused=be.fused, usage=usage, limits=limits)
     if not program.layers:
         raise ValueError("material has no layers: add at least one Layer(...) to Material(...)")

@@ -54,8 +54,13 @@ BACKENDS = ("auto", "numpy", "numba")
 #: near 724 x 724 on the 2-core machines; at 512 x 512 numpy takes 0.72 s, numba 1.05 s) ...
 AUTO_NUMBA_MIN_TEXELS = 768 * 768
 #: ... and for every request once this many evaluations ran in the session, or numba is loaded
-#: in the process already (its import is paid).
+#: in the process already (its import is paid) ...
 AUTO_NUMBA_AFTER_CALLS = 2
+#: ... and for a request whose work (texels times the cost model's nodes per texel,
+#: :func:`matloom.lang.cost.expanded_cost`) is at least this: three times the tile program's
+#: break-even (122 nodes at 724 x 724). A program of many Tile instances or shapes ("climbing
+#: ivy": 13,701 nodes) took 4.6 s on numpy at 512 x 512, well under a second on numba.
+AUTO_NUMBA_MIN_WORK = 200_000_000
 #: Entries kept per cache kind (:meth:`Session.cached`).
 CACHE_SIZE = 64
 
@@ -113,21 +118,22 @@ class Session:
 
     # --- backend policy -------------------------------------------------------------------
 
-    def choose_backend(self, name: str = "auto", texels: int = 0) -> str:
+    def choose_backend(self, name: str = "auto", texels: int = 0, work: int = 0) -> str:
         """The backend name to load for an evaluation of ``texels`` texels (the backend itself:
         :func:`matloom.engine.backends.session_backend`). A name other than ``auto`` (or a
         session whose :attr:`backend` is not ``auto``) is kept. ``auto`` weighs numba's
         start-up: ``auto`` again (numba where installed, else numpy) when numba is loaded in
         the process already, or this session has run more than
         :data:`AUTO_NUMBA_AFTER_CALLS` evaluations, or the request has at least
-        :data:`AUTO_NUMBA_MIN_TEXELS` texels -- and :meth:`numba_kernels_usable`; else
-        ``numpy``."""
+        :data:`AUTO_NUMBA_MIN_TEXELS` texels or :data:`AUTO_NUMBA_MIN_WORK` ``work`` -- and
+        :meth:`numba_kernels_usable`; else ``numpy``."""
         if name == "auto":
             name = self.backend
         if name != "auto":
             return name
         warm = numba_loaded() or self.evaluations > AUTO_NUMBA_AFTER_CALLS
-        if (warm or texels >= AUTO_NUMBA_MIN_TEXELS) and self.numba_kernels_usable():
+        big = texels >= AUTO_NUMBA_MIN_TEXELS or work >= AUTO_NUMBA_MIN_WORK
+        if (warm or big) and self.numba_kernels_usable():
             self.numba_used = True
             return "auto"
         return "numpy"

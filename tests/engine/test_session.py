@@ -17,6 +17,7 @@ from matloom.engine.evaluate import evaluate, prepare
 from matloom.engine.session import (
     AUTO_NUMBA_AFTER_CALLS,
     AUTO_NUMBA_MIN_TEXELS,
+    AUTO_NUMBA_MIN_WORK,
     CACHE_SIZE,
     Session,
     current_session,
@@ -69,6 +70,32 @@ def test_auto_is_numpy_for_a_short_command(cold_process: None) -> None:
     assert session.choose_shader("auto", SMALL) == "numba"
     warm = Session(evaluations=AUTO_NUMBA_AFTER_CALLS + 1)
     assert session_backend(warm, "auto", SMALL).name == "numba"
+
+
+def test_auto_is_numba_for_a_small_image_of_a_costly_program(cold_process: None) -> None:
+    """The cost model's work decides too: at 512 x 512 a program of thousands of nodes per
+    texel (many Tile instances of shapes) goes to numba, a cheap one stays on numpy."""
+    if not _numba_installed():
+        return
+    texels = 512 * 512
+    assert session_backend(Session(), "auto", texels, 100 * texels).name == "numpy"
+    heavy = Session()
+    assert session_backend(heavy, "auto", texels, AUTO_NUMBA_MIN_WORK).name == "numba"
+    # evaluate() weighs the program's own cost: a Tile of 400 path-drawn motifs per cell
+    motif = (
+        "Fill(Path(0, 0, "
+        + ", ".join(f"LineTo({k % 7 * 0.01}, {k % 5 * 0.01})" for k in range(60))
+        + "))"
+    )
+    costly = (
+        f"Material(Layer(1).basecolor(Tile({motif}, 0.05, 0.05, rotate=90, seed=1) * 255, 0, 0))"
+    )
+    cheap = Session()
+    evaluate(PROGRAM, 512, 512, session=cheap)
+    assert not cheap.numba_used
+    dear = Session()
+    evaluate(costly, 512, 512, session=dear)
+    assert dear.numba_used
 
 
 def test_environment_is_read_once_when_the_session_is_made(

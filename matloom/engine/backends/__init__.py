@@ -151,8 +151,11 @@ def get_backend(name: str = "auto", *, pure_numpy: bool = False) -> Backend:
     return _numpy_backend(pure_numpy) if name == "numpy" else _FACTORIES[name]()
 
 
-def session_backend(session: Session, name: str = "auto", texels: int = 0) -> Backend:
-    """The backend ``session`` picks for a request of ``texels`` texels (``name``: ``auto``,
-    ``numpy`` or ``numba``; see :meth:`~matloom.engine.session.Session.choose_backend`), with
-    the session's settings (its ``pure_numpy``)."""
-    return get_backend(session.choose_backend(name, texels), pure_numpy=session.pure_numpy)
+def session_backend(
+    session: Session, name: str = "auto", texels: int = 0, work: int = 0
+) -> Backend:
+    """The backend ``session`` picks for a request of ``texels`` texels and ``work`` element
+    operations (``name``: ``auto``, ``numpy`` or ``numba``; see
+    :meth:`~matloom.engine.session.Session.choose_backend`), with the session's settings (its
+    ``pure_numpy``)."""
+    return get_backend(session.choose_backend(name, texels, work), pure_numpy=session.pure_numpy)
