@@ -125,15 +125,6 @@ class LibraryResult:
         return "\n".join(lines)
 
 
-def _drawn_colour(dropped: str, motifs: tuple[str, ...], parts: Parts | None) -> bool:
-    """Is ``dropped`` ("white (the colour of 'stars')") the colour of a motif drawn on the
-    entry (so it was shown, not ignored)?"""
-    if not motifs or parts is None:
-        return False
-    said = {p.words.split()[-1] for p in parts.motifs if p.key in motifs}
-    return any(dropped.endswith(f"(the colour of '{w}')") for w in said)
-
-
 def search(text: str, lib: Library | None = None) -> list[Candidate]:
     """Entries ranked for ``text`` (best first), as :func:`author` ranks them."""
     lib = lib or library()
@@ -169,8 +160,10 @@ def author(
     entry = choice.entry
     base = lib.ast(entry.name)
     presets = lib.presets(entry, w.preset_sets)
+    # the colours of the motifs to draw are theirs: neither the entry's nor foreign to it
+    req = without_motif_colours(req, choice.motifs, parts)
     fitted = fit(req, entry, lib, w, presets, matched=choice.rank > 0)
-    reading = without_motif_colours(fitted.reading(req), choice.motifs, parts)
+    reading = fitted.reading(req)
     adapted = adapt(entry, base, reading, w, presets, fitted.absorbed)
     tiling = tile(adapted.program, adapted.view, entry, view_width(base), tileable)
     placed = place(adapted.program, tiling, entry, base)
@@ -184,7 +177,6 @@ def author(
     header += [f"# adapted: {a}" for a in adapted.notes]
     header += [f"# overlay: {u.note}" for u in composed.overlays]
     header += [f"# drawn: {n}" for n in drawn.notes]
-    foreign = [f for f in fitted.foreign if not _drawn_colour(f, drawn.motifs, parts)]
     return LibraryResult(
         prompt=prompt,
         program="\n".join(header) + "\n" + format_program(drawn.program),
@@ -203,7 +195,7 @@ def author(
         overlay_notes=[u.note for u in composed.overlays],
         absorbed=[f"{n} (amount {a:g})" for n, a in fitted.absorbed],
         ignored=_not_twice(_ignored(reading, used, w.stop_words), choice.missing)
-        + [*adapted.unused, *foreign],
+        + [*adapted.unused, *fitted.foreign],
         notes=[*_origin(lib, entry.name), *choice.notes, *fitted.notes, *tiling.notes]
         + list(composed.notes)
         + list(drawn.notes),

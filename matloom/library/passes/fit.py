@@ -96,7 +96,7 @@ def fit(
         takes = m.name in applied and any(
             c != lib.overlays[m.name].host for c in lib.overlays[m.name].colours
         )
-        if m.colour_at is not None and not takes:
+        if m.colour_at in by_index and not takes:  # (a motif's colour is taken out before)
             by_index[m.colour_at] = _entry_colour(by_index[m.colour_at], m, entry)
     colours = [by_index[c.index] for c in req.colours]
     used = dict(req.used)

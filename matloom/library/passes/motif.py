@@ -81,7 +81,8 @@ def motif_colour(parts: Parts, index: int) -> tuple[C.RGB, str, range] | None:
 
 def without_motif_colours(req: Request, keys: tuple[str, ...], parts: Parts) -> Request:
     """``req`` without the colours of the motifs to be drawn ("red hearts" on linen: the red
-    is the hearts', not the linen's)."""
+    is the hearts', not the linen's), their words marked used (so no pass takes "gold stars"'
+    gold for the entry or reports it foreign)."""
     taken: set[int] = set()
     for p in parts.motifs:
         found = motif_colour(parts, p.index) if p.key in keys else None
@@ -89,7 +90,8 @@ def without_motif_colours(req: Request, keys: tuple[str, ...], parts: Parts) -> 
             taken.update(found[2])
     if not taken:
         return req
-    return replace(req, colours=[m for m in req.colours if m.index not in taken])
+    used = {**req.used, **dict.fromkeys(taken, "motif")}
+    return replace(req, colours=[m for m in req.colours if m.index not in taken], used=used)
 
 
 def _contrast(program: A.Program, main: str | None) -> C.RGB:
