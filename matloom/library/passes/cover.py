@@ -317,18 +317,21 @@ def _entry_named(c: _Cover, cands: Sequence[Candidate], covs: tuple[Coverage, ..
     return None
 
 
-def _drawable(cov: Coverage) -> tuple[str, ...]:
-    """The motif keys to draw onto an entry that lacks only motifs the composer draws as
-    shapes (a lattice pattern, a maze or a wave, replaces the surface: composed instead);
-    () when it lacks a layout too."""
+def _shape(key: str) -> bool:
+    """Does the composer draw motif ``key`` as a shape (a lattice pattern, a maze or a wave,
+    replaces the surface: composed instead)?"""
     from matloom.library.compose.motifs import MOTIFS
 
+    return key in MOTIFS and MOTIFS[key].kind == "shape"
+
+
+def _drawable(cov: Coverage) -> tuple[str, ...]:
+    """The motif to draw onto an entry that lacks only motifs the composer draws as shapes;
+    () when it lacks a layout or another kind of motif too. One motif, as a composed program."""
     keys = [part.split(" ", 1)[1] for part in cov.composable]
     if any(not part.startswith("motif ") for part in cov.composable):
         return ()
-    if any(key not in MOTIFS or MOTIFS[key].kind != "shape" for key in keys):
-        return ()
-    return tuple(dict.fromkeys(keys))[:1]  # one motif, as a composed program
+    return tuple(keys[:1]) if all(_shape(key) for key in keys) else ()
 
 
 @functools.cache
@@ -351,22 +354,18 @@ def patterned(entry: Entry) -> bool:
 
 
 def drawable_missing(cov: Coverage, parts: Parts) -> tuple[str, ...]:
-    """The motifs the request asks for explicitly ("with white stars", in any sentence) that
-    the entry of ``cov`` does not show and the composer draws as shapes: drawn onto it."""
-    from matloom.library.compose.motifs import MOTIFS
-
+    """The motif the request asks for explicitly ("with white stars", in any sentence) that
+    the entry of ``cov`` does not show and the composer draws as a shape: drawn onto it (one,
+    as :func:`_drawable`)."""
     missing = {m.split(" (")[0] for m in cov.pattern}
     if any(m.startswith("layout ") for m in missing):
         return ()  # "a quilted diamond pattern": the layout is the point, not a motif on top
     keys = [
         p.key
         for p in parts.motifs
-        if (p.explicit or _depicted(p, parts))
-        and f"motif {p.key}" in missing
-        and p.key in MOTIFS
-        and MOTIFS[p.key].kind == "shape"
+        if (p.explicit or _depicted(p, parts)) and f"motif {p.key}" in missing and _shape(p.key)
     ]
-    return tuple(dict.fromkeys(keys))[:1]
+    return tuple(keys[:1])
 
 
 #: how far (tokens) a ``[motif_depicted]`` word may stand from the motif's words

@@ -17,6 +17,7 @@ words replaced by the fit's.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from types import MappingProxyType
@@ -138,11 +139,15 @@ def _entry_colour(cm: ColourMention, m: OverlayMention, entry: Entry) -> ColourM
     return cm
 
 
+@functools.cache
+def _pattern_nouns() -> frozenset[str]:
+    pw = parts_words()
+    return pw.figures | pw.motif_adjectives | frozenset(vocabulary("motifs"))
+
+
 def _pattern_noun(noun: str) -> bool:
     """Does ``noun`` name a motif or a figure ("floral", "flowers", "motifs", "pattern")?"""
-    pw = parts_words()
-    said = {noun, plural_stem(noun)}
-    return bool(said & (pw.figures | pw.motif_adjectives | set(vocabulary("motifs"))))
+    return bool({noun, plural_stem(noun)} & _pattern_nouns())
 
 
 def _slot_named(noun: str, entry: Entry) -> str | None:
