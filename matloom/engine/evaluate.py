@@ -30,7 +30,7 @@ from matloom.engine.limits import (
     Usage,
     check_request,
     check_size,
-    program_cost,
+    request_cost,
 )
 from matloom.engine.maps import MaterialMaps, View
 from matloom.engine.schedules.dense import evaluate_dense
@@ -116,8 +116,7 @@ def evaluate(
     if isinstance(backend, Backend):
         be = backend
     else:
-        cap = min(limits.max_expanded_nodes, limits.max_node_texels // (width * height))
-        work = width * height * program_cost(program, cap, usage.batched).nodes
+        work = width * height * request_cost(program, width, height, usage, limits).nodes
         be = session_backend(s, backend, width * height, work)
     check_request(program, width, height, fused=be.fused, usage=usage, limits=limits)
     if not program.layers:

@@ -161,6 +161,13 @@ def sweep_bytes(texels: int, cost: Cost, usage: Usage) -> int:
 _COSTS: OrderedDict[tuple[int, ...], tuple[A.Program, Cost]] = OrderedDict()
 
 
+def request_cost(program: A.Program, width: int, height: int, usage: Usage, limits: Limits) -> Cost:
+    """The cost of evaluating ``program`` at ``width`` x ``height`` for ``usage``, counted up
+    to the node cap the limits allow at that size (:func:`program_cost`, remembered)."""
+    cap = min(limits.max_expanded_nodes, limits.max_node_texels // (width * height))
+    return program_cost(program, cap, usage.batched)
+
+
 def program_cost(program: A.Program, cap: int, batched: frozenset[int] = frozenset()) -> Cost:
     """:func:`~matloom.lang.cost.expanded_cost`, remembered for the last few programs."""
     key = (id(program), cap, len(batched), hash(batched))
@@ -225,8 +232,7 @@ def check_request(
     fused path or not, for ``usage``) exceeds a limit; else return the estimate."""
     check_size(width, height, max(usage.preview_tile, 1), limits)
     budget = limits.memory_mb()
-    cap = min(limits.max_expanded_nodes, limits.max_node_texels // (width * height))
-    cost = program_cost(program, cap, usage.batched)
+    cost = request_cost(program, width, height, usage, limits)
     _check_work(program, width, height, cost, limits)
     mb = estimate_memory_mb(width, height, cost, fused=fused, usage=usage)
     if mb > budget:
