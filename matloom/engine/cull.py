@@ -58,17 +58,21 @@ class CullStats:
     computed_texels: int = 0
 
 
-def leaves(value: Any, seen: set[int] | None = None) -> Iterator[Any]:
-    """Every non-Lazy operand (arrays, scalars, deferred fields) of a channel value, once."""
+def nodes(value: Any, seen: set[int] | None = None) -> Iterator[Any]:
+    """Every node of a channel value (Lazy nodes and their operands), once, depth first."""
     seen = set() if seen is None else seen
     if id(value) in seen:
         return
     seen.add(id(value))
+    yield value
     if isinstance(value, Lazy):
         for arg in value.args:
-            yield from leaves(arg, seen)
-    else:
-        yield value
+            yield from nodes(arg, seen)
+
+
+def leaves(value: Any, seen: set[int] | None = None) -> Iterator[Any]:
+    """Every non-Lazy operand (arrays, scalars, deferred fields) of a channel value, once."""
+    return (v for v in nodes(value, seen) if not isinstance(v, Lazy))
 
 
 def _array_bounds(array: np.ndarray) -> Bounds:
@@ -110,16 +114,7 @@ def _mask_ops(layers: list[Any]) -> int:
     """Element-wise operations the numpy masks of ``layers`` materialise (their alphas' Lazy
     nodes, each shared node once)."""
     seen: set[int] = set()
-    count = 0
-    stack = [layer.alpha for layer in layers]
-    while stack:
-        value = stack.pop()
-        if not isinstance(value, Lazy) or id(value) in seen:
-            continue
-        seen.add(id(value))
-        count += 1
-        stack.extend(value.args)
-    return count
+    return sum(isinstance(v, Lazy) for layer in layers for v in nodes(layer.alpha, seen))
 
 
 def _deferred_in(value: Any) -> list[DeferredField]:
