@@ -73,6 +73,8 @@ class Words:
     patterned: frozenset[str]
     #: art-style words ("stylized", "cartoon"): entries tagged so are styles, asked for by name
     styles: frozenset[str]
+    #: words that turn an overlay's patches into streaks running down ("rust streaks")
+    streaks: frozenset[str]
     #: the reader's grammar words ([grammar] of words.toml; each list is described there)
     clause_end: frozenset[str]
     head_end: frozenset[str]
@@ -191,6 +193,7 @@ def words() -> Words:
         natural=_word_set(w.get("categories", {}), "natural"),
         patterned=_word_set(w.get("categories", {}), "patterned"),
         styles=_word_set(w.get("styles", {}), "words"),
+        streaks=_word_set(w.get("streaks", {}), "words"),
         clause_end=_word_set(grammar, "clause_end"),
         head_end=_word_set(grammar, "head_end"),
         list_join=_word_set(grammar, "list_join"),

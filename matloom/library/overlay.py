@@ -27,6 +27,7 @@ from matloom.lang.api import parse
 from matloom.lang.diagnostics import ProgramError
 from matloom.lang.rewrite import map_expr
 from matloom.library.entry import FrontMatterReader, LibraryError, split_front_matter
+from matloom.library.relief import relief_of
 from matloom.vocab import FUNCTIONS
 
 OVERLAY_DIR = Path(__file__).resolve().parent / "overlays"
@@ -53,6 +54,13 @@ class Overlay:
     cover: str | None = None
     weak: tuple[str, ...] = ()
     scalars: dict[str, str] = field(default_factory=dict)
+    #: the Define bound to the host's relief (0 low .. 1 high, :mod:`matloom.library.relief`)
+    relief: str | None = None
+
+    @property
+    def streaks(self) -> str | None:
+        """The scalar that turns its patches into streaks running down (0 or 1), if any."""
+        return next((k for k, kind in self.scalars.items() if kind == "streaks"), None)
 
     @property
     def accent_slot(self) -> str | None:
@@ -79,6 +87,9 @@ def load_overlay(path: Path | str) -> Overlay:
     host = r.get("host", None, required=False)
     if host is not None and not (isinstance(host, str) and host):
         raise r.fail("host", f"expected the name of a colour slot, got {host!r}")
+    relief = r.get("relief", None, required=False)
+    if relief is not None and not (isinstance(relief, str) and relief):
+        raise r.fail("relief", f"expected the name of a Define, got {relief!r}")
     overlay = Overlay(
         name=path.stem,
         path=path,
@@ -90,6 +101,7 @@ def load_overlay(path: Path | str) -> Overlay:
         cover=cover,
         weak=tuple(t.lower() for t in r.words("weak")),
         scalars=dict(scalars),
+        relief=relief,
     )
     r.finish()
     if host is not None and host not in overlay.colours:
@@ -228,17 +240,23 @@ def compose(
     colour: tuple[int, int, int] | None = None,
     reseed: object = None,
     scale: float = 1.0,
+    streaks: bool = False,
 ) -> A.Program:
     """``host`` with ``overlay``'s layers (all but its first) and their Defines on top.
 
     ``main_colour`` is the entry's main colour slot (bound to the overlay's ``host`` colour);
     ``cover`` and ``colour`` set the overlay's slots; ``reseed`` (a callable taking and returning
     a program) re-derives the overlay's seeds; ``scale`` sizes the overlay's features ("small
-    cracks" 0.65: smaller cells with thinner lines, the same cover).
+    cracks" 0.65: smaller cells with thinner lines, the same cover); ``streaks``: its patches
+    run down the surface as streaks (an overlay with a ``streaks`` scalar). The overlay's
+    ``relief`` Define is bound to the host's relief (:func:`~matloom.library.relief.relief_of`)
+    when the host has one, so what settles in hollows finds the host's joints and pits.
     """
     ov = overlay.ast
     if cover is not None and overlay.cover:
         ov = define_value(ov, overlay.cover, cover)
+    if streaks and overlay.streaks:
+        ov = define_value(ov, overlay.streaks, 1)
     if colour is not None and overlay.colours:
         slot = overlay.accent_slot
         if slot is not None:
@@ -270,6 +288,8 @@ def compose(
         for d in ov.defines
         if d.name not in drop
     ]
+    if overlay.relief and ov.define(overlay.relief) is not None:
+        defines = _bind_relief(host, defines, names.get(overlay.relief, overlay.relief), taken)
     layers = []
     for layer in ov.layers[1:]:
         alpha = rename_refs(layer.alpha, names) if layer.alpha is not None else None
@@ -281,6 +301,27 @@ def compose(
     if callable(reseed):
         added = reseed(added)
     return replace(host, defines=host.defines + added.defines, layers=host.layers + added.layers)
+
+
+def _bind_relief(
+    host: A.Program, defines: list[A.Define], name: str, taken: set[str]
+) -> list[A.Define]:
+    """``defines`` with Define ``name`` bound to the host's relief rank, read from a new Define
+    of the host's height placed before it (the host's own names: bound after the renames)."""
+    height, k = "host_height", 2
+    while height in taken:
+        height, k = f"host_height{k}", k + 1
+    found = relief_of(host, height)
+    if found is None:
+        return defines
+    taken.add(height)
+    out: list[A.Define] = []
+    for d in defines:
+        if d.name == name:
+            out += [replace(d, name=height, expr=found[0], comments=()), replace(d, expr=found[1])]
+        else:
+            out.append(d)
+    return out
 
 
 def check_overlay(overlay: Overlay) -> None:
@@ -301,3 +342,6 @@ def check_overlay(overlay: Overlay) -> None:
                 )
     if overlay.cover and program.define(overlay.cover) is None:
         raise LibraryError(f"{overlay.path}: scalar {overlay.cover!r} has no Define")
+    for name in (overlay.streaks, overlay.relief):
+        if name and program.define(name) is None:
+            raise LibraryError(f"{overlay.path}: {name!r} has no Define")

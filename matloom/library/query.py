@@ -55,6 +55,8 @@ class OverlayMention:
     colour_at: int | None = None
     #: feature-size factor of the overlay itself ("small cracks" 0.65, "hairline cracks" 0.45)
     scale: float = 1.0
+    #: its patches drawn as streaks running down ("rust streaks", "streaked with grime")
+    streaks: bool = False
 
 
 @dataclass(frozen=True)
@@ -417,15 +419,19 @@ class _Reader:
         colour = mention.rgb if mention else None
         at = mention.index if mention else None
         self.use("overlay", *range(i, i + n))
+        near = self.t[max(0, i - 3) : i + n + 3]
+        streaks = bool(self.w.streaks & set(near))
         overlays = self.out.overlays
         for k, existing in enumerate(overlays):
             if existing.name == name:
-                merged = replace(existing, amount=max(existing.amount, amount))
+                merged = replace(
+                    existing, amount=max(existing.amount, amount), streaks=existing.streaks or streaks
+                )
                 if existing.colour is None:
                     merged = replace(merged, colour=colour, colour_at=at)
                 overlays[k] = merged
                 return
-        overlays.append(OverlayMention(name, phrase, i, amount, colour, at))
+        overlays.append(OverlayMention(name, phrase, i, amount, colour, at, streaks=streaks))
 
     # ------------------------------------------------------------------ finishes
     def finishes(self) -> None:

@@ -110,13 +110,15 @@ def overlay_lines(
     scale: float = 1.0,
     within: A.Node | None = None,
     colour: tuple[int, int, int] | None = None,
+    streaks: bool = False,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
     where a name is taken, its seeds re-derived where one is taken; its host colour bound to
     the program's main colour slot), and the channels a layer on top changes where it covers.
     ``cover``: the overlay's amount (None: its own); ``scale``: its feature size factor;
     ``within``: a mask its layers are confined to (the joints); ``colour``: the colour of what
-    it adds (None: its own). ValueError when it would break the program's tiling."""
+    it adds (None: its own); ``streaks``: its patches run down as streaks. ValueError when it
+    would break the program's tiling."""
     from matloom.library.overlay import compose
     from matloom.library.passes.compose import reseed
 
@@ -133,7 +135,14 @@ def overlay_lines(
         return reseed(q, f"edit+{overlay.name}", 1) if _seeds(q) & taken else q
 
     composed = compose(
-        program, overlay, main_colour=main, cover=cover, colour=colour, reseed=fresh, scale=scale
+        program,
+        overlay,
+        main_colour=main,
+        cover=cover,
+        colour=colour,
+        reseed=fresh,
+        scale=scale,
+        streaks=streaks,
     )
     if within is not None:  # confined: each new layer covers only where `within` is
         layers = tuple(
@@ -239,8 +248,9 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         raise c.refuse(f"no joints found in this program to put the {word} in")
     if within is not None and not amounts:  # the joints asked for are the joints it fills
         cover = c.ew.f("joint_cover")
+    streaks = bool(ov.streaks) and bool(set(c.words) & c.vocabulary.streaks)
     try:
-        add, channels = overlay_lines(c.program, ov, cover, scale, within, look)
+        add, channels = overlay_lines(c.program, ov, cover, scale, within, look, streaks)
     except ValueError as err:
         raise c.refuse(str(err)) from None
     amount = f" (amount {cover:g})" if cover is not None else ""
@@ -248,6 +258,8 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         amount += f" coloured {look}"
     if scale != 1.0:
         amount += f" as spots (size x{scale:g})"
+    if streaks:
+        amount += " in streaks running down"
     amount += where
     return Plan(
         "overlay",

@@ -87,6 +87,7 @@ class _Put:
             colour=self.mention.colour,
             reseed=lambda q: reseed(q, key, self.seed),
             scale=scale,
+            streaks=self.mention.streaks,
         )
 
 

@@ -1,0 +1,159 @@
+"""The host's relief as an expression an overlay can follow.
+
+Grime, moss, water and snow settle in the low parts of a surface (the mortar joints, the pits,
+the cracks); wear and chips find its high parts. An overlay that names a ``relief`` Define in
+its front matter gets it bound, when composed, to :func:`relief_of` the host: the host's
+composite height (the maximum over the layers that cover a texel, as the engine composites it)
+scaled to 0 at its low end and 1 at its high end (the 2nd and 98th percentiles, measured on a
+small evaluation of the host). A host with no relief, or one whose height lines would be costly
+to evaluate twice, leaves the overlay's own stand-in value (see docs/library.md).
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+from dataclasses import replace
+
+import numpy as np
+
+from matloom.lang import ast as A
+from matloom.lang.diagnostics import ProgramError
+from matloom.lang.parser import parse_source
+from matloom.lang.printer import format_expr, format_program
+from matloom.lang.rewrite import map_program
+from matloom.vocab import FUNCTIONS
+
+#: Size of the evaluation that measures the host's height range.
+MEASURE_SIZE = 48
+#: Function families a height line may use and still be cheap to evaluate a second time
+#: (anything else, a noise or a pattern written inside the line, is not repeated).
+_CHEAP_FAMILIES = frozenset({"coord", "math", "mask"})
+#: Below this spread (coordinate units) a host counts as flat.
+_FLAT = 1e-6
+#: A texel no layer with a height line covers sits this far below every covered one.
+_ABSENT = 1000.0
+
+
+def _height_line(layer: A.Layer) -> A.Node | None:
+    return next((c.args[0] for c in layer.channels if c.name == "height" and c.args), None)
+
+
+def _cheap(node: A.Node) -> bool:
+    """No call in ``node`` outside the cheap families (Defines are evaluated once each)."""
+    return all(
+        not isinstance(n, A.Call)
+        or (n.func in FUNCTIONS and FUNCTIONS[n.func].family in _CHEAP_FAMILIES)
+        for n in A.walk(node)
+    )
+
+
+def height_expr(program: A.Program) -> A.Node | None:
+    """The program's composite height as one expression (None: no layer has a height line, or
+    one is costly). A layer counts where its alpha is above 0 (the engine's coverage gate),
+    whatever its opacity; where only layers without a height line cover, the height is 0."""
+    parts: list[str] = []
+    everywhere = zero = False  # a layer covers everywhere; one does with no height line
+    for layer in program.layers:
+        h = _height_line(layer)
+        alpha = layer.alpha
+        if isinstance(alpha, A.Num) and alpha.value <= 0:
+            continue
+        whole = alpha is None or isinstance(alpha, A.Num)
+        if h is None:
+            everywhere, zero = everywhere or whole, zero or whole
+            continue
+        if not _cheap(h) or not (alpha is None or _cheap(alpha)):
+            return None
+        if whole:
+            everywhere = True
+            parts.append(format_expr(h))
+            continue
+        gate = f"Threshold({format_expr(alpha)}, below_at=0, below_to=0, above_at=0, above_to=1)"
+        parts.append(f"({format_expr(h)}) - (1 - {gate}) * {_ABSENT:g}")
+    if not parts:
+        return None
+    if zero or not everywhere:
+        parts.append("0")  # a covering layer with no height line, or the substrate
+    return _expression(parts[0] if len(parts) == 1 else f"Max({', '.join(parts)})")
+
+
+def _expression(text: str) -> A.Node:
+    program, diags = parse_source(f"Define(value, {text})\nMaterial(Layer(1).height(value))")
+    if program is None or not program.defines:
+        raise ValueError(f"not an expression: {text!r} ({diags[0] if diags else ''})")
+    return program.defines[0].expr
+
+
+def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
+    """(H, rank): the program's composite height H, and its rank over the surface, 0 to 1 (0.2: a fifth of
+    the surface lies lower): piecewise linear between measured quantiles, so "the lowest
+    fifth" means the joints on a brick wall and the pits on a plaster one alike. The rank reads
+    H as the Define ``height``. None when it has no height, it is costly, or it is flat."""
+    h = height_expr(program)
+    if h is None:
+        return None
+    knots = _height_quantiles(program)
+    if knots is None:
+        return None
+    terms = []
+    for (q0, v0), (q1, v1) in itertools.pairwise(knots):
+        step = f"Clamp((H - ({v0:.6g})) / {max(v1 - v0, _FLAT):.6g})"
+        terms.append(f"{step} * {q1 - q0:.6g}" if q1 - q0 != 1 else step)
+    return h, _expression(" + ".join(terms).replace("H", height))
+
+
+def _height_quantiles(program: A.Program) -> tuple[tuple[float, float], ...] | None:
+    return _measured(format_program(_canonical_seeds(program)))
+
+
+def _canonical_seeds(program: A.Program) -> A.Program:
+    """``program`` with its explicit seeds numbered in order of first appearance: the measured
+    range is then the same for every user seed (a reseed changes only the seeds)."""
+    order: dict[int, int] = {}
+
+    def fn(node: A.Node) -> A.Node:
+        if not isinstance(node, A.Call):
+            return node
+        args = []
+        for a in node.args:
+            if a.param == "seed" and isinstance(a.value, A.Num):
+                k = order.setdefault(int(a.value.value), len(order) + 1)
+                a = replace(a, value=A.Num(k))
+            args.append(a)
+        return replace(node, args=tuple(args))
+
+    return map_program(program, fn)
+
+
+#: The ranks the piecewise relief passes through (its knots).
+_RANKS = (0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)
+
+
+@functools.lru_cache(maxsize=256)
+def _measured(text: str) -> tuple[tuple[float, float], ...] | None:
+    """(rank, height) knots of the host's height, measured at :data:`MEASURE_SIZE` (the 1st and
+    99th percentiles stand for its ends); None when flat."""
+    from matloom.engine.evaluate import evaluate
+
+    try:
+        maps = evaluate(text, MEASURE_SIZE, MEASURE_SIZE)
+    except (ProgramError, ValueError):
+        return None
+    h = np.asarray(maps.height, dtype=np.float64)
+    h = h[np.isfinite(h)]
+    if h.size == 0:
+        return None
+    pct = [min(max(100.0 * r, 1.0), 99.0) for r in _RANKS]
+    # rounded so that the bound expression reads cleanly and is the same on every machine
+    values = [float(f"{v:.4g}") for v in np.percentile(h, pct)]
+    if values[-1] - values[0] < _FLAT:
+        return None
+    knots: list[tuple[float, float]] = []
+    for rank, v in zip(_RANKS, values, strict=True):
+        if knots and v - knots[-1][1] < _FLAT:  # a plateau: one jump, not a zero-width step
+            knots[-1] = (knots[-1][0], v)
+            continue
+        knots.append((rank, v))
+    knots[-1] = (1.0, knots[-1][1])
+    return tuple(knots)
