@@ -425,7 +425,9 @@ class _Reader:
         for k, existing in enumerate(overlays):
             if existing.name == name:
                 merged = replace(
-                    existing, amount=max(existing.amount, amount), streaks=existing.streaks or streaks
+                    existing,
+                    amount=max(existing.amount, amount),
+                    streaks=existing.streaks or streaks,
                 )
                 if existing.colour is None:
                     merged = replace(merged, colour=colour, colour_at=at)

@@ -24,8 +24,9 @@ from matloom.lang.printer import format_expr, format_program
 from matloom.lang.rewrite import map_program
 from matloom.vocab import FUNCTIONS
 
-#: Size of the evaluation that measures the host's height range.
-MEASURE_SIZE = 48
+#: Size of the evaluation that measures the host's height quantiles: a prime, so that no regular
+#: pattern (a course of bricks) falls on the same texel phase every period and biases them.
+MEASURE_SIZE = 101
 #: Function families a height line may use and still be cheap to evaluate a second time
 #: (anything else, a noise or a pattern written inside the line, is not repeated).
 _CHEAP_FAMILIES = frozenset({"coord", "math", "mask"})
