@@ -30,8 +30,13 @@ MEASURE_SIZE = 101
 #: Function families a height line may use and still be cheap to evaluate a second time
 #: (anything else, a noise or a pattern written inside the line, is not repeated).
 _CHEAP_FAMILIES = frozenset({"coord", "math", "mask"})
-#: Below this spread (coordinate units) a host counts as flat.
+#: Below this spread (coordinate units) two heights count as one.
 _FLAT = 1e-6
+#: A relief whose 5th-to-95th percentile spread is below this share of the View's width is
+#: flat to the eye (a polished stone, a brushed sheet): an overlay does not follow it; up to
+#: :data:`_RELIEF_FULL` it follows it in part.
+_RELIEF_SHALLOW = 0.0005
+_RELIEF_FULL = 0.002
 #: A texel no layer with a height line covers sits this far below every covered one.
 _ABSENT = 1000.0
 
@@ -97,14 +102,20 @@ def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
     knots = _height_quantiles(program)
     if knots is None:
         return None
+    knots, weight = knots
     terms = []
     for (q0, v0), (q1, v1) in itertools.pairwise(knots):
         step = f"Clamp((H - ({v0:.6g})) / {max(v1 - v0, _FLAT):.6g})"
         terms.append(f"{step} * {q1 - q0:.6g}" if q1 - q0 != 1 else step)
-    return h, _expression(" + ".join(terms).replace("H", height))
+    rank = " + ".join(terms).replace("H", height)
+    if weight < 1:  # a grain, not a layout: the overlay mostly keeps its own patches
+        rank = f"(({rank}) * {weight:g}) + {0.5 * (1 - weight):g}"
+    return h, _expression(rank)
 
 
-def _height_quantiles(program: A.Program) -> tuple[tuple[float, float], ...] | None:
+def _height_quantiles(
+    program: A.Program,
+) -> tuple[tuple[tuple[float, float], ...], float] | None:
     return _measured(format_program(_canonical_seeds(program)))
 
 
@@ -131,20 +142,47 @@ def _canonical_seeds(program: A.Program) -> A.Program:
 _RANKS = (0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)
 
 
+#: A relief this lopsided (its median this far up from its 5th to its 95th percentile) is a
+#: surface with joints, gaps or pits below it: what settles follows it fully.
+_JOINTED = 0.7
+#: A relief whose rank correlates this much more along one axis than the other (3 texels apart)
+#: is a grain (brushing, bands, a weave) unless it has joints: an overlay following it would
+#: draw stripes, so it follows it at :data:`_GRAIN_WEIGHT` only.
+_ANISOTROPIC = 0.4
+_GRAIN_WEIGHT = 0.25
+
+
+def _weight(h: np.ndarray, width: float) -> float:
+    """How fully an overlay follows the relief ``h`` (a square height map over a View
+    ``width`` wide): by its depth (:data:`_RELIEF_SHALLOW`, 0 for a flat one), times 1 for
+    joints or an isotropic relief and :data:`_GRAIN_WEIGHT` for a directional grain."""
+    p5, p50, p95 = np.percentile(h, (5.0, 50.0, 95.0))
+    depth = (p95 - p5) / (width or 1.0)
+    deep = min(1.0, max(0.0, (depth - _RELIEF_SHALLOW) / (_RELIEF_FULL - _RELIEF_SHALLOW)))
+    if deep == 0 or (p50 - p5) >= _JOINTED * (p95 - p5):
+        return round(deep, 3)
+    r = np.argsort(np.argsort(h.ravel(), kind="stable"), kind="stable").reshape(h.shape)
+    r = (r - r.mean()) / (r.std() or 1.0)
+    across = float((r * np.roll(r, 3, axis=1)).mean())
+    down = float((r * np.roll(r, 3, axis=0)).mean())
+    return round(deep * (_GRAIN_WEIGHT if abs(across - down) >= _ANISOTROPIC else 1.0), 3)
+
+
 @functools.lru_cache(maxsize=256)
-def _measured(text: str) -> tuple[tuple[float, float], ...] | None:
+def _measured(text: str) -> tuple[tuple[tuple[float, float], ...], float] | None:
     """(rank, height) knots of the host's height, measured at :data:`MEASURE_SIZE` (the 1st and
-    99th percentiles stand for its ends); None when flat."""
+    99th percentiles stand for its ends), and how fully an overlay follows it (:func:`_weight`);
+    None when flat."""
     from matloom.engine.evaluate import evaluate
 
     try:
         maps = evaluate(text, MEASURE_SIZE, MEASURE_SIZE)
     except (ProgramError, ValueError):
         return None
-    h = np.asarray(maps.height, dtype=np.float64)
-    h = h[np.isfinite(h)]
-    if h.size == 0:
+    grid = np.asarray(maps.height, dtype=np.float64)
+    if not np.isfinite(grid).all():
         return None
+    h = grid.ravel()
     pct = [min(max(100.0 * r, 1.0), 99.0) for r in _RANKS]
     # rounded so that the bound expression reads cleanly and is the same on every machine
     values = [float(f"{v:.4g}") for v in np.percentile(h, pct)]
@@ -157,4 +195,5 @@ def _measured(text: str) -> tuple[tuple[float, float], ...] | None:
             continue
         knots.append((rank, v))
     knots[-1] = (1.0, knots[-1][1])
-    return tuple(knots)
+    weight = _weight(grid, abs(maps.view.x2 - maps.view.x1))
+    return (tuple(knots), weight) if weight > 0 else None

@@ -73,6 +73,13 @@ def _tables(c: Context) -> tuple[dict[str, RGB], dict[str, RGB]]:
     return named, phrases
 
 
+#: Colour families a plural names ("the blues and greens", "swap the greys"): their colours.
+_FAMILIES = frozenset(
+    {"red", "orange", "yellow", "green", "blue", "purple", "pink", "brown", "grey", "gray",
+     "teal", "cream", "tan", "beige", "white", "black", "gold", "ochre", "violet"}
+)  # fmt: skip
+
+
 def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     """The named colours of the request: (index, word count, colour, an ``-ish`` form)."""
     w = c.vocabulary
@@ -93,6 +100,8 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if i in taken:
             continue
         word = w.ish_base(t)
+        if word not in named and t[:-1] in _FAMILIES:  # "swap the blues for amber"
+            word = t[:-1]
         if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
             continue  # "a satin oil finish": the kind of finish, not a colour
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
@@ -212,15 +221,17 @@ def _names_part(c: Context, k: int) -> bool:
 
 def _colour_in(
     c: Context,
-) -> tuple[RGB | None, str | None, str | None, set[int], RGB | None, bool]:
+) -> tuple[RGB | None, str | None, str | None, set[int], tuple[RGB, ...], bool]:
     """The named colour, the tone word (``tone`` an absolute tone of the library, a comparative
-    of ``words.toml``), the word indices used, and the old colour a swap names ("swap the
-    yellow for orange", "navy instead of charcoal": it selects the part to recolour)."""
+    of ``words.toml``), the word indices used, and the old colours a swap names ("swap the
+    yellow for orange", "navy instead of charcoal", "the blues and greens for amber": they
+    select the parts to recolour)."""
     w = c.vocabulary
     ws = c.words
     used: set[int] = set()
     rgb: RGB | None = None
     source: RGB | None = None
+    sources: tuple[RGB, ...] = ()
     partial = False
     found = []
     for i, n, value, ish in _named_at(c):
@@ -262,18 +273,20 @@ def _colour_in(
         if not new and any(_after_instead_of(c, f[0]) for f in old):
             # "clear tape instead of brown": the colour named is the one to replace, and
             # the new one is no colour the rules know
-            return None, None, None, used | {f[0] for f in old}, None, False
+            return None, None, None, used | {f[0] for f in old}, (), False
         if not new and said:  # no colour to paint: the part it names, for a comparative
             used |= {k for f in said for k in range(f[0], f[0] + f[1])}
-            found, source = [], said[0][2]
+            found, source, sources = [], said[0][2], (said[0][2],)
         new = new or found
         if old and new and new is not found:
             source = old[0][2]
+            sources = tuple(f[2] for f in old)
             for f in old:
                 used |= set(range(f[0], f[0] + f[1]))
             j = old[0][0] - 1  # "the pale blue": the old colour's tone is the old colour's
             if j >= 0 and ws[j] in w.tones and j not in used:
                 source = apply_tone(source, ws[j], w.tones[ws[j]])
+                sources = (source, *sources[1:])
                 used.add(j)
         if new:
             i, n, rgb, ish = new[0]
@@ -310,7 +323,7 @@ def _colour_in(
             tone = t
             used.add(i)
             break
-    return rgb, tone, comparative_word, used, source, partial
+    return rgb, tone, comparative_word, used, sources, partial
 
 
 #: Address prefix of a derived colour slot (:func:`_derived`): set by rewriting its lines.
@@ -411,7 +424,24 @@ def by_colour(c: Context, rgb: RGB, colours: list[Param], nouns: list[str]) -> l
         return []
     part = [p for d, _, p in near if d <= near[0][0] + c.ew.f("part_de")]
     named = [p for p in part if p in matching(colours, nouns, c.program, c.ew)] if nouns else []
-    return named or part
+    if named:
+        return named
+    # "switch the teal for burgundy": the teal ground and the paler teal motif alike
+    return part + [p for _, _, p in near if p not in part and same_family(c, _value(p), rgb)]
+
+
+def same_family(c: Context, rgb: Sequence[float], named: Sequence[float]) -> bool:
+    """Whether ``rgb`` is of the colour family ``named`` stands for (its hue and a share of
+    its chroma, or for a grey one a grey of about its lightness; ``family_*`` of
+    ``words.toml``)."""
+    (l1, a1, b1), (l2, a2, b2) = to_lab(rgb), to_lab(named)
+    c1, c2 = math.hypot(a1, b1), math.hypot(a2, b2)
+    if c2 < c.ew.f("family_grey_chroma"):
+        return c1 < c.ew.f("family_grey_chroma") and abs(l1 - l2) <= c.ew.f("family_grey_dl")
+    if c1 < c.ew.f("family_chroma") * c2:
+        return False
+    turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
+    return min(turn, 360 - turn) <= c.ew.f("family_hue_deg")
 
 
 def _whole_material(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
@@ -442,7 +472,7 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
 
 
 def colour_rule(c: Context) -> Plan | None:
-    rgb, tone, comp, used, source, partial = _colour_in(c)
+    rgb, tone, comp, used, sources, partial = _colour_in(c)
     if rgb is None and tone is None and comp is None:
         return None
     if (
@@ -473,9 +503,13 @@ def colour_rule(c: Context) -> Plan | None:
             targets = chosen[:1] if not nouns else chosen
         else:
             targets = _targets(c, colours, nouns)
-    elif source is not None:
+    elif sources:
         # "swap the yellow for orange", "just the red panes": the part that is that colour now
-        targets = by_colour(c, source, colours, nouns) or _targets(c, colours, nouns)
+        # ("the blues and greens": the parts of each)
+        targets = list(
+            dict.fromkeys(p for source in sources for p in by_colour(c, source, colours, nouns))
+        )
+        targets = targets or _targets(c, colours, nouns)
     else:
         targets = _whole_material(c, colours, nouns) if rgb is not None else []
         targets = targets or _targets(

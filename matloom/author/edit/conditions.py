@@ -232,10 +232,55 @@ def _overlay_for(word: str, stems: Sequence[str]) -> Overlay | None:
     return None
 
 
+#: A place on the surface as a whole, not on each of its features ("near the bottom", "lower
+#: down", "rising damp"; "on top of each log" is each feature's own top).
+_PLACE_RE = re.compile(
+    r"\b(?:(?:near|at|towards?|along|round|around)\s+the\s+(?:bottom|top|base)\b"
+    r"(?!\s+of\s+(?:each|every|all|the\s+\w+s\b))"
+    r"|(?:lower|upper)\s+(?:down|up|part|half|courses|rows|section|edge|area)"
+    r"|(?:bottom|top)\s+of\s+the\s+(?:wall|surface|panel|texture|image|roof|floor)"
+    r"|rising\s+damp|higher\s+up|lower\s+down)\b"
+)
+
+
+def _placed_on_surface(c: Context) -> str | None:
+    """The place a request puts its condition on the surface as a whole, if any."""
+    m = _PLACE_RE.search(" ".join(c.said))
+    return m.group(0) if m else None
+
+
+def _gradient(c: Context, place: str) -> A.Node:
+    """A mask rising to 1 over the lower (or upper) half of the View: the place ``place``
+    names."""
+    _, y1, _, y2 = c.program.view_tuple
+    lo, hi = min(y1, y2), max(y1, y2)
+    h = hi - lo
+    up = any(w in place for w in ("top", "upper", "higher"))
+    edges = (lo + 0.45 * h, lo + 0.9 * h) if up else (lo + 0.55 * h, lo + 0.1 * h)
+    return A.Call(
+        "Smoothstep",
+        (
+            A.Arg("edge0", A.Num(round(edges[0], 6)), keyword=False),
+            A.Arg("edge1", A.Num(round(edges[1], 6)), keyword=False),
+            A.Arg("x", A.Call("Y"), keyword=False),
+        ),
+    )
+
+
 def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     ov = _overlay_for(word, stems)
     if ov is None:
         return None
+    place = _placed_on_surface(c)
+    if place is not None and c.program.tileable:
+        # a gradient over the surface cannot repeat seamlessly; the overlay everywhere would
+        # not be what was asked
+        raise c.refuse(
+            f"the {word} is asked for {place!r}, a place on the surface as a whole, which a "
+            "tileable program cannot have (every part of it repeats); make the program "
+            "non-tileable first"
+        )
+    gradient = _gradient(c, place) if place is not None else None
     amounts = [c.vocabulary.amounts[t] for t in c.words if t in c.vocabulary.amounts]
     cover = amounts[0] if amounts else None
     scale = 1.0
@@ -244,6 +289,9 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     look = _look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
+    if gradient is not None:  # "near the bottom" of a program that does not tile
+        within = gradient if within is None else A.BinOp("*", within, gradient)
+        where += f" {place}"
     if within is None and _in_joints(c):  # "moss in the gaps": never spilled over the stones
         raise c.refuse(f"no joints found in this program to put the {word} in")
     if within is not None and not amounts:  # the joints asked for are the joints it fills

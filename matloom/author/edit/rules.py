@@ -198,7 +198,12 @@ def _joint_width(c: Context, ws: set[str], size: re.Match[str] | None) -> Plan |
 
 
 # ---- scale -----------------------------------------------------------------------------------
-def _zoom(c: Context, bigger: bool, step: float | None = None) -> Plan:
+def _zoom(
+    c: Context,
+    bigger: bool,
+    step: float | None = None,
+    why: str = "no parameter draws a named feature",
+) -> Plan:
     """Every feature bigger or smaller: the View's window shrinks or grows by ``step`` (the
     words' step when None; x2 when the program tiles, so the repeat stays whole)."""
     f = (step or c.ew.f("size")) if not c.program.tileable else 2.0
@@ -209,8 +214,7 @@ def _zoom(c: Context, bigger: bool, step: float | None = None) -> Plan:
     word = "bigger" if bigger else "smaller"
     return Plan(
         "scale",
-        f"every feature {word}: the View's window x{ratio:.3g} (no parameter draws a named "
-        "feature)",
+        f"every feature {word}: the View's window x{ratio:.3g} ({why})",
         view={"window": win},
         intended=("alpha",),
     )
@@ -242,8 +246,9 @@ def _scale(c: Context) -> Plan | None:
     targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]
     if not targets and nouns:
         targets = coverage_params(scalable, nouns, c.program, ew)
-    if ws & ew["scale_all"]:
-        return _zoom(c, bigger, step)  # "scale the whole texture up": every feature
+    if ws & (ew["scale_all"] | ew["repeat"]):
+        # "scale the whole texture up", "so it repeats more often": every feature
+        return _zoom(c, bigger, step, "the whole design scales")
     sized = bool(ws & ((ew["bigger"] | ew["smaller"]) - ew["denser"] - ew["sparser"]))
     if not targets and nouns and ws & (ew["denser"] | ew["sparser"]) and not sized:
         # "fewer veins": a count, which zooming would turn into a size (thicker veins)
@@ -349,6 +354,18 @@ _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     # "knock the gloss down", "tone down the shine": less of it
     (re.compile(rf"\b{_DOWN_VERBS}\s+(?:the\s+)?({_GLOSS_WORDS})\s+down\b"), r"less \1"),
     (re.compile(rf"\b{_DOWN_VERBS}\s+down\s+(?:the\s+)?({_GLOSS_WORDS})\b"), r"less \1"),
+    # "oil stains", "grease spots": the oily overlay (not a stain coloured like oil)
+    (
+        re.compile(
+            r"\b(?:engine\s+|motor\s+)?(?:oil|grease)\s+(?:stains?|spots?|patches|marks|spills?|drips?)\b"
+        ),
+        "oily",
+    ),
+    # "salt stains", "a white salty bloom": efflorescence
+    (
+        re.compile(r"\b(?:white\s+)?(?:salt|salty)\s+(?:stains?|bloom|deposits?|marks)\b"),
+        "efflorescence",
+    ),
     # "spaced further apart", "space them out": sparser
     (
         re.compile(r"\b(?:spaced?|spread)\s+(?:\w+\s+)?(?:further|farther|more)\s+apart\b"),

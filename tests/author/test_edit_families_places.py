@@ -1,0 +1,118 @@
+"""Offline edits: a colour swapped by its family name moves every colour of that family; a
+request about the repeat zooms the whole design; oil, salt, frost and lichen have overlays of
+their own; a condition placed on part of the surface is put there, or refused on a program
+that tiles; overlays do not follow a relief too shallow to see."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from matloom.author.edit.core import edit_offline
+from matloom.author.edit.plan import EditRefused
+from matloom.engine.evaluate import evaluate
+from matloom.library import load_library
+from matloom.library.overlay import compose
+
+LIB = load_library()
+
+#: yellow stripes on a beige ground: "the yellow" is the stripes, not the beige
+STRIPES = """View(0, 0, 2, 2, tileable=True)
+Define(stripe_r, 236)
+Define(stripe_g, 200)
+Define(stripe_b, 30)
+Define(ground_r, 214)
+Define(ground_g, 200)
+Define(ground_b, 170)
+Define(band, Smoothstep(0.45, 0.55, Fract((X() * 2))))
+Material(
+  Layer(1).basecolor(ground_r, ground_g, ground_b).roughness(0.6),
+  Layer(band).basecolor(stripe_r, stripe_g, stripe_b).roughness(0.6)
+)
+"""
+
+
+def _edit(text: str, request: str):  # noqa: ANN202 - the EditResult
+    return edit_offline(text, request, size=32)
+
+
+def _changed(result) -> set[str]:  # noqa: ANN001
+    return {c.to_json()["address"] for c in result.report.changes}
+
+
+def test_a_swapped_colour_family_moves_every_colour_of_it() -> None:
+    damask = LIB.entry("damask-wallpaper-teal").program
+    changed = _changed(_edit(damask, "Switch the teal for a deep burgundy."))
+    assert {"define:motif", "define:ground"} <= changed  # the light and the dark teal
+
+
+def test_plural_families_are_colours_to_swap() -> None:
+    mosaic = LIB.entry("glass-mosaic-tiles").program
+    changed = _changed(_edit(mosaic, "swap the blues and greens for warm amber"))
+    assert len([a for a in changed if a.startswith("define:glass")]) >= 2
+
+
+def test_a_family_keeps_to_its_hue_and_chroma() -> None:
+    changed = _changed(_edit(STRIPES, "swap the yellow for orange"))
+    assert any(a.startswith("define:stripe") for a in changed)
+    assert not any(a.startswith("define:ground") for a in changed)  # beige is no yellow
+
+
+def test_the_repeat_zooms_the_whole_design() -> None:
+    damask = LIB.entry("damask-wallpaper-teal").program
+    result = _edit(damask, "Make the damask motif smaller so it repeats more often.")
+    assert result.report.plan["view"]
+    assert "whole design" in result.report.plan["note"]
+
+
+@pytest.mark.parametrize(
+    ("request_", "overlay"),
+    [
+        ("add oil stains", "oily"),
+        ("a few grease spots please", "oily"),
+        ("add white salt efflorescence", "efflorescence"),
+        ("add a white salty bloom", "efflorescence"),
+        ("add a light frost", "frosty"),
+        ("give it some lichen", "lichen"),
+    ],
+)
+def test_conditions_with_overlays_of_their_own(request_: str, overlay: str) -> None:
+    wall = LIB.entry("brick-wall").program
+    assert f"'{overlay}' overlay" in _edit(wall, request_).report.plan["note"]
+
+
+def test_oil_stains_darken() -> None:
+    host = LIB.entry("brick-wall").program
+    after = _edit(host, "add oil stains").program
+    a = evaluate(host, 48, 48).basecolor_linear[..., :3].mean()
+    b = evaluate(after, 48, 48).basecolor_linear[..., :3].mean()
+    assert b < a * 0.95
+
+
+def test_a_place_on_a_tiling_program_is_refused() -> None:
+    wall = LIB.entry("brick-wall").program
+    with pytest.raises(EditRefused, match="place on the surface"):
+        _edit(wall, "add some grime near the bottom")
+    _edit(wall, "add some grime")  # the same condition with no place is accepted
+
+
+def test_a_place_on_a_program_that_does_not_tile_is_a_gradient() -> None:
+    wall = LIB.entry("brick-wall").program.replace("tileable=True", "tileable=False")
+    result = _edit(wall, "add some grime near the bottom")
+    assert "near the bottom" in result.report.plan["note"]
+    a = evaluate(wall, 64, 64).basecolor_linear[..., :3]
+    b = evaluate(result.program, 64, 64).basecolor_linear[..., :3]
+    change = np.abs(a - b).sum(axis=-1)
+    # rows are top first in the maps: the lower half changed, the upper barely
+    assert change[32:].mean() > 4 * change[:32].mean()
+
+
+@pytest.mark.parametrize("name", ["marble", "brushed-stainless-steel-sheet"])
+def test_a_relief_too_shallow_to_see_is_not_followed(name: str) -> None:
+    program = compose(LIB.ast(name), LIB.overlays["dirty"], main_colour=None, cover=0.5)
+    assert "host_height" not in {d.name for d in program.defines}
+
+
+def test_a_deep_relief_is_followed() -> None:
+    program = compose(LIB.ast("brick-wall"), LIB.overlays["dirty"], main_colour=None, cover=0.5)
+    assert "host_height" in {d.name for d in program.defines}
