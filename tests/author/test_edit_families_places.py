@@ -116,3 +116,33 @@ def test_a_relief_too_shallow_to_see_is_not_followed(name: str) -> None:
 def test_a_deep_relief_is_followed() -> None:
     program = compose(LIB.ast("brick-wall"), LIB.overlays["dirty"], main_colour=None, cover=0.5)
     assert "host_height" in {d.name for d in program.defines}
+
+
+def test_a_condition_the_program_lacks_is_added_with_its_look() -> None:
+    stones = LIB.entry("gabion-stone-wall").program
+    result = _edit(stones, "lichen on the stones, those pale yellow-green crusty patches")
+    assert "'lichen' overlay" in result.report.plan["note"]
+    assert not any(a.startswith(("define:stone", "colour:stone")) for a in _changed(result))
+    lawn = LIB.entry("lawn-grass-top-down").program
+    note = _edit(lawn, "light dusting of snow with green blades poking through").report.plan
+    assert "'snowy' overlay" in note["note"]
+
+
+def test_a_condition_the_program_is_made_of_is_a_property() -> None:
+    mud = LIB.entry("muddy-field-puddles").program
+    assert "overlay" not in _edit(mud, "drier mud").report.plan["note"]
+
+
+def test_a_simile_names_no_part_to_reduce() -> None:
+    adobe = LIB.entry("adobe-mud-brick").program
+    try:
+        note = _edit(adobe, "less crumbly and eroded, like the bricks were only laid last week")
+    except EditRefused:
+        return
+    assert "less brick" not in note.report.plan["note"]
+
+
+def test_a_place_where_it_stays_damp_is_no_wet_look() -> None:
+    wall = LIB.entry("brick-wall").program.replace("tileable=True", "tileable=False")
+    request = "Put a little green moss in the joints and along the base where it stays damp"
+    assert _edit(wall, request).report.plan["rule"].startswith("overlay")

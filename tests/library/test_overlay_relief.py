@@ -102,7 +102,7 @@ def _square_mask() -> np.ndarray:
     return (xx > 0.55) & (xx < 1.45) & (yy > 0.55) & (yy < 1.45)
 
 
-@pytest.mark.parametrize("name", ["dirty", "mossy", "muddy"])
+@pytest.mark.parametrize("name", ["dirty", "mossy", "efflorescence"])
 def test_what_settles_finds_the_low_parts(name: str) -> None:
     host = parse(SQUARE)
     program = compose(host, LIB.overlays[name], main_colour=None, cover=0.5)

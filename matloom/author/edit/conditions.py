@@ -427,9 +427,23 @@ def amount_rule(c: Context) -> Plan | None:
             return _more_of_layer(c)
         word, stems = found
     asked = _direction(c, word)
-    if asked is None and _property_word(c, word):
+    absent = not (
+        _labelled(c, stems)
+        or _overlay_covers(c, stems)
+        or _condition_layers(c, stems)
+        or named_in_program(c.program, [word, *stems], c.ew)
+    )
+    # a condition named as a thing the program lacks ("lichen", "snow") is added; as a look of
+    # a part ("the wires look rusty, orange-brown") it is that part's property
+    # ("the holes should be deeper": a comparative changes what is there)
+    changes = set(c.ew.comparative) | set(c.ew.relief) | c.ew["bigger"] | c.ew["smaller"]
+    changes -= set(c.vocabulary.amounts)  # "a little green moss" is an amount
+    added = absent and not word.endswith(("y", "ed")) and not set(c.words) & changes
+    if asked is None and _property_word(c, word) and not added:
         # "drier mud", "a reddish mud", "prints deeper into the mud": the condition's noun
         # names the material (or a part) whose property changes, not more of the condition
+        # (one the program does not have is added: "lichen, those pale yellow-green patches",
+        # "a dusting of snow with green blades poking through")
         return None
     more = asked if asked is not None else bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
     found = _labelled(c, stems) or _overlay_covers(c, stems)
@@ -548,5 +562,8 @@ def _more_of_layer(c: Context) -> Plan | None:
     if ws & (set(c.ew.relief_nouns) | set(c.ew.relief) | {"rough", "roughness", "gloss"}):
         return None
     skip = c.ew["more"] | c.ew["less"] | set(c.ew.relief_nouns) | set(c.ew.channels)
-    nouns = [t for t in c.nouns if t not in skip and t not in c.ew.finish]
+    # a simile names no part to measure ("less eroded, like the bricks were laid last week")
+    simile = next((i for i, t in enumerate(c.words) if t in ("like", "as")), len(c.words))
+    kept = set(c.words[:simile])
+    nouns = [t for t in c.nouns if t not in skip and t not in c.ew.finish and t in kept]
     return measured_layer(c, nouns, more)

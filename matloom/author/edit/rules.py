@@ -434,9 +434,8 @@ def _looks(asked: str) -> str:
             continue
         lead = next((w for w in ws if w not in ew["filler"]), None) == t
         said = bool(ew["look"] & set(ws[max(0, i - 3) : i])) or ws[i + 1 : i + 2] == ["look"]
-        made = any(
-            w in ("make", "get", "it", "them", "more", "less") for w in ws[max(0, i - 3) : i]
-        )
+        # "make it wet", "get them damp", "more wet" ("where it stays damp" is a place)
+        made = any(w in ("make", "get", "more", "less") for w in ws[max(0, i - 3) : i])
         if not (lead or said or made):
             continue  # "the sample from the wet room"
         if {"than", "instead"} & set(ws[max(0, i - 3) : i]):
@@ -487,6 +486,8 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             and _describes(c, sub.words, comparatives=not overlay)
         ):
             continue  # "the wires rusty, orange-brown": the colour of the same part
+        if overlay and not single and not named_in_program(c.program, sub.words, c.ew):
+            continue  # "lichen, those pale yellow-green patches": the added condition's look
         try:
             if single:
                 if plan.rule == "relief" and not _names_colour(c, sub.words):
