@@ -146,3 +146,10 @@ def test_a_place_where_it_stays_damp_is_no_wet_look() -> None:
     wall = LIB.entry("brick-wall").program.replace("tileable=True", "tileable=False")
     request = "Put a little green moss in the joints and along the base where it stays damp"
     assert _edit(wall, request).report.plan["rule"].startswith("overlay")
+
+
+def test_an_added_condition_that_does_not_show_is_added_more_strongly() -> None:
+    plaster = LIB.entry("plaster").program  # a pale dust on a pale plaster hardly shows
+    result = _edit(plaster, "a little dust")
+    assert result.report.plan.get("strength", 1.0) > 1.0
+    assert "'dusty' overlay" in result.report.plan["note"]

@@ -42,7 +42,7 @@ from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
 from matloom.lang.static import static_number
 from matloom.lang.tileable import tileable_warnings
-from matloom.library.overlay import Overlay
+from matloom.library.overlay import Overlay, constant
 
 
 def _named(name: str, stems: Sequence[str]) -> bool:
@@ -296,6 +296,12 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         raise c.refuse(f"no joints found in this program to put the {word} in")
     if within is not None and not amounts:  # the joints asked for are the joints it fills
         cover = c.ew.f("joint_cover")
+    if c.strength > 1 and ov.cover:
+        # a condition that does not show is added more strongly (the edit escalates it)
+        own = constant(ov.ast, ov.cover)
+        start = cover if cover is not None else own
+        if start is not None:
+            cover = round(min(c.ew.f("overlay_max_cover"), start * c.strength), 3)
     streaks = bool(ov.streaks) and bool(set(c.words) & c.vocabulary.streaks)
     try:
         add, channels = overlay_lines(c.program, ov, cover, scale, within, look, streaks)
@@ -314,6 +320,7 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         f"the library's {ov.name!r} overlay added on top{amount}",
         add=add,
         intended=channels,
+        graded=bool(ov.cover),
     )
 
 
@@ -496,6 +503,7 @@ def _more_overlays(c: Context, plan: Plan, word: str, conds: Sequence[str]) -> P
             f"{plan.note}; {more.note}",
             add=[*plan.add, *more.add],
             intended=tuple(dict.fromkeys(plan.intended + more.intended)),
+            graded=plan.graded or more.graded,
         )
     return plan
 

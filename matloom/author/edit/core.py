@@ -288,7 +288,11 @@ def edit_offline(
             stronger = plan_edit(before, params, request, strength, ew)
         except EditRefused:
             break
-        if stronger.assignments == plan.assignments and stronger.lines == plan.lines:
+        if (
+            stronger.assignments == plan.assignments
+            and stronger.lines == plan.lines
+            and tuple(stronger.add) == tuple(plan.add)
+        ):
             break
         plan = stronger
     if not shows and structural and not plan.exact:
