@@ -153,3 +153,15 @@ def test_an_added_condition_that_does_not_show_is_added_more_strongly() -> None:
     result = _edit(plaster, "a little dust")
     assert result.report.plan.get("strength", 1.0) > 1.0
     assert "'dusty' overlay" in result.report.plan["note"]
+
+
+def test_two_wishes_make_two_changes() -> None:
+    mosaic = LIB.entry("basketweave-marble-mosaic").program
+    plan = _edit(mosaic, "Wider grout joints, and make the grout a darker grey.").report.plan
+    assert plan["rule"] == "joints+colour" and "wider" in plan["note"]
+    tiles = LIB.entry("tigers-eye-polished-tiles").program
+    plan = _edit(tiles, "Bigger tiles with thinner joints.").report.plan
+    assert "joints narrower" in plan["note"] and "scale" in plan["rule"]
+    foam = LIB.entry("reticulated-foam").program
+    plan = _edit(foam, "Smaller, denser cells and a bit more matte.").report.plan
+    assert plan["rule"] == "roughness+scale" and plan["view"]

@@ -186,7 +186,7 @@ def _joint_width(c: Context, ws: set[str], size: re.Match[str] | None) -> Plan |
         new: dict[Param, Value] = {p: clamp(p, width) for p in found}
         note = f"joints {metres * 1000:g} mm wide ({width:.4g} units)"
         return assign(c, "joints", note, new, affects(found), graded=False, exact=True)
-    wider = bool(c.ew["wider"] & ws)
+    wider = _joint_wider(c)
     factor = c.ew.f("joint") ** (c.k if wider else -c.k)
     new = {p: scaled(p, factor) for p in found}
     if wider:  # at least a few preview pixels wide, or a thin joint still reads as a line
@@ -195,6 +195,17 @@ def _joint_width(c: Context, ws: set[str], size: re.Match[str] | None) -> Plan |
         new = {p: clamp(p, max(float(v), least)) if p.kind == "size" else v for p, v in new.items()}
     word = "wider" if wider else "narrower"
     return assign(c, "joints", f"joints {word} (x{factor:.3g})", new, affects(found))
+
+
+def _joint_wider(c: Context) -> bool:
+    """Whether the joints are to be wider: the width word nearest a joint noun ("bigger tiles
+    with thinner joints": thinner), else any wider word."""
+    widths = [(i, t in c.ew["wider"]) for i, t in enumerate(c.words)]
+    widths = [(i, w) for i, w in widths if w or c.words[i] in c.ew["narrower"]]
+    joints = [i for i, t in enumerate(c.words) if t in c.ew["joint"]]
+    if widths and joints:
+        return min(widths, key=lambda iw: min(abs(iw[0] - j) for j in joints))[1]
+    return bool(c.ew["wider"] & set(c.words))
 
 
 # ---- scale -----------------------------------------------------------------------------------
@@ -459,8 +470,11 @@ _AND_VERB = (
 )
 _CLAUSE_RE = re.compile(rf"[,;:]|{_AND_VERB}")
 
-#: Rules whose plans two clauses of one request may join ("olive drab, satin finish").
-_JOINABLE = frozenset({"colour", "roughness", "channel", "relief"})
+#: Rules whose plans two clauses of one request may join ("olive drab, satin finish",
+#: "wider grout joints, and make the grout a darker grey", "smaller cells, a bit more matte").
+_JOINABLE = frozenset({"colour", "roughness", "channel", "relief", "joints", "scale"})
+#: Words that join two wishes inside one clause ("bigger tiles with thinner joints").
+_WISHES_RE = re.compile(r"\b(?:and|with|plus|but)\b")
 
 
 def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
@@ -470,6 +484,9 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
     clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
     if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
         return plan  # an overlay joins a clause's colour or finish ("worn, faded")
+    if len(clauses) < 2 and plan.rule in ("joints", "scale"):
+        # "bigger tiles with thinner joints": two wishes in one clause
+        clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
     single = len(clauses) < 2
     if single and plan.add:
         return plan
@@ -509,7 +526,8 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             or (other.rule == plan.rule and plan.rule != "colour")
             # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
             or _rule_parts(plan, other) & {"relief", "colour"} == {"relief"}
-            or other.view
+            # a zoom joins once ("smaller, denser cells and a bit more matte")
+            or (other.view and (plan.view or other.rule != "scale"))
             or other.add
             or set(other.assignments) & set(plan.assignments)
             or set(other.lines) & set(plan.lines)
@@ -521,6 +539,7 @@ def _with_clauses(c: Context, asked: str, plan: Plan) -> Plan:
             assignments={**plan.assignments, **other.assignments},
             intended=tuple(dict.fromkeys(plan.intended + other.intended)),
             lines={**plan.lines, **other.lines},
+            view=dict(plan.view or other.view),
             add=plan.add,
             graded=plan.graded and other.graded,
             exact=plan.exact or other.exact,
