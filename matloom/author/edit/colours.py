@@ -483,6 +483,19 @@ def colour_rule(c: Context) -> Plan | None:
         and any(named_in_program(c.program, [c.words[i]], c.ew) for i in used)
     ):
         return None  # "thinner brass strips": the size of the part the colour word names
+    if (
+        rgb is not None
+        and tone is None
+        and comp is None
+        and set(c.words) & (c.ew["size"] | c.ew["width"] | c.ew["width_up"])
+        and any(
+            p.kind == "colour"
+            and isinstance(p.value, tuple)
+            and delta_e(_value(p), rgb) < c.ew.f("select_de")
+            for p in c.params
+        )
+    ):
+        return None  # "thicker gold wires": the wires are gold already, their size changes
     # three numbers each (a lone component named like a colour, ``tile_r`` beside a Define
     # ``tile``, is a number: not recoloured on its own)
     colours = [p for p in c.params if p.kind == "colour" and isinstance(p.value, tuple)]
