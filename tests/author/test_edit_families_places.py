@@ -165,3 +165,9 @@ def test_two_wishes_make_two_changes() -> None:
     foam = LIB.entry("reticulated-foam").program
     plan = _edit(foam, "Smaller, denser cells and a bit more matte.").report.plan
     assert plan["rule"] == "roughness+scale" and plan["view"]
+
+
+def test_a_part_named_by_its_colour_beside_a_size_is_resized() -> None:
+    enamel = LIB.entry("cloisonne-enamel-floral").program
+    plan = _edit(enamel, "thicker gold wires").report.plan
+    assert plan["rule"] == "scale"
