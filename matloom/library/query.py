@@ -42,6 +42,12 @@ class ColourMention:
     slot: str | None = None
 
 
+#: Words right after a size that name the texture's repeat ("a 4x4m tile", "2 m texture").
+_REPEAT_WORDS = frozenset({"tile", "texture", "repeat", "patch", "square"})
+#: The least size (metres) at which "tile" after it is the repeat: floor tiles are smaller.
+_REPEAT_MIN_M = 1.0
+
+
 @dataclass(frozen=True)
 class OverlayMention:
     """A request for an overlay ("mossy"): its name, the word, an amount and a colour."""
@@ -510,8 +516,13 @@ class _Reader:
                 self.use("percent", i, i + 1)
             elif unit in self.w.units and value > 0:
                 noun = self.noun_after(i + 2) or self.noun_before(i - 1)
-                self.out.sizes.append(Size(value * self.w.units[unit], noun, f"{w} {unit}"))
+                metres = value * self.w.units[unit]
+                self.out.sizes.append(Size(metres, noun, f"{w} {unit}"))
                 self.use("size", i, i + 1)
+                if metres >= _REPEAT_MIN_M and self.at(i + 2) in _REPEAT_WORDS:
+                    # "4x4m tile", "2 m texture": the size of the texture's repeat, no
+                    # ceramic tile (a tile a metre or more across is a game artist's repeat)
+                    self.use("size", i + 2)
             elif value == int(value) and 1 <= value <= 64:
                 noun = self.noun_after(i + 1)
                 if noun:

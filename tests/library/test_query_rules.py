@@ -238,3 +238,13 @@ def test_the_colour_of_a_patterned_entrys_motifs_is_its_pattern_colour() -> None
 def test_olive_drab_and_whitewashed_are_colours() -> None:
     assert colours("tent canvas, olive drab") == ["olive drab"]
     assert _given("old whitewashed boards with peeling paint") == {"paint": "whitewashed"}
+
+
+def test_a_metre_sized_tile_is_the_texture_repeat() -> None:
+    # a game artist's "4x4m tile" is the repeat of the texture, no ceramic tile
+    program = author("realistic forest floor, pine needles + cones + dirt, 4x4m tile").program
+    assert "forest-floor" in program.splitlines()[0]
+    r = req("forest floor, 4 m tile")
+    assert r.sizes and r.sizes[0].metres == 4
+    # tiles a few centimetres or a foot across are tiles
+    assert "tile" in author("white 30 cm ceramic floor tiles").program.splitlines()[0]
