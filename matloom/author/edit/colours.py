@@ -15,11 +15,11 @@
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Sequence
 from dataclasses import replace
 
+from matloom.author.edit.families import FAMILIES, by_colour, colour_value
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
@@ -73,13 +73,6 @@ def _tables(c: Context) -> tuple[dict[str, RGB], dict[str, RGB]]:
     return named, phrases
 
 
-#: Colour families a plural names ("the blues and greens", "swap the greys"): their colours.
-_FAMILIES = frozenset(
-    {"red", "orange", "yellow", "green", "blue", "purple", "pink", "brown", "grey", "gray",
-     "teal", "cream", "tan", "beige", "white", "black", "gold", "ochre", "violet"}
-)  # fmt: skip
-
-
 def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     """The named colours of the request: (index, word count, colour, an ``-ish`` form)."""
     w = c.vocabulary
@@ -100,7 +93,7 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if i in taken:
             continue
         word = w.ish_base(t)
-        if word not in named and t[:-1] in _FAMILIES:  # "swap the blues for amber"
+        if word not in named and t[:-1] in FAMILIES:  # "swap the blues for amber"
             word = t[:-1]
         if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
             continue  # "a satin oil finish": the kind of finish, not a colour
@@ -404,46 +397,6 @@ def _targets(
     return [main_colour(colours, c.program, c.ew)]
 
 
-def _value(p: Param) -> tuple[float, float, float]:
-    return tuple(float(x) for x in p.value)  # type: ignore[return-value,union-attr]
-
-
-def hue_distance(a: Sequence[float], b: Sequence[float]) -> float:
-    """CIELAB distance with lightness at half weight: a colour word names a hue family more
-    than a lightness ("the orange bricks" are a dark orange)."""
-    la, lb = to_lab(a), to_lab(b)
-    return math.sqrt((0.5 * (la[0] - lb[0])) ** 2 + (la[1] - lb[1]) ** 2 + (la[2] - lb[2]) ** 2)
-
-
-def by_colour(c: Context, rgb: RGB, colours: list[Param], nouns: list[str]) -> list[Param]:
-    """The colour parameters of the part a colour names ("the red panes"): the nearest to it
-    (hue first) and every other as near (within ``part_de`` more), when the nearest is within
-    ``part_max_de``; among those the nouns name, when they name any of them."""
-    near = sorted((hue_distance(_value(p), rgb), i, p) for i, p in enumerate(colours))
-    if not near or near[0][0] > c.ew.f("part_max_de"):
-        return []
-    part = [p for d, _, p in near if d <= near[0][0] + c.ew.f("part_de")]
-    named = [p for p in part if p in matching(colours, nouns, c.program, c.ew)] if nouns else []
-    if named:
-        return named
-    # "switch the teal for burgundy": the teal ground and the paler teal motif alike
-    return part + [p for _, _, p in near if p not in part and same_family(c, _value(p), rgb)]
-
-
-def same_family(c: Context, rgb: Sequence[float], named: Sequence[float]) -> bool:
-    """Whether ``rgb`` is of the colour family ``named`` stands for (its hue and a share of
-    its chroma, or for a grey one a grey of about its lightness; ``family_*`` of
-    ``words.toml``)."""
-    (l1, a1, b1), (l2, a2, b2) = to_lab(rgb), to_lab(named)
-    c1, c2 = math.hypot(a1, b1), math.hypot(a2, b2)
-    if c2 < c.ew.f("family_grey_chroma"):
-        return c1 < c.ew.f("family_grey_chroma") and abs(l1 - l2) <= c.ew.f("family_grey_dl")
-    if c1 < c.ew.f("family_chroma") * c2:
-        return False
-    turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
-    return min(turn, 360 - turn) <= c.ew.f("family_hue_deg")
-
-
 def _whole_material(c: Context, colours: list[Param], nouns: list[str]) -> list[Param]:
     """ "the whole wall", "all the bricks": every colour of the material but the joints' and
     the conditions' (moss, rust), the main colour first; none when the request does not say
@@ -464,9 +417,9 @@ def _select(c: Context, rgb: RGB, candidates: list[Param]) -> list[Param]:
     """The candidates already close to the named colour (nearest first)."""
     limit = c.ew.f("select_de")
     close = sorted(
-        (delta_e(_value(p), rgb), i, p)
+        (delta_e(colour_value(p), rgb), i, p)
         for i, p in enumerate(candidates)
-        if delta_e(_value(p), rgb) < limit
+        if delta_e(colour_value(p), rgb) < limit
     )
     return [p for _, _, p in close]
 
@@ -491,7 +444,7 @@ def colour_rule(c: Context) -> Plan | None:
         and any(
             p.kind == "colour"
             and isinstance(p.value, tuple)
-            and delta_e(_value(p), rgb) < c.ew.f("select_de")
+            and delta_e(colour_value(p), rgb) < c.ew.f("select_de")
             for p in c.params
         )
     ):
@@ -539,10 +492,10 @@ def colour_rule(c: Context) -> Plan | None:
 
     stronger = _TINT_STRONGER if tint and step is not None else 1.0
     share = min(_TINT_MAX, _TINT_SHARE * c.intensity * stronger) if tint else _LIKE_SHARE
-    base_lab = to_lab(_value(primary))
+    base_lab = to_lab(colour_value(primary))
     new: dict[Param, Value] = {}
     for p in targets:
-        current = _value(p)
+        current = colour_value(p)
         if rgb is not None:
             named: RGB = apply_tone(rgb, tone, c.vocabulary.tones[tone]) if tone else rgb
             lab = to_lab(named)
@@ -630,7 +583,7 @@ def _towards(c: Context, colours: list[Param], nouns: list[str], word: str) -> P
     t = min(1.0, c.ew.f("towards") * c.k)
     new: dict[Param, Value] = {}
     for p in _targets(c, colours, nouns):
-        L, a, b = to_lab(_value(p))
+        L, a, b = to_lab(colour_value(p))
         lab = (L + (goal[0] - L) * t / 3, a + (goal[1] - a) * t, b + (goal[2] - b) * t)
         new[p] = tuple(float(x) for x in from_lab(lab))  # type: ignore[assignment]
     what = ", ".join(f"{p.address} -> {tuple(int(x) for x in v)}" for p, v in new.items())  # type: ignore[union-attr]

@@ -1,0 +1,139 @@
+"""How the clauses of one request join: a plan and the plans of the request's other clauses
+("paint the panels olive drab, satin finish": a colour and a roughness), read by the rules of
+:mod:`matloom.author.edit.rules` (passed in, so this module imports none of them but the
+colour rule)."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+
+from matloom.author.edit.colours import colour_rule
+from matloom.author.edit.lexicon import tokens
+from matloom.author.edit.plan import Context, EditRefused, Plan
+from matloom.author.edit.targets import named_in_program
+
+#: Where a request's clauses part: commas, semicolons, and "and" before a verb of its own
+#: ("change the background to blue and make the stripes silver").
+AND_VERB = (
+    r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color|mute|darken|lighten|brighten"
+    r"|tint|dye)\b)"
+)
+_CLAUSE_RE = re.compile(rf"[,;:]|{AND_VERB}")
+
+#: Rules whose plans two clauses of one request may join ("olive drab, satin finish",
+#: "wider grout joints, and make the grout a darker grey", "smaller cells, a bit more matte").
+_JOINABLE = frozenset({"colour", "roughness", "channel", "relief", "joints", "scale"})
+#: Words that join two wishes inside one clause ("bigger tiles with thinner joints").
+_WISHES_RE = re.compile(r"\b(?:and|with|plus|but)\b")
+
+
+def join_clauses(
+    c: Context, asked: str, plan: Plan, rules: Sequence[Callable[[Context], Plan | None]]
+) -> Plan:
+    """``plan`` and the plan of another clause of the request (split at commas and
+    semicolons) by another joinable rule that changes other parameters: "paint the panels
+    olive drab, satin finish" is a colour and a roughness."""
+    clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
+    if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
+        return plan  # an overlay joins a clause's colour or finish ("worn, faded")
+    if len(clauses) < 2 and plan.rule in ("joints", "scale"):
+        # "bigger tiles with thinner joints": two wishes in one clause
+        clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
+    single = len(clauses) < 2
+    if single and plan.add:
+        return plan
+    if single:
+        # one clause, two properties: "polished brass" is a finish and a colour
+        # ("the joints shallower and not so dark": a relief and a colour)
+        clauses = [asked] if plan.rule in ("roughness", "channel", "relief") else []
+    for clause in clauses:
+        sub = replace(c, words=tokens(clause))
+        overlay = plan.rule.startswith("overlay")
+        if (
+            not single
+            and (plan.rule.startswith("colour") or overlay)
+            and _describes(c, sub.words, comparatives=not overlay)
+        ):
+            continue  # "the wires rusty, orange-brown": the colour of the same part
+        if overlay and not single and not named_in_program(c.program, sub.words, c.ew):
+            continue  # "lichen, those pale yellow-green patches": the added condition's look
+        try:
+            if single:
+                if plan.rule == "relief" and not _names_colour(c, sub.words):
+                    continue  # "the holes should be deeper": a relief, no darker colour
+                other = colour_rule(sub)
+            else:
+                other = next((p for rule in rules if (p := rule(sub)) is not None), None)
+                if (
+                    other is not None
+                    and other.rule == plan.rule != "colour"
+                    and not set(sub.words) & set(c.ew.relief)  # "give it a deeper": no colour
+                ):
+                    other = colour_rule(sub)  # "darker and a bit shiny": its colour part
+        except EditRefused:
+            continue
+        if (
+            other is None
+            or other.rule not in _JOINABLE
+            or (other.rule == plan.rule and plan.rule != "colour")
+            # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
+            or _rule_parts(plan, other) & {"relief", "colour"} == {"relief"}
+            # a zoom joins once ("smaller, denser cells and a bit more matte")
+            or (other.view and (plan.view or other.rule != "scale"))
+            or other.add
+            or set(other.assignments) & set(plan.assignments)
+            or set(other.lines) & set(plan.lines)
+        ):
+            continue
+        plan = Plan(
+            f"{plan.rule}+{other.rule}",
+            f"{plan.note}; {other.note}",
+            assignments={**plan.assignments, **other.assignments},
+            intended=tuple(dict.fromkeys(plan.intended + other.intended)),
+            lines={**plan.lines, **other.lines},
+            view=dict(plan.view or other.view),
+            add=plan.add,
+            graded=plan.graded and other.graded,
+            exact=plan.exact or other.exact,
+        )
+    return plan
+
+
+def _rule_parts(*plans: Plan) -> set[str]:
+    """The rules the plans are made of ("relief+colour": relief, colour)."""
+    return {part for plan in plans for part in plan.rule.split("+")}
+
+
+def _names_colour(c: Context, words: list[str]) -> bool:
+    """Whether the words name a colour, a tone or a colour comparative other than a relief's
+    ("deeper" is both)."""
+    v = c.vocabulary
+    return any(
+        (t not in c.ew.relief)
+        and (t in v.named or t in v.tones or t in c.ew.comparative or t in c.ew.towards)
+        for t in words
+    )
+
+
+#: Words that open a clause describing the clause before it ("..., like a dark walnut stain").
+_SIMILE = frozenset({"like", "as"})
+
+
+def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:
+    """Whether a clause only describes the colour of the one before: a simile, or colour and
+    tone words with no part of its own ("orange-brown", "a deep one"); ``comparatives``: a bare
+    comparative describes too (after an overlay, "slightly lighter" is a change of its own)."""
+    if not words:
+        return True
+    if words[0] in _SIMILE:
+        return True
+    v = c.vocabulary
+    return all(
+        t in c.ew["filler"]
+        or v.ish_base(t) in v.named
+        or t in v.tones
+        or (comparatives and t in c.ew.comparative)
+        for t in words
+    )
