@@ -171,3 +171,15 @@ def test_a_part_named_by_its_colour_beside_a_size_is_resized() -> None:
     enamel = LIB.entry("cloisonne-enamel-floral").program
     plan = _edit(enamel, "thicker gold wires").report.plan
     assert plan["rule"] == "scale"
+
+
+def test_a_change_and_an_added_condition_are_both_made() -> None:
+    pipes = LIB.entry("industrial-pipe-rack").program
+    request = "Paint the pipes safety yellow and add some rust streaks running down"
+    plan = _edit(pipes, request).report.plan
+    assert plan["rule"] == "colour+overlay" and "'rusty' overlay" in plan["note"]
+    plate = LIB.entry("perforated-metal").program
+    plan = _edit(plate, "Powder coat it matte black and add some chipped spots").report.plan
+    assert "'chipped' overlay" in plan["note"]
+    black = [v for k, v in plan["assignments"].items() if k.startswith("define:metal")]
+    assert black and max(black[0]) < 60  # black, not powder blue

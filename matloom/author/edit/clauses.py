@@ -18,7 +18,7 @@ from matloom.author.edit.targets import named_in_program
 #: ("change the background to blue and make the stripes silver").
 AND_VERB = (
     r"\band\s+(?=(?:make|turn|change|paint|set|give|colour|color|mute|darken|lighten|brighten"
-    r"|tint|dye)\b)"
+    r"|tint|dye|add|put)\b)"
 )
 _CLAUSE_RE = re.compile(rf"[,;:]|{AND_VERB}")
 
@@ -74,15 +74,18 @@ def join_clauses(
                     other = colour_rule(sub)  # "darker and a bit shiny": its colour part
         except EditRefused:
             continue
+        # "paint the pipes safety yellow and add some rust streaks": a condition added on top
+        # of the clause before's change (once: the plan adds nothing yet)
+        added = other is not None and other.rule == "overlay" and not plan.add
         if (
             other is None
-            or other.rule not in _JOINABLE
+            or (other.rule not in _JOINABLE and not added)
             or (other.rule == plan.rule and plan.rule != "colour")
             # a relief joins a colour only ("flatten it, nearly smooth" is no gloss)
             or _rule_parts(plan, other) & {"relief", "colour"} == {"relief"}
             # a zoom joins once ("smaller, denser cells and a bit more matte")
             or (other.view and (plan.view or other.rule != "scale"))
-            or other.add
+            or (other.add and not added)
             or set(other.assignments) & set(plan.assignments)
             or set(other.lines) & set(plan.lines)
         ):
@@ -94,7 +97,7 @@ def join_clauses(
             intended=tuple(dict.fromkeys(plan.intended + other.intended)),
             lines={**plan.lines, **other.lines},
             view=dict(plan.view or other.view),
-            add=plan.add,
+            add=tuple(plan.add) + tuple(other.add),
             graded=plan.graded and other.graded,
             exact=plan.exact or other.exact,
         )

@@ -97,6 +97,8 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
             word = t[:-1]
         if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
             continue  # "a satin oil finish": the kind of finish, not a colour
+        if word == "powder" and ws[i + 1 : i + 2] and ws[i + 1].startswith("coat"):
+            continue  # "powder coat it black": a kind of paint, not powder blue
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
             out.append((i, 1, named[word], word != t))
     return sorted(out)
