@@ -2,11 +2,23 @@
 
 from __future__ import annotations
 
-from matloom.lang.ast import Program
+import functools
+
+from matloom.lang.ast import Node, Program
 from matloom.lang.checker import check_program
 from matloom.lang.diagnostics import Diagnostic, ProgramError
 from matloom.lang.parser import parse_source
 from matloom.lang.printer import format_program
+
+
+@functools.lru_cache(maxsize=1024)
+def parse_expression(text: str) -> Node:
+    """Parse one expression (a preset value such as ``X()``, a bound overlay relief); raise
+    ValueError when ``text`` is none."""
+    program, diags = parse_source(f"Define(value, {text})\nMaterial(Layer(1).roughness(value))")
+    if program is None or not program.defines:
+        raise ValueError(f"not an expression: {text!r} ({diags[0] if diags else ''})")
+    return program.defines[0].expr
 
 
 def analyse(text: str) -> tuple[Program | None, list[Diagnostic]]:

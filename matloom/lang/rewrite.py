@@ -34,3 +34,21 @@ def map_program(program: A.Program, fn: Rewrite) -> A.Program:
         )
         layers.append(replace(layer, alpha=alpha, channels=chans))
     return replace(program, defines=defines, layers=tuple(layers))
+
+
+def map_seeds(program: A.Program, fn: Callable[[int], int]) -> A.Program:
+    """``program`` with every explicit ``seed=`` number replaced by ``fn(seed)``, in the
+    reference's evaluation order (so a stateful ``fn`` sees the seeds as they are drawn)."""
+
+    def seeds(node: A.Node) -> A.Node:
+        if not isinstance(node, A.Call):
+            return node
+        args = tuple(
+            replace(a, value=A.Num(fn(int(a.value.value))))
+            if a.param == "seed" and isinstance(a.value, A.Num)
+            else a
+            for a in node.args
+        )
+        return replace(node, args=args)
+
+    return map_program(program, seeds)

@@ -14,13 +14,12 @@ finish and the roles of tone nouns are data (``data/words.toml``).
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from matloom.lang import ast as A
-from matloom.lang.parser import parse_source
+from matloom.lang.api import parse_expression
 from matloom.library import colour as C
 from matloom.library.data import Words
 from matloom.library.entry import Entry, PresetValue
@@ -45,15 +44,6 @@ class Adapted:
     used: frozenset[int] = frozenset()
     #: colour words the request gave that no slot took (reported as ignored)
     unused: tuple[str, ...] = ()
-
-
-@functools.cache
-def parse_expression(text: str) -> A.Node:
-    """Parse one expression (a preset value such as ``X()``)."""
-    program, diags = parse_source(f"Define(value, {text})\nMaterial(Layer(1).roughness(value))")
-    if program is None or not program.defines:
-        raise ValueError(f"not an expression: {text!r} ({diags[0] if diags else ''})")
-    return program.defines[0].expr
 
 
 def colour_slots(program: A.Program, entry: Entry) -> tuple[list[str], list[str]]:

@@ -18,9 +18,9 @@ import numpy as np
 
 from matloom.engine.maps import View
 from matloom.lang import ast as A
-from matloom.lang.api import analyse, check, parse
+from matloom.lang.api import analyse, check, parse, parse_expression
 from matloom.lang.diagnostics import ProgramError
-from matloom.library.adapt import parse_expression, place_origin
+from matloom.library.adapt import place_origin
 from matloom.library.data import words
 from matloom.library.entry import Entry
 from matloom.library.index import Library

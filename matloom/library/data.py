@@ -75,6 +75,8 @@ class Words:
     styles: frozenset[str]
     #: words that turn an overlay's patches into streaks running down ("rust streaks")
     streaks: frozenset[str]
+    #: words after a metre-sized size that name the texture's repeat ("a 4x4m tile")
+    repeat: frozenset[str]
     #: the reader's grammar words ([grammar] of words.toml; each list is described there)
     clause_end: frozenset[str]
     head_end: frozenset[str]
@@ -194,6 +196,7 @@ def words() -> Words:
         patterned=_word_set(w.get("categories", {}), "patterned"),
         styles=_word_set(w.get("styles", {}), "words"),
         streaks=_word_set(w.get("streaks", {}), "words"),
+        repeat=_word_set(w.get("repeat", {}), "words"),
         clause_end=_word_set(grammar, "clause_end"),
         head_end=_word_set(grammar, "head_end"),
         list_join=_word_set(grammar, "list_join"),

@@ -42,8 +42,6 @@ class ColourMention:
     slot: str | None = None
 
 
-#: Words right after a size that name the texture's repeat ("a 4x4m tile", "2 m texture").
-_REPEAT_WORDS = frozenset({"tile", "texture", "repeat", "patch", "square"})
 #: The least size (metres) at which "tile" after it is the repeat: floor tiles are smaller.
 _REPEAT_MIN_M = 1.0
 
@@ -519,7 +517,7 @@ class _Reader:
                 metres = value * self.w.units[unit]
                 self.out.sizes.append(Size(metres, noun, f"{w} {unit}"))
                 self.use("size", i, i + 1)
-                if metres >= _REPEAT_MIN_M and self.at(i + 2) in _REPEAT_WORDS:
+                if metres >= _REPEAT_MIN_M and self.at(i + 2) in self.w.repeat:
                     # "4x4m tile", "2 m texture": the size of the texture's repeat, no
                     # ceramic tile (a tile a metre or more across is a game artist's repeat)
                     self.use("size", i + 2)

@@ -2,26 +2,26 @@
 
 Grime, moss, water and snow settle in the low parts of a surface (the mortar joints, the pits,
 the cracks); wear and chips find its high parts. An overlay that names a ``relief`` Define in
-its front matter gets it bound, when composed, to :func:`relief_of` the host: the host's
-composite height (the maximum over the layers that cover a texel, as the engine composites it)
-scaled to 0 at its low end and 1 at its high end (the 2nd and 98th percentiles, measured on a
-small evaluation of the host). A host with no relief, or one whose height lines would be costly
-to evaluate twice, leaves the overlay's own stand-in value (see docs/library.md).
+its front matter gets it bound, when composed, to :func:`relief_of` the host: the rank of the
+host's composite height over the surface (the maximum over the layers that cover a texel, as
+the engine composites it), 0 at its lowest texel and 1 at its highest, piecewise linear between
+quantiles measured on a small evaluation of the host, and weighted down for a relief too
+shallow to see or a directional grain. A host with no relief, or one whose height lines would
+be costly to evaluate twice, leaves the overlay's own stand-in value (see docs/library.md).
 """
 
 from __future__ import annotations
 
 import functools
 import itertools
-from dataclasses import replace
 
 import numpy as np
 
 from matloom.lang import ast as A
+from matloom.lang.api import parse_expression
 from matloom.lang.diagnostics import ProgramError
-from matloom.lang.parser import parse_source
 from matloom.lang.printer import format_expr, format_program
-from matloom.lang.rewrite import map_program
+from matloom.lang.rewrite import map_seeds
 from matloom.vocab import FUNCTIONS
 
 #: Size of the evaluation that measures the host's height quantiles: a prime, so that no regular
@@ -81,21 +81,15 @@ def height_expr(program: A.Program) -> A.Node | None:
         return None
     if zero or not everywhere:
         parts.append("0")  # a covering layer with no height line, or the substrate
-    return _expression(parts[0] if len(parts) == 1 else f"Max({', '.join(parts)})")
-
-
-def _expression(text: str) -> A.Node:
-    program, diags = parse_source(f"Define(value, {text})\nMaterial(Layer(1).height(value))")
-    if program is None or not program.defines:
-        raise ValueError(f"not an expression: {text!r} ({diags[0] if diags else ''})")
-    return program.defines[0].expr
+    return parse_expression(parts[0] if len(parts) == 1 else f"Max({', '.join(parts)})")
 
 
 def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
-    """(H, rank): the program's composite height H, and its rank over the surface, 0 to 1 (0.2: a fifth of
-    the surface lies lower): piecewise linear between measured quantiles, so "the lowest
-    fifth" means the joints on a brick wall and the pits on a plaster one alike. The rank reads
-    H as the Define ``height``. None when it has no height, it is costly, or it is flat."""
+    """(H, rank): the program's composite height H, and its rank over the surface, 0 to 1
+    (0.2: a fifth of the surface lies lower), piecewise linear between measured quantiles, so
+    "the lowest fifth" means the joints on a brick wall and the pits on a plaster one alike.
+    The rank reads H as the Define ``height``. None when it has no height, it is costly, or
+    it is flat."""
     h = height_expr(program)
     if h is None:
         return None
@@ -110,7 +104,7 @@ def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
     rank = " + ".join(terms).replace("H", height)
     if weight < 1:  # a grain, not a layout: the overlay mostly keeps its own patches
         rank = f"(({rank}) * {weight:g}) + {0.5 * (1 - weight):g}"
-    return h, _expression(rank)
+    return h, parse_expression(rank)
 
 
 def _height_quantiles(
@@ -123,19 +117,7 @@ def _canonical_seeds(program: A.Program) -> A.Program:
     """``program`` with its explicit seeds numbered in order of first appearance: the measured
     range is then the same for every user seed (a reseed changes only the seeds)."""
     order: dict[int, int] = {}
-
-    def fn(node: A.Node) -> A.Node:
-        if not isinstance(node, A.Call):
-            return node
-        args = []
-        for a in node.args:
-            if a.param == "seed" and isinstance(a.value, A.Num):
-                k = order.setdefault(int(a.value.value), len(order) + 1)
-                a = replace(a, value=A.Num(k))
-            args.append(a)
-        return replace(node, args=tuple(args))
-
-    return map_program(program, fn)
+    return map_seeds(program, lambda old: order.setdefault(old, len(order) + 1))
 
 
 #: The ranks the piecewise relief passes through (its knots).

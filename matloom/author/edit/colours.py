@@ -19,7 +19,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.families import FAMILIES, by_colour, colour_value
+from matloom.author.edit.families import by_colour, colour_value
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
@@ -93,7 +93,7 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if i in taken:
             continue
         word = w.ish_base(t)
-        if word not in named and t[:-1] in FAMILIES:  # "swap the blues for amber"
+        if word not in named and t[:-1] in c.ew["families"]:  # "swap the blues for amber"
             word = t[:-1]
         if word in w.materialish and ws[i + 1 : i + 2] == ["finish"]:
             continue  # "a satin oil finish": the kind of finish, not a colour

@@ -434,12 +434,9 @@ def amount_rule(c: Context) -> Plan | None:
             return _more_of_layer(c)
         word, stems = found
     asked = _direction(c, word)
-    absent = not (
-        _labelled(c, stems)
-        or _overlay_covers(c, stems)
-        or _condition_layers(c, stems)
-        or named_in_program(c.program, [word, *stems], c.ew)
-    )
+    found = _labelled(c, stems) or _overlay_covers(c, stems)
+    layers = _condition_layers(c, stems)
+    absent = not (found or layers or named_in_program(c.program, [word, *stems], c.ew))
     # a condition named as a thing the program lacks ("lichen", "snow") is added; as a look of
     # a part ("the wires look rusty, orange-brown") it is that part's property
     # ("the holes should be deeper": a comparative changes what is there)
@@ -453,7 +450,6 @@ def amount_rule(c: Context) -> Plan | None:
         # "a dusting of snow with green blades poking through")
         return None
     more = asked if asked is not None else bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
-    found = _labelled(c, stems) or _overlay_covers(c, stems)
     if found:
         step = c.ew.f("amount_step") * c.k * (1 if more else -1)
         # an amount that starts at 0 or more stays there (no negative wear)
@@ -463,12 +459,11 @@ def amount_rule(c: Context) -> Plan | None:
         }
         note = f"{'more' if more else 'less'} {word} ({step:+.3g})"
         return assign(c, "amount", note, new, affects(found))
-    for index in _condition_layers(c, stems):
+    for index in layers:
         plan = measured_coverage(c, index, more, word)
         if plan is not None:
             return plan
-    present = bool(_condition_layers(c, stems))
-    if present and not more:
+    if layers and not more:
         raise c.refuse(f"no parameter moves the {word} layer's coverage")
     if not more:
         raise c.refuse(f"there is no {word} in this program to reduce")

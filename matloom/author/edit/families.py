@@ -13,12 +13,6 @@ from matloom.author.edit.targets import matching
 from matloom.lang.params import Param
 from matloom.library.colour import RGB
 
-#: Colour families a plural names ("the blues and greens", "swap the greys"): their colours.
-FAMILIES = frozenset(
-    {"red", "orange", "yellow", "green", "blue", "purple", "pink", "brown", "grey", "gray",
-     "teal", "cream", "tan", "beige", "white", "black", "gold", "ochre", "violet"}
-)  # fmt: skip
-
 
 def colour_value(p: Param) -> tuple[float, float, float]:
     """A colour parameter's value as three floats."""

@@ -8,7 +8,7 @@ import hashlib
 from dataclasses import dataclass, replace
 
 from matloom.lang import ast as A
-from matloom.lang.rewrite import map_program
+from matloom.lang.rewrite import map_seeds
 from matloom.lang.tileable import tileable_warnings
 from matloom.library.entry import Entry
 from matloom.library.index import Library
@@ -51,19 +51,7 @@ def reseed(program: A.Program, entry: str, seed: int) -> A.Program:
     """Every explicit seed re-derived from (entry, user seed, old seed); unchanged for seed 0."""
     if seed == 0:
         return program
-
-    def fn(node: A.Node) -> A.Node:
-        if not isinstance(node, A.Call):
-            return node
-        args = tuple(
-            replace(a, value=A.Num(_derived_seed(entry, seed, int(a.value.value))))
-            if a.param == "seed" and isinstance(a.value, A.Num)
-            else a
-            for a in node.args
-        )
-        return replace(node, args=args)
-
-    return map_program(program, fn)
+    return map_seeds(program, lambda old: _derived_seed(entry, seed, old))
 
 
 @dataclass(frozen=True)
