@@ -21,6 +21,7 @@ answers (JSON objects id -> "yes"/"no") into the share of yes per judge and over
     PYTHONPATH=. .venv/bin/python benchmarks/edits.py run [--requests FILE] [--json OUT] [--pack DIR]
     PYTHONPATH=. .venv/bin/python benchmarks/edits.py run --base-url URL --model NAME
     PYTHONPATH=. .venv/bin/python benchmarks/edits.py collect DIR answers_*.json
+    PYTHONPATH=. .venv/bin/python benchmarks/edits.py merge REQUESTS before.json after.json DIR
 """
 
 from __future__ import annotations
@@ -197,6 +198,39 @@ def _pack(folder: Path, rows: list[dict], seed: int) -> None:
     print(f"judge packet: {len(rows)} images in {folder} (requests.json for judges, key.json)")
 
 
+def merge(args: argparse.Namespace) -> None:
+    """One blind packet of two builds' ``run --json`` rows (before, after) on one request set,
+    shuffled under opaque ids; an edit both builds made identically is judged once ("both")."""
+    from PIL import Image
+
+    data = json.loads(Path(args.requests).read_text(encoding="utf-8"))
+    before = {r["id"]: r for r in json.loads(Path(args.before).read_text(encoding="utf-8"))}
+    after = {r["id"]: r for r in json.loads(Path(args.after).read_text(encoding="utf-8"))}
+    items = []
+    for item in data["requests"]:
+        b, a = before[item["id"]], after[item["id"]]
+        text = _program(data["programs"][item["program"]])
+        if b["status"] == a["status"] == "applied" and b["program_after"] == a["program_after"]:
+            items.append(("both", item, text, a["program_after"]))
+            continue
+        items += [(k, item, text, r["program_after"]) for k, r in (("before", b), ("after", a))
+                  if r["status"] == "applied"]  # fmt: skip
+    folder = Path(args.folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    ids = [f"e{k:03d}" for k in random.Random(args.seed).sample(range(1000), len(items))]
+    requests, key = {}, {}
+    for opaque, (build, item, text, edited) in zip(ids, items, strict=True):
+        Image.fromarray(_side_by_side(text, edited)).save(folder / f"{opaque}.png")
+        requests[opaque] = item["request"]
+        key[opaque] = {"build": build, "request": item["id"]}
+    (folder / "requests.json").write_text(
+        json.dumps({k: requests[k] for k in sorted(requests)}, indent=1) + "\n", encoding="utf-8"
+    )
+    (folder / "key.json").write_text(json.dumps(key, indent=1) + "\n", encoding="utf-8")
+    shared = sum(1 for x in items if x[0] == "both")
+    print(f"judge packet: {len(items)} images ({shared} shared) in {folder}")
+
+
 def collect(args: argparse.Namespace) -> None:
     folder = Path(args.folder)
     key = json.loads((folder / "key.json").read_text(encoding="utf-8"))
@@ -229,8 +263,14 @@ def main() -> None:
     c = sub.add_parser("collect")
     c.add_argument("folder")
     c.add_argument("answers", nargs="+")
+    m = sub.add_parser("merge", help="one blind packet of two builds' run --json rows")
+    m.add_argument("requests")
+    m.add_argument("before")
+    m.add_argument("after")
+    m.add_argument("folder")
+    m.add_argument("--seed", type=int, default=0, help="shuffle seed of the packet ids")
     args = parser.parse_args()
-    (run if args.cmd == "run" else collect)(args)
+    {"run": run, "collect": collect, "merge": merge}[args.cmd](args)
 
 
 if __name__ == "__main__":
