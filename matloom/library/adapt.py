@@ -293,7 +293,7 @@ class Adapter:
                 continue
             rgb = C.apply_tone(current, modifier, self.w.tones[modifier])
             self.program = set_colour(self.program, target, rgb)
-            self.used.add(index)
+            self.used.update((index, index + 1) if role is not None else (index,))
             self.note(f"colour {target} made {modifier} ('{modifier} {noun}') {rgb}")
 
 

@@ -44,6 +44,12 @@ class ColourMention:
 
 #: The least size (metres) at which "tile" after it is the repeat: floor tiles are smaller.
 _REPEAT_MIN_M = 1.0
+#: a compound colour ("blue grey") is this far from its first word toward its head
+COMPOUND_HEAD = 0.65
+#: a compound's word under this saturation is a grey or a brown that takes any tint
+COMPOUND_NEUTRAL = 0.35
+#: two saturated basic colours form one colour only this close in hue ("yellow green", "blue green")
+COMPOUND_HUES = 105.0
 
 
 @dataclass(frozen=True)
@@ -287,6 +293,13 @@ class _Reader:
         if base is None:
             return None
         end, rgb, name = base
+        if self.compound(name, j, end):
+            head = self.at(end)  # "blue grey", "blue-grey": a grey leaning to blue
+            rgb, name, end = (
+                C.mix(rgb, self.w.named[head], COMPOUND_HEAD),
+                f"{name} {head}",
+                end + 1,
+            )
         for m in reversed(mods):
             if m in self.w.tones:
                 light, sat = self.w.tones[m]
@@ -337,6 +350,24 @@ class _Reader:
         if C.saturation(b) < 0.15:
             return C.saturation(a) < 0.25 and abs(C.luminance(a) - C.luminance(b)) < 0.35
         return C.saturation(a) >= 0.15 and C.hue_distance(a, b) <= 40
+
+    def compound(self, name: str, start: int, end: int) -> bool:
+        """Do the basic colour ``name`` and the basic colour word at ``end`` name one colour
+        ("blue grey", "grey-green", "red brown", "yellow green"), the second its head? Not
+        black or white ("black white" is two), not hues far apart ("red blue"), and not the
+        start of a list ("red green and blue", "red green blue yellow")."""
+        nxt = self.at(end)
+        if self.colour_word_at(start - 1) or self.colour_word_at(end + 1):
+            return False
+        basic, plain = self.w.families, {"black", "white"}
+        if name not in basic or nxt not in basic or nxt == name or {name, nxt} & plain:
+            return False
+        if self.at(end + 1) in self.w.list_join and self.colour_word_at(end + 2):
+            return False
+        a, b = self.w.named[name], self.w.named[nxt]
+        if min(C.saturation(a), C.saturation(b)) < COMPOUND_NEUTRAL:
+            return True  # a grey or a brown takes a tint
+        return C.hue_distance(a, b) <= COMPOUND_HUES
 
     def colour_context(self, j: int) -> bool:
         """Is the material-ish word at ``j`` used as a colour ("slate grey", "copper colour")?"""

@@ -248,3 +248,31 @@ def test_a_metre_sized_tile_is_the_texture_repeat() -> None:
     assert r.sizes and r.sizes[0].metres == 4
     # tiles a few centimetres or a foot across are tiles
     assert "tile" in author("white 30 cm ceramic floor tiles").program.splitlines()[0]
+
+
+# ---------------------------------------------------------------- compound colours
+def test_two_basic_colours_side_by_side_are_one_colour_leaning_to_the_first() -> None:
+    # "stone bricks, blue grey" gave blue bricks with grey mortar: judges saw saturated blue
+    for prompt in ("blue grey stone bricks", "blue-grey stone bricks"):
+        (m,) = req(prompt).colours
+        assert m.words == "blue grey"
+        grey, blue = words().named["grey"], words().named["blue"]
+        assert C.saturation(m.rgb) < C.saturation(blue) * 0.6
+        assert m.rgb[2] > m.rgb[0] and m.rgb != grey  # a grey leaning to blue
+    assert colours("yellow green grass") == ["yellow green"]
+    assert colours("red brown leather") == ["red brown"]
+    assert colours("dark blue grey paint") == ["dark blue grey"]
+
+
+def test_lists_and_contrasting_colours_stay_apart() -> None:
+    assert colours("black white checker") == ["black", "white"]
+    assert colours("red and blue stripes") == ["red", "blue"]
+    assert colours("orange blue camo") == ["orange", "blue"]  # hues far apart
+    assert colours("red green and blue") == ["red", "green", "blue"]
+    assert colours("red green blue yellow plastic") == ["red", "green", "blue", "yellow"]
+
+
+def test_a_tone_before_a_finish_coat_shades_the_material() -> None:
+    r = author("oak floor, dark varnish")
+    assert any("made dark ('dark varnish')" in a for a in r.adaptations), r.explanation
+    assert "varnish" not in r.ignored
