@@ -120,6 +120,15 @@ class Request:
         """(index, word) of every non-negated word token."""
         return _words_at(self.tokens, self.negated)
 
+    @property
+    def listed(self) -> bool:
+        """Is the request a comma list whose first item names the material ("snow over rocky
+        ground, patchy, some grass poking through, 4x4m"), as game artists write? Two commas
+        or more, the first one ending the head clause, and one sentence."""
+        t = self.tokens
+        head_is_item = 0 < self.head_end < len(t) and t[self.head_end] == ","
+        return head_is_item and t.count(",") >= 2 and self.sentence_end >= len(t) - 1
+
 
 @dataclass
 class _Draft:

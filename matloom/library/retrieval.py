@@ -32,9 +32,13 @@ from matloom.library.data import Words
 from matloom.library.entry import Entry
 from matloom.library.query import Request
 
+#: the first item of a comma list ("snow over rocky ground, patchy, some grass poking through")
+#: names the material; the other items describe it
+LEAD_WEIGHT = 2.0
 WEIGHTS = {
     "plain": 1.0,
     "head": 1.3,
+    "lead": LEAD_WEIGHT,
     "overlay": 0.35,
     "finish": 0.6,
     "colour": 0.1,
@@ -78,7 +82,7 @@ UNASKED_MOTIF = 0.85
 #: the word rules that can be a reason to pick an entry: material, object and condition words.
 #: An entry matched only by colour, finish, tone, scale or size words ("glossy teal gizmo") is
 #: no candidate; with no candidate the author falls back to its generic entry.
-REASONS = frozenset({"plain", "head", "overlay", "form", "term", "later"})
+REASONS = frozenset({"plain", "head", "lead", "overlay", "form", "term", "later"})
 _WORD_RE = re.compile(r"[a-z0-9]+")
 
 
@@ -184,7 +188,9 @@ class Index:
             return "term"
         if i > req.sentence_end:
             return "later"
-        return "head" if i < req.head_end else "plain"
+        if i < req.head_end:
+            return "lead" if req.listed else "head"
+        return "plain"
 
     def material_words(self, req: Request) -> list[set[str]]:
         """For each material noun of the request (not a colour, overlay ...): the stems that

@@ -276,3 +276,14 @@ def test_a_tone_before_a_finish_coat_shades_the_material() -> None:
     r = author("oak floor, dark varnish")
     assert any("made dark ('dark varnish')" in a for a in r.adaptations), r.explanation
     assert "varnish" not in r.ignored
+
+
+# ---------------------------------------------------------------- comma lists
+def test_a_comma_lists_first_item_names_the_material() -> None:
+    # a game artist's list: the first item is the material, the others describe it
+    r = req("aged parchment, yellowed with stains and foxing, tileable")
+    assert r.listed
+    assert not req("aged parchment with stains").listed
+    assert not req("red, white and blue flag").listed  # the first comma ends no material
+    got = author("aged parchment, yellowed with stains and foxing, tileable")
+    assert got.entry == "parchment", got.explanation  # not the handwritten letter
