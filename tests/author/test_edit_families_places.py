@@ -183,3 +183,21 @@ def test_a_change_and_an_added_condition_are_both_made() -> None:
     assert "'chipped' overlay" in plan["note"]
     black = [v for k, v in plan["assignments"].items() if k.startswith("define:metal")]
     assert black and max(black[0]) < 60  # black, not powder blue
+
+
+def test_less_of_an_overlay_over_another_moves_only_its_own_cover() -> None:
+    # rust composed over moss follows the host's height, which reads the moss's cover: "less
+    # rust" lowered both covers
+    from matloom.author.edit.apply import all_params
+    from matloom.author.edit.rules import plan_edit
+    from matloom.lang.api import parse
+    from matloom.library import author
+
+    program = parse(author("mossy rusty brick wall").program)
+    params = all_params(program)
+    names = {p.address for p in params if p.address.startswith("define:cover")}
+    assert names == {"define:cover", "define:cover2"}
+    rust = plan_edit(program, params, "less rust")
+    moss = plan_edit(program, params, "less moss")
+    assert list(rust.assignments) == ["define:cover2"], rust
+    assert list(moss.assignments) == ["define:cover"], moss

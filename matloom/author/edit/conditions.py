@@ -77,7 +77,11 @@ def _overlay_covers(c: Context, stems: Sequence[str]) -> list[Param]:
             continue
         if any(name in deps and _named(d, stems) for d, deps in closure.items()):
             out.append(p)
-    return out
+    # an overlay composed over another reads the lower one's cover through the host's height
+    # it follows (rust over moss: "less rust" is the rust's cover, not the moss's too)
+    host = set().union(*(deps for d, deps in closure.items() if d.startswith("host_height")))
+    own = [p for p in out if p.address.removeprefix("define:") not in host]
+    return own or out
 
 
 def _condition_layers(c: Context, stems: Sequence[str]) -> list[int]:
