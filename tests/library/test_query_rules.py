@@ -287,3 +287,11 @@ def test_a_comma_lists_first_item_names_the_material() -> None:
     assert not req("red, white and blue flag").listed  # the first comma ends no material
     got = author("aged parchment, yellowed with stains and foxing, tileable")
     assert got.entry == "parchment", got.explanation  # not the handwritten letter
+
+
+def test_a_colour_word_naming_a_slot_of_the_entry_goes_to_that_slot() -> None:
+    # "oil" before "stains" is the stains' colour: it painted the whole concrete floor dark
+    r = author("parking garage concrete floor with oil stains")
+    assert r.entry == "industrial-concrete-floor-oil-stains", r.explanation
+    assert any(a.startswith("colour oil = 'oil'") for a in r.adaptations), r.explanation
+    assert not any(a.startswith("colour concrete") for a in r.adaptations), r.explanation

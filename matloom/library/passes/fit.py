@@ -136,6 +136,9 @@ def _entry_colour(cm: ColourMention, m: OverlayMention, entry: Entry) -> ColourM
         parts = [p for p in slot.split("_") if len(p) >= 4]
         if any(w.startswith(p) or p.startswith(w) for p in parts for w in names):
             return replace(cm, slot=slot)
+    for slot in entry.colours:  # the colour word names the slot itself ("oil" stains)
+        if cm.words in slot.split("_"):
+            return replace(cm, slot=slot)
     return cm
 
 
