@@ -183,10 +183,10 @@ def test_fewer_and_larger_is_a_size() -> None:
     assert _plan("hexagon-tiles", "fewer, larger hexagons")["rule"] == "scale"
 
 
-def test_algae_is_a_dark_moss() -> None:
+def test_algae_is_a_dark_green_film() -> None:
     plan = _plan("asphalt-shingles-three-tab", "add some dark algae")
     found = re.search(r"coloured \((\d+), (\d+), (\d+)\)", plan["note"])
-    assert "'mossy'" in plan["note"] and found is not None
+    assert "'algae'" in plan["note"] and found is not None  # its own overlay, not moss
     r, g, b = (int(x) for x in found.groups())
     assert max(r, g, b) < 90 and g > r and g > b  # a dark green
 
