@@ -109,7 +109,7 @@ def test_a_slight_tint_keeps_the_lightness_and_moves_the_hue() -> None:
 
 @pytest.mark.parametrize(
     ("request_", "overlay", "dark"),
-    [("more lichen on the rocks", "lichen", False), ("make it look sooty", "dirty", True)],
+    [("more lichen on the rocks", "lichen", False), ("make it look sooty", "sooty", True)],
 )
 def test_a_condition_with_a_look_of_its_own_colours_its_overlay(
     request_: str, overlay: str, dark: bool
@@ -120,7 +120,7 @@ def test_a_condition_with_a_look_of_its_own_colours_its_overlay(
     assert found is not None
     r, g, b = (int(x) for x in found.groups())
     # the overlay's colour slot (renamed when the entry has one: ``lichen_r2``)
-    assert any(re.fullmatch(rf"Define\((?:moss|grime|lichen)2?_r2?, {r}\)", a) for a in plan["add"])
+    assert any(re.fullmatch(rf"Define\((?:moss|grime|lichen|soot)2?_r2?, {r}\)", a) for a in plan["add"])
     assert (max(r, g, b) < 60) if dark else (min(r, g, b) > 120)  # soot dark, lichen pale
 
 
