@@ -120,7 +120,9 @@ def test_a_condition_with_a_look_of_its_own_colours_its_overlay(
     assert found is not None
     r, g, b = (int(x) for x in found.groups())
     # the overlay's colour slot (renamed when the entry has one: ``lichen_r2``)
-    assert any(re.fullmatch(rf"Define\((?:moss|grime|lichen|soot)2?_r2?, {r}\)", a) for a in plan["add"])
+    assert any(
+        re.fullmatch(rf"Define\((?:moss|grime|lichen|soot)2?_r2?, {r}\)", a) for a in plan["add"]
+    )
     assert (max(r, g, b) < 60) if dark else (min(r, g, b) > 120)  # soot dark, lichen pale
 
 
