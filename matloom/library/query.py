@@ -382,6 +382,8 @@ class _Reader:
         """Is the material-ish word at ``j`` used as a colour ("slate grey", "copper colour")?"""
         w = self.w
         nxt, prev = self.at(j + 1), self.at(j - 1)
+        if f"{self.at(j)} {nxt}" in self.triggers:
+            return False  # "oil spill", "oil stains": a condition's own phrase
         if nxt in w.colour_suffix or self.colour_word_at(j + 1):
             return True
         if w.roles.get(nxt, "none") != "none" and nxt not in w.plain_roles:
@@ -436,7 +438,7 @@ class _Reader:
     # ------------------------------------------------------------------ overlays
     def overlays(self) -> None:
         for i in range(len(self.t)):
-            if not self.free(i):
+            if not self.free(i) or self.split_trigger(i):
                 continue
             for n in (3, 2, 1):
                 phrase = " ".join(self.t[i : i + n])
@@ -447,6 +449,25 @@ class _Reader:
                     break
                 self.add_overlay(name, phrase, i, n)
                 break
+
+    def split_trigger(self, i: int) -> bool:
+        """A two-word trigger with its colour between the words ("painted white line",
+        "painted yellow lines"): the overlay, in that colour."""
+        colours = self.out.colours
+        k = next((k for k, c in enumerate(colours) if c.index == i + 1), None)
+        if k is None:
+            return False
+        end = i + 1 + len(colours[k].words.split())
+        name = self.triggers.get(f"{self.t[i]} {self.at(end)}")
+        if name is None or not self.free(end) or name in {o.name for o in self.out.overlays}:
+            return False
+        colours[k] = replace(colours[k], role="overlay")
+        self.use("overlay", i, end)
+        c = colours[k]
+        self.out.overlays.append(
+            OverlayMention(name, f"{self.t[i]} {self.at(end)}", i, 0.5, c.rgb, c.index)
+        )
+        return True
 
     def add_overlay(self, name: str, phrase: str, i: int, n: int) -> None:
         amount = 0.5

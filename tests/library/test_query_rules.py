@@ -290,8 +290,31 @@ def test_a_comma_lists_first_item_names_the_material() -> None:
 
 
 def test_a_colour_word_naming_a_slot_of_the_entry_goes_to_that_slot() -> None:
-    # "oil" before "stains" is the stains' colour: it painted the whole concrete floor dark
+    # the colour before a condition the entry already shows goes to the entry's slot named
+    # after the colour itself when none is named after the condition ("oil" stains)
+    from matloom.library.passes.fit import _entry_colour
+    from matloom.library.query import ColourMention, OverlayMention
+
+    entry = library().entries["industrial-concrete-floor-oil-stains"]
+    got = _entry_colour(
+        ColourMention((34, 31, 28), "oil", 5), OverlayMention("stained", "stains", 6), entry
+    )
+    assert got.slot == "oil"
+
+
+def test_a_conditions_own_phrase_is_no_colour() -> None:
+    # "oil" before "spill" was read as a colour once "spill" became a stain word, and the
+    # oil-spill phrase was lost: an oily overlay, not an oil-coloured stain
+    r = author("concrete floor with an oil spill")
+    assert [o for o in r.overlays] == ["oily"], r.explanation
     r = author("parking garage concrete floor with oil stains")
     assert r.entry == "industrial-concrete-floor-oil-stains", r.explanation
-    assert any(a.startswith("colour oil = 'oil'") for a in r.adaptations), r.explanation
     assert not any(a.startswith("colour concrete") for a in r.adaptations), r.explanation
+
+
+def test_a_colour_inside_a_two_word_condition_colours_it() -> None:
+    # "painted white line": the painted-line overlay in white, not a white floor
+    got = [(o.name, o.colour) for o in req("parking garage floor, painted yellow line").overlays]
+    assert got == [("lined", words().named["yellow"])]
+    assert colours("painted yellow line") == ["yellow"]
+    assert [o.name for o in req("white painted metal").overlays] == ["painted"]
