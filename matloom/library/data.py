@@ -61,6 +61,8 @@ class Words:
     basic: frozenset[str]
     #: the words a specific colour name may come before as its family ("cornflower blue")
     families: frozenset[str]
+    #: basic colours that never join another into one colour ("black white" is two)
+    contrasting: frozenset[str]
     #: finish key -> the gloss slot value it requests
     finish_gloss: dict[str, float]
     #: words before a tone that soften or strengthen it ("slightly darker") -> strength
@@ -189,6 +191,7 @@ def words() -> Words:
         metal_colours=frozenset(col.get("metal_colours", {}).get("words", [])),
         basic=_word_set(basic, "words"),
         families=_word_set(basic, "words") | _word_set(basic, "families"),
+        contrasting=_word_set(basic, "contrasting"),
         finish_gloss={k: float(v) for k, v in w.get("finish_gloss", {}).items()},
         intensity={k: float(v) for k, v in w.get("intensity", {}).items()},
         tone_roles=dict(w.get("tone_roles", {})),

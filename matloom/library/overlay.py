@@ -32,6 +32,9 @@ from matloom.vocab import FUNCTIONS
 
 OVERLAY_DIR = Path(__file__).resolve().parent / "overlays"
 _FREQ_PARAMS = ("base_freq", "base_freq_x", "base_freq_y")
+#: the Define a composed overlay's relief reads the host's height from (``host_height2``, ...
+#: when several overlays are composed)
+HOST_HEIGHT = "host_height"
 #: Lengths an overlay's instanced motifs are drawn with (``Tile`` cells, shape radii, centres,
 #: feathers and strokes): scaled like the noise periods, so scratches drawn as shapes keep
 #: their size relative to the host's features, and their count per View (a tileable repeat).
@@ -308,9 +311,9 @@ def _bind_relief(
 ) -> list[A.Define]:
     """``defines`` with Define ``name`` bound to the host's relief rank, read from a new Define
     of the host's height placed before it (the host's own names: bound after the renames)."""
-    height, k = "host_height", 2
+    height, k = HOST_HEIGHT, 2
     while height in taken:
-        height, k = f"host_height{k}", k + 1
+        height, k = f"{HOST_HEIGHT}{k}", k + 1
     found = relief_of(host, height)
     if found is None:
         return defines

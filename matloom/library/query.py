@@ -368,8 +368,8 @@ class _Reader:
         nxt = self.at(end)
         if self.colour_word_at(start - 1) or self.colour_word_at(end + 1):
             return False
-        basic, plain = self.w.families, {"black", "white"}
-        if name not in basic or nxt not in basic or nxt == name or {name, nxt} & plain:
+        basic = self.w.families
+        if name not in basic or nxt not in basic or nxt == name or {name, nxt} & self.w.contrasting:
             return False
         if self.at(end + 1) in self.w.list_join and self.colour_word_at(end + 2):
             return False
@@ -458,18 +458,18 @@ class _Reader:
         if k is None:
             return False
         end = i + 1 + len(colours[k].words.split())
-        name = self.triggers.get(f"{self.t[i]} {self.at(end)}")
+        phrase = f"{self.t[i]} {self.at(end)}"
+        name = self.triggers.get(phrase)
         if name is None or not self.free(end) or name in {o.name for o in self.out.overlays}:
             return False
-        colours[k] = replace(colours[k], role="overlay")
-        self.use("overlay", i, end)
-        c = colours[k]
-        self.out.overlays.append(
-            OverlayMention(name, f"{self.t[i]} {self.at(end)}", i, 0.5, c.rgb, c.index)
-        )
+        self.add_overlay(name, phrase, i, end + 1 - i, colour=k)
         return True
 
-    def add_overlay(self, name: str, phrase: str, i: int, n: int) -> None:
+    def add_overlay(
+        self, name: str, phrase: str, i: int, n: int, colour: int | None = None
+    ) -> None:
+        """Add overlay ``name`` read from tokens ``i`` .. ``i + n``; its colour is the colour
+        mention just before them, or mention number ``colour`` (one inside the phrase)."""
         amount = 0.5
         for k in range(max(0, i - 3), i):
             w = self.t[k]
@@ -477,11 +477,11 @@ class _Reader:
                 amount = self.w.amounts[w]
                 self.use("amount", k)
         colours, mention = self.out.colours, None
-        for k in range(len(colours) - 1, -1, -1):
-            if i - 2 <= colours[k].index < i:
-                mention = colours[k] = replace(colours[k], role="overlay")
-                break
-        colour = mention.rgb if mention else None
+        before = (k for k in range(len(colours) - 1, -1, -1) if i - 2 <= colours[k].index < i)
+        k = next(before, None) if colour is None else colour
+        if k is not None:
+            mention = colours[k] = replace(colours[k], role="overlay")
+        rgb = mention.rgb if mention else None
         at = mention.index if mention else None
         self.use("overlay", *range(i, i + n))
         near = self.t[max(0, i - 3) : i + n + 3]
@@ -495,10 +495,10 @@ class _Reader:
                     streaks=existing.streaks or streaks,
                 )
                 if existing.colour is None:
-                    merged = replace(merged, colour=colour, colour_at=at)
+                    merged = replace(merged, colour=rgb, colour_at=at)
                 overlays[k] = merged
                 return
-        overlays.append(OverlayMention(name, phrase, i, amount, colour, at, streaks=streaks))
+        overlays.append(OverlayMention(name, phrase, i, amount, rgb, at, streaks=streaks))
 
     # ------------------------------------------------------------------ finishes
     def finishes(self) -> None:

@@ -27,9 +27,6 @@ MARKS = ("leafy", "lined", "sooty")
 FLAT = """View(0, 0, 2, 2, tileable=True)
 Material(Layer(1).basecolor(200, 200, 200).roughness(0.5))
 """
-#: triggers another rule takes first: "sooty" is also dirty's (the overlay named first keeps a
-#: shared word), and "smoke" before "stained" reads as a colour (smoke grey) of the stains
-TAKEN_ELSEWHERE = {"sooty", "smoke stained"}
 
 
 def _read(prompt: str):  # noqa: ANN202 - the request
@@ -72,8 +69,7 @@ def test_words_request_the_overlay(prompt: str, name: str) -> None:
 @pytest.mark.parametrize("name", MARKS)
 def test_every_trigger_reaches_its_overlay(name: str) -> None:
     for trigger in LIB.overlays[name].triggers:
-        if trigger not in TAKEN_ELSEWHERE:
-            assert name in _overlays(f"concrete floor, {trigger}"), trigger
+        assert name in _overlays(f"concrete floor, {trigger}"), trigger
 
 
 @pytest.mark.parametrize(

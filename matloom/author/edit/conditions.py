@@ -42,7 +42,7 @@ from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
 from matloom.lang.static import static_number
 from matloom.lang.tileable import tileable_warnings
-from matloom.library.overlay import Overlay, constant
+from matloom.library.overlay import HOST_HEIGHT, Overlay, constant
 
 
 def _named(name: str, stems: Sequence[str]) -> bool:
@@ -79,7 +79,7 @@ def _overlay_covers(c: Context, stems: Sequence[str]) -> list[Param]:
             out.append(p)
     # an overlay composed over another reads the lower one's cover through the host's height
     # it follows (rust over moss: "less rust" is the rust's cover, not the moss's too)
-    host = set().union(*(deps for d, deps in closure.items() if d.startswith("host_height")))
+    host = set().union(*(deps for d, deps in closure.items() if d.startswith(HOST_HEIGHT)))
     own = [p for p in out if p.address.removeprefix("define:") not in host]
     return own or out
 
