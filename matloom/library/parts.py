@@ -220,7 +220,7 @@ class _PartsReader:
         while i < len(self.t):
             for n in range(_LONGEST, 0, -1):
                 idx = range(i, i + n)
-                if i + n > len(self.t) or not all(self.named_free(k) for k in idx):
+                if i + n > len(self.t) or not all(self.named_free(k, n > 1) for k in idx):
                     continue
                 words = [self.t[k] for k in idx]
                 if words[0] in self.w.stop_words or words[-1] in self.w.stop_words:
@@ -276,13 +276,15 @@ class _PartsReader:
         tables = (vocabulary("motifs"), vocabulary("layouts"))
         return not any(nxt in t or plural_stem(nxt) in t for t in tables)
 
-    def named_free(self, i: int) -> bool:
-        """Named materials may take overlay words ("peat moss", "rust"), not colours."""
+    def named_free(self, i: int, phrase: bool = False) -> bool:
+        """Named materials may take overlay words ("peat moss", "rust"); a colour only inside
+        a longer name ("rose quartz", "black sand"), where the colour stays read too."""
         if self.free(i):
             return True
-        return (
-            i not in self.used and i not in self.req.negated and self.req.used.get(i) == "overlay"
-        )
+        if i in self.used or i in self.req.negated:
+            return False
+        rule = self.req.used.get(i)
+        return rule == "overlay" or (phrase and rule == "colour")
 
     def material_class(self) -> tuple[str | None, str]:
         """The class of the head clause's first noun phrase: its first class word, or the last

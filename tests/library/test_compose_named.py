@@ -71,7 +71,7 @@ def test_every_named_material_composes_in_its_colours() -> None:
 def test_a_malformed_row_names_the_file_and_the_key(tmp_path: Path, monkeypatch) -> None:  # noqa: ANN001
     bad = tmp_path / "materials.toml"
     bad.write_text('[gloop]\nbase = "jelly"\ndescription = "x"\ncolours = [[1, 2, 3]]\n')
-    monkeypatch.setattr(named_mod, "MATERIALS_FILE", bad)
+    monkeypatch.setattr(named_mod, "MATERIALS_DIR", tmp_path)
     named_materials.cache_clear()
     named_phrases.cache_clear()
     try:
@@ -90,3 +90,65 @@ def test_a_malformed_row_names_the_file_and_the_key(tmp_path: Path, monkeypatch)
     finally:
         named_materials.cache_clear()
         named_phrases.cache_clear()
+
+
+def _table(tmp_path: Path, monkeypatch, files: dict[str, str]) -> None:  # noqa: ANN001
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    monkeypatch.setattr(named_mod, "MATERIALS_DIR", tmp_path)
+    named_materials.cache_clear()
+    named_phrases.cache_clear()
+
+
+@pytest.fixture
+def fresh_cache():  # noqa: ANN201
+    yield
+    named_materials.cache_clear()
+    named_phrases.cache_clear()
+
+
+def test_a_name_two_files_give_is_an_error(tmp_path: Path, monkeypatch, fresh_cache) -> None:  # noqa: ANN001
+    row = '[gloop]\nbase = "foam"\ndescription = "x"\ncolours = [[1, 2, 3]]\n'
+    _table(tmp_path, monkeypatch, {"a.toml": row, "b.toml": row})
+    with pytest.raises(LibraryError, match=r"b\.toml: \[gloop\] is already a row of a\.toml"):
+        named_materials()
+
+
+def test_layout_and_motif_keys_are_checked(tmp_path: Path, monkeypatch, fresh_cache) -> None:  # noqa: ANN001
+    row = '[gloop]\nbase = "foam"\ndescription = "x"\ncolours = [[1, 2, 3]]\n'
+    _table(tmp_path, monkeypatch, {"a.toml": row + 'layout = "spirals"\n'})
+    with pytest.raises(LibraryError, match=r"key 'layout': 'spirals' is not a layout"):
+        named_materials()
+    _table(tmp_path, monkeypatch, {"a.toml": row + 'motif = "dragon"\n'})
+    with pytest.raises(LibraryError, match=r"key 'motif': 'dragon' is not a motif"):
+        named_materials()
+
+
+def test_a_named_layout_and_motif_are_used_unless_the_request_names_its_own(
+    tmp_path: Path,
+    monkeypatch,  # noqa: ANN001
+    fresh_cache,  # noqa: ANN001
+) -> None:
+    _table(tmp_path, monkeypatch, {"a.toml": (
+        '[gloop]\nbase = "metal"\ndescription = "x"\ncolours = [[150, 150, 150]]\n'
+        'layout = "grid"\nmotif = "flower"\n'
+    )})  # fmt: skip
+    own = compose(CompositionSpec(base="metal", named="gloop"))
+    assert any(s.startswith("layout: grid ") for s in own.shown)
+    assert any(s.startswith("motif: flower") for s in own.shown)
+    said = compose(CompositionSpec(base="metal", named="gloop", layout="hexagons"))
+    assert any(s.startswith("layout: hexagons") for s in said.shown)
+    assert any(s.startswith("motif: flower") for s in said.shown)
+    plain = compose(CompositionSpec(base="metal"))
+    assert not any(s.startswith(("layout:", "motif:")) for s in plain.shown)
+
+
+def test_every_named_layout_and_motif_is_shown() -> None:
+    for name, m in named_materials().items():
+        if m.layout is None and m.motif is None:
+            continue
+        shown = compose(CompositionSpec(base=m.base, named=name)).shown
+        if m.layout is not None:
+            assert any(s.startswith(f"layout: {m.layout} ") for s in shown), name
+        if m.motif is not None:
+            assert any(s.startswith(f"motif: {m.motif} ") for s in shown), name

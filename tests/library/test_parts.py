@@ -67,6 +67,13 @@ TABLE: list[tuple[str, dict[str, Any]]] = [
         {"named": "obsidian", "colours": [("black", "base")], "finish": ("glossy",)},
     ),
     ("obsidian volcanic glass", {"named": "obsidian"}),
+    # a colour inside a longer name is part of the name, and still the colour
+    (
+        "polished rose quartz",
+        {"named": "rose quartz", "colours": [("rose", "base")], "finish": ("polished",)},
+    ),
+    ("black sand beach", {"named": "black sand", "colours": [("black", "base")]}),
+    ("rose pink silk", {"named": "silk", "colours": [("rose pink", "base")]}),
     ("malachite", {"named": "malachite"}),
     ("recycled glass terrazzo", {"named": "recycled glass terrazzo"}),
     (

@@ -1,6 +1,7 @@
-"""Named materials (``library/data/materials.toml``): a material a request names, with the base
-of its physical class and its typical colours and finish ("malachite": a green banded mineral,
-"obsidian": black glossy glass, "laterite": brick-red soil).
+"""Named materials (``library/data/materials/*.toml``): a material a request names, with the
+base of its physical class, its typical colours and finish, and optionally the layout and motif
+it is made of ("malachite": a green banded mineral, "obsidian": black glossy glass, "vinyl
+siding": white plastic in horizontal rows).
 
 :func:`named_material` finds one by its name or an alias (case, hyphens, underscores and
 apostrophes do not matter); :func:`named_materials` is the whole table; :func:`named_phrases`
@@ -21,14 +22,17 @@ from typing import Any
 
 from matloom.library.colour import RGB
 from matloom.library.compose.bases import BASES
+from matloom.library.compose.layouts import LAYOUTS
+from matloom.library.compose.motifs import MOTIFS
 from matloom.library.compose.spec import Finish
 from matloom.library.entry import LibraryError
 
-MATERIALS_FILE = Path(__file__).resolve().parents[1] / "data" / "materials.toml"
+MATERIALS_DIR = Path(__file__).resolve().parents[1] / "data" / "materials"
 ROLES = ("base", "secondary", "accent")
 _KEYS = frozenset(
-    {"base", "description", "colours", "roughness", "metallic", "translucency", "size_m", "aliases"}
-)
+    {"base", "description", "colours", "roughness", "metallic", "translucency", "size_m", "aliases",
+     "layout", "motif"}
+)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -43,6 +47,10 @@ class NamedMaterial:
     finish: Finish = Finish()
     aliases: tuple[str, ...] = ()
     size_m: float | None = None
+    #: the layout (a key of ``LAYOUTS``) and motif (of ``MOTIFS``) it is made of, used when the
+    #: request names none ("vinyl siding": rows; "pressed tin": a grid of embossed flowers)
+    layout: str | None = None
+    motif: str | None = None
 
     def colour(self, role: str) -> RGB | None:
         """The colour of ``role``, or None."""
@@ -64,16 +72,22 @@ def named_material(name: str) -> NamedMaterial | None:
 
 @functools.cache
 def named_materials() -> Mapping[str, NamedMaterial]:
-    """Every named material by name (read once per process; a malformed row raises
+    """Every named material by name, from every file of :data:`MATERIALS_DIR` in name order
+    (read once per process; a malformed row, or a name two rows give, raises
     :class:`~matloom.library.entry.LibraryError` naming the file and the key)."""
-    try:
-        with MATERIALS_FILE.open("rb") as f:
-            data = tomllib.load(f)
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise LibraryError(f"{MATERIALS_FILE}: {exc}") from None
-    out = {}
-    for name, row in data.items():
-        out[name] = _row(name, row)
+    out: dict[str, NamedMaterial] = {}
+    where: dict[str, Path] = {}
+    for path in sorted(MATERIALS_DIR.glob("*.toml")):
+        try:
+            with path.open("rb") as f:
+                data = tomllib.load(f)
+        except (OSError, tomllib.TOMLDecodeError) as exc:
+            raise LibraryError(f"{path}: {exc}") from None
+        for name, row in data.items():
+            if name in out:
+                raise LibraryError(f"{path}: [{name}] is already a row of {where[name].name}")
+            out[name] = _row(path, name, row)
+            where[name] = path
     return MappingProxyType(out)
 
 
@@ -88,9 +102,9 @@ def named_phrases() -> Mapping[str, str]:
     return MappingProxyType(out)
 
 
-def _row(name: str, row: Any) -> NamedMaterial:
+def _row(path: Path, name: str, row: Any) -> NamedMaterial:
     def fail(key: str, problem: str) -> LibraryError:
-        return LibraryError(f"{MATERIALS_FILE}: [{name}] key '{key}': {problem}")
+        return LibraryError(f"{path}: [{name}] key '{key}': {problem}")
 
     if not isinstance(row, dict):
         raise fail("-", "expected a table")
@@ -122,6 +136,11 @@ def _row(name: str, row: Any) -> NamedMaterial:
     aliases = row.get("aliases", [])
     if not isinstance(aliases, list) or not all(isinstance(a, str) and a for a in aliases):
         raise fail("aliases", "expected a list of names")
+    layout, motif = row.get("layout"), row.get("motif")
+    if layout is not None and layout not in LAYOUTS:
+        raise fail("layout", f"{layout!r} is not a layout ({', '.join(sorted(LAYOUTS))})")
+    if motif is not None and motif not in MOTIFS:
+        raise fail("motif", f"{motif!r} is not a motif ({', '.join(sorted(MOTIFS))})")
     return NamedMaterial(
         name=name,
         base=base,
@@ -130,6 +149,8 @@ def _row(name: str, row: Any) -> NamedMaterial:
         finish=finish,
         aliases=tuple(aliases),
         size_m=float(size) if size is not None else None,
+        layout=layout,
+        motif=motif,
     )
 
 

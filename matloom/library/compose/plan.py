@@ -53,16 +53,19 @@ def plan(spec: CompositionSpec) -> Plan:
     if named is not None:
         shown.append(f"named material: {named.name} ({named.description})")
     layout = None
-    if spec.layout is not None:
-        layout = LAYOUTS.get(spec.layout)
+    layout_name = spec.layout or (named.layout if named else None)
+    if layout_name is not None:
+        layout = LAYOUTS.get(layout_name)
         if layout is None:
-            dropped.append(f"layout {spec.layout!r}: unknown layout")
+            dropped.append(f"layout {layout_name!r}: unknown layout")
         else:
             shown.append(f"layout: {layout.name} ({layout.noun})")
             if layout.name == "checks" and base.flat_motif:
                 layout = replace(layout, joints=False)  # printed checks: no joints
     motif = None
-    name = spec.motif.shape if spec.motif else (layout.default_motif if layout else None)
+    name = spec.motif.shape if spec.motif else (named.motif if named else None)
+    if name is None and layout is not None:
+        name = layout.default_motif
     if name is not None:
         motif = MOTIFS.get(name)
         if motif is None:
