@@ -367,3 +367,54 @@ def test_a_look_it_should_not_have_is_not_applied() -> None:
 )
 def test_which_way_the_finish_goes(name: str, request_: str, way: str) -> None:
     assert _plan(name, request_)["note"].startswith(way)
+
+
+def _look(note: str) -> tuple[int, ...] | None:
+    found = re.search(r"coloured \((\d+), (\d+), (\d+)\)", note)
+    return tuple(int(x) for x in found.groups()) if found else None
+
+
+def test_a_conditions_own_colour_is_its_own_not_the_materials() -> None:
+    """ "reddish-brown clay and dirt": the colour before another noun of the condition's phrase
+    colours the dirt; the crystals keep theirs (the clause is not read again as a colour)."""
+    before = _values(_entry("amethyst-crystal-cluster"))
+    r = edit_offline(
+        _entry("amethyst-crystal-cluster"),
+        "Add some reddish-brown clay and dirt caked down between the crystals at the bases, "
+        "as if it was just dug out of the ground",
+        size=32,
+    )
+    assert r.report.plan["rule"] == "overlay" and "'dirty'" in r.report.plan["note"]
+    look = _look(r.report.plan["note"])
+    assert look is not None and look[0] > look[2] + 30  # a warm brown
+    after = _values(r.program)
+    assert all(after[a] == v for a, v in before.items() if a in after)
+
+
+def test_a_clause_describing_the_condition_gives_its_colour() -> None:
+    """ "a water stain, that yellow-brown ring": the describing clause colours the stain, not
+    the paint."""
+    before = _values(_entry("drywall-painted"))
+    r = edit_offline(
+        _entry("drywall-painted"),
+        "Add a water stain, that yellow-brown ring with a darker edge you get from a leak",
+        size=32,
+    )
+    look = _look(r.report.plan["note"])
+    assert "'stained'" in r.report.plan["note"] and look is not None
+    assert look[0] > look[2] + 40 and look[1] > look[2]  # yellow-brown, not the stain's own
+    after = _values(r.program)
+    assert all(after[a] == v for a, v in before.items() if a in after)
+
+
+def test_a_colour_of_another_wish_is_not_the_conditions() -> None:
+    """ "darker grey and a bit wet": the grey is not the wet's; "faded blue, a little moss":
+    the moss is not blue; a grey named for the condition keeps most of its own ("black
+    mould")."""
+    wet = _plan("square-tiles", "Make them darker grey and a bit wet-looking")
+    assert "coloured" not in wet["note"].split("'wet'")[1].split(";")[0]
+    moss = _plan("azulejo-portuguese-tiles", "water stains running down, faded blue, a little moss")
+    mossy = [p for p in moss["note"].split(";") if "'mossy'" in p]
+    assert len(mossy) == 1 and _look(mossy[0]) is None
+    black = _look(_plan("drywall-painted", "some black mould spots")["note"])
+    assert black is not None and max(black) < 50

@@ -49,8 +49,11 @@ def join_clauses(
         # ("the joints shallower and not so dark": a relief and a colour)
         clauses = [asked] if plan.rule in ("roughness", "channel", "relief") else []
     for clause in clauses:
-        sub = replace(c, words=tokens(clause))
         overlay = plan.rule.startswith("overlay")
+        if overlay and _describing(tokens(clause)):
+            continue  # a clause describing the condition ("rust, the kind you get ...")
+        # the condition's own words and colour are its own ("reddish-brown clay and dirt")
+        sub = replace(c, words=[t for t in tokens(clause) if not overlay or t not in plan.said])
         if (
             not single
             and (plan.rule.startswith("colour") or overlay)
@@ -122,6 +125,15 @@ def _names_colour(c: Context, words: list[str]) -> bool:
 
 #: Words that open a clause describing the clause before it ("..., like a dark walnut stain").
 _SIMILE = frozenset({"like", "as"})
+#: Words that open a clause describing an added condition ("a water stain, that yellow-brown
+#: ring"; "rust, the kind you get near the coast")
+_RELATIVE = frozenset({"that", "those", "which", "kind", "sort"})
+
+
+def _describing(words: list[str]) -> bool:
+    """Whether a clause opens by describing the thing before it (a simile or a relative)."""
+    lead = [w for w in words[:3] if w not in ("the", "a", "an")]
+    return bool(lead) and (lead[0] in _SIMILE or lead[0] in _RELATIVE)
 
 
 def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:

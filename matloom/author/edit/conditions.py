@@ -291,7 +291,7 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
         scale = c.ew.f("spot_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
-    look = _look(c, word, ov)
+    look, coloured = _look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
     if gradient is not None:  # "near the bottom" of a program that does not tile
         within = gradient if within is None else A.BinOp("*", within, gradient)
@@ -325,29 +325,98 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         add=add,
         intended=channels,
         graded=bool(ov.cover),
+        said=(*word.split(), *coloured),
     )
 
 
-def _look(c: Context, word: str, ov: Overlay) -> tuple[int, int, int] | None:
-    """The colour of the condition ``word``'s overlay ``ov``: a colour the request names just
-    before it ("orange rust", "pale grey lichen"; half way from the overlay's own, which a
-    colour name's pure value would not resemble), else its own look in
-    ``[condition_colours]``."""
+def _look(
+    c: Context, word: str, ov: Overlay
+) -> tuple[tuple[int, int, int] | None, tuple[str, ...]]:
+    """The colour of the condition ``word``'s overlay ``ov`` and the words that said it: a
+    colour the request names before it in its noun phrase ("orange rust", "pale grey lichen",
+    "reddish-brown clay and dirt": a colour right before it or before another noun of the
+    phrase, not past a part of the program nor before "and", "darker grey and a bit wet"),
+    else the colour of a clause right after that describes it ("a water stain, that
+    yellow-brown ring"); half way from the overlay's own, which a colour name's pure value
+    would not resemble (a grey, black or white keeps most of its own: "black mould"); else its
+    own look in ``[condition_colours]``."""
     ws = c.words
-    i = ws.index(word) if word in ws else -1
-    named = c.vocabulary.named
-    for j in range(i - 1, max(-1, i - 3), -1):
+    first = word.split()[0]
+    i = ws.index(first) if first in ws else -1
+    for j in range(i - 1, max(-1, i - _LOOK_BACK - 1), -1):
         t = ws[j]
-        base = c.vocabulary.ish_base(t)
-        if base in named and base not in c.ew.conditions:
-            rgb = named[base]
-            own = _own_colour(ov)
-            if own is not None:
-                rgb = tuple((a + b) / 2 for a, b in zip(rgb, own, strict=True))
-            return (round(rgb[0]), round(rgb[1]), round(rgb[2]))
-        if t not in c.vocabulary.tones and t not in c.ew["filler"]:
-            break
-    return c.ew.condition_colours.get(word)
+        rgb = _colour_of(c, t)
+        if rgb is not None:
+            if j < i - 1 and not _phrase_noun(c, ws[j + 1]):
+                break  # "darker grey and a bit wet": the grey is another wish's
+            before = _colour_of(c, ws[j - 1]) if j > 0 else None  # "reddish brown"
+            if before is None:
+                return _blend(rgb, ov), (t,)
+            return _blend(_mean(before, rgb), ov), (ws[j - 1], t)
+        noun = t not in c.vocabulary.tones and t not in c.ew["filler"]
+        if noun and (j == i - 1 or not _phrase_noun(c, t)):
+            break  # "green moss": next to it; "the red tiles and moss": another thing's
+    after = _described_after(c, first)
+    for k, t in enumerate(after):
+        rgb = _colour_of(c, t)
+        if rgb is not None:
+            nxt = after[k + 1] if k + 1 < len(after) else ""
+            more = _colour_of(c, nxt) if nxt else None  # "yellow-brown"
+            if more is None:
+                return _blend(rgb, ov), (t,)
+            return _blend(_mean(rgb, more), ov), (t, nxt)
+    return c.ew.condition_colours.get(word), ()
+
+
+def _phrase_noun(c: Context, t: str) -> bool:
+    """Whether ``t`` may stand inside a condition's noun phrase ("clay" in "reddish-brown clay
+    and dirt"): a word that is no filler, tone, colour or part of the program."""
+    return (
+        len(t) > 2
+        and t not in c.ew["filler"]
+        and t not in c.vocabulary.tones
+        and _colour_of(c, t) is None
+        and not named_in_program(c.program, [t], c.ew)
+    )
+
+
+#: how far back a condition's colour may stand ("reddish brown clay and dirt": four words)
+_LOOK_BACK = 4
+#: the clause after a condition's that describes it ("a water stain, that yellow-brown ring")
+_DESCRIBES = frozenset({"that", "those", "which", "like", "kind", "sort"})
+#: how much of its own a named colour keeps in a condition's look (the rest is the
+#: overlay's): a hue half, a grey, black or white most
+_NAMED_SHARE, _GREY_SHARE = 0.5, 0.8
+
+
+def _colour_of(c: Context, t: str) -> tuple[int, int, int] | None:
+    base = c.vocabulary.ish_base(t)
+    if base in c.vocabulary.named and base not in c.ew.conditions:
+        return c.vocabulary.named[base]
+    return None
+
+
+def _mean(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
+    return (round((a[0] + b[0]) / 2), round((a[1] + b[1]) / 2), round((a[2] + b[2]) / 2))
+
+
+def _blend(rgb: tuple[int, int, int], ov: Overlay) -> tuple[int, int, int]:
+    own = _own_colour(ov)
+    if own is not None:
+        k = _GREY_SHARE if max(rgb) - min(rgb) < 24 else _NAMED_SHARE
+        rgb = tuple(a * k + b * (1 - k) for a, b in zip(rgb, own, strict=True))  # type: ignore[assignment]
+    return (round(rgb[0]), round(rgb[1]), round(rgb[2]))
+
+
+def _described_after(c: Context, first: str) -> list[str]:
+    """The words of the clause right after the one naming the condition ``first``, when that
+    clause describes it (it opens with "that", "those", "which", "like", "the kind")."""
+    parts = [tokens(s) for s in re.split(r"[,;:]|\s[-–—]\s", c.request.lower())]
+    for k, words in enumerate(parts[:-1]):
+        after = [w for w in parts[k + 1] if w not in c.ew["articles"] or w == "that"]
+        if first in words and after and after[0] in _DESCRIBES:
+            return after
+    return []
 
 
 def _own_colour(ov: Overlay) -> tuple[float, float, float] | None:
@@ -503,6 +572,7 @@ def _more_overlays(c: Context, plan: Plan, word: str, conds: Sequence[str]) -> P
             add=[*plan.add, *more.add],
             intended=tuple(dict.fromkeys(plan.intended + more.intended)),
             graded=plan.graded or more.graded,
+            said=plan.said + more.said,
         )
     return plan
 

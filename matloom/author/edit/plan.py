@@ -50,6 +50,9 @@ class Plan:
     graded: bool = False
     exact: bool = False
     reduces: bool = False
+    #: the request's words an added condition came from ("dirt"): its own clause describes
+    #: it, so no other rule re-reads that clause ("reddish-brown clay and dirt")
+    said: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         out: dict[str, Any] = {
