@@ -181,6 +181,10 @@ class Adapter:
                 break
         else:
             for size in req.sizes:
+                if size.extent:  # "2x2m": the View covers that much of the material
+                    scale = e.size_m / size.metres
+                    why = f"{size.words} across"
+                    break
                 if e.feature_m and (not size.noun or size.noun in units or len(req.sizes) == 1):
                     scale = size.metres / e.feature_m
                     why = f"{size.words} {size.noun}".strip()

@@ -522,7 +522,7 @@ def read_parts(
         construction=construction,
         construction_words=construction_words,
         overlays=overlays,
-        size_m=req.sizes[0].metres if req.sizes else None,
+        size_m=next((z.metres for z in req.sizes if not z.extent), None),
         count=req.counts[0].value if req.counts else None,
         scale=req.scale,
         used=MappingProxyType(dict(r.used)),

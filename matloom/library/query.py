@@ -76,6 +76,9 @@ class Size:
     metres: float
     noun: str
     words: str
+    #: the extent the whole texture covers ("2x2m", "a 4 m texture": a metre or more said as
+    #: an area or of a repeat word), not the size of one of its features
+    extent: bool = False
 
 
 @dataclass(frozen=True)
@@ -576,9 +579,12 @@ class _Reader:
             elif unit in self.w.units and value > 0:
                 noun = self.noun_after(i + 2) or self.noun_before(i - 1)
                 metres = value * self.w.units[unit]
-                self.out.sizes.append(Size(metres, noun, f"{w} {unit}"))
+                area = self.at(i - 1) == "x" and self.number(self.at(i - 2)) is not None
+                repeat = self.at(i + 2) in self.w.repeat
+                extent = metres >= _REPEAT_MIN_M and (area or repeat)
+                self.out.sizes.append(Size(metres, noun, f"{w} {unit}", extent))
                 self.use("size", i, i + 1)
-                if metres >= _REPEAT_MIN_M and self.at(i + 2) in self.w.repeat:
+                if metres >= _REPEAT_MIN_M and repeat:
                     # "4x4m tile", "2 m texture": the size of the texture's repeat, no
                     # ceramic tile (a tile a metre or more across is a game artist's repeat)
                     self.use("size", i + 2)

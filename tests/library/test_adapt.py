@@ -169,3 +169,19 @@ def test_an_amount_word_lowers_the_wear_of_an_entry_that_shows_the_condition() -
     slight = constant(program("slightly rusted metal"), "wear")
     heavy = constant(program("heavily rusted metal"), "wear")
     assert slight is not None and heavy is not None and slight < 0.5 < heavy
+
+
+def test_an_area_is_the_extent_the_texture_covers_not_a_feature() -> None:
+    """ "2x2m" (a game artist's texture extent) widens the View to cover two metres of the
+    material; it is never the size of one cobblestone, nor one repeat of a composed layout."""
+    from matloom.library.parts import read_parts
+
+    plain = author("cobblestone street")
+    wide = author("cobblestone street, 4x4m")
+    assert plain.entry == wide.entry == "cobblestone"
+    assert view_width(wide.ast) > view_width(plain.ast)
+    assert any("4 m across" in n for n in wide.adaptations)
+    assert read_parts("white vinyl siding, 3x3m").size_m is None
+    assert read_parts("white vinyl siding, 20cm boards, 3x3m").size_m == 0.2
+    tiles = author("square ceramic tiles, 30 cm")
+    assert not any("across" in n for n in tiles.adaptations)
