@@ -99,6 +99,17 @@ _ALL = (
         unit="brick",
     ),  # fmt: skip
     _l(
+        "boards",
+        "long boards in staggered rows",
+        "boards floorboards lapped",
+        2,
+        Lattice(1, 0.125, 0.5, fit=0.12),
+        cell_w=0.125,
+        grout=0.006,
+        cell_m=0.15,
+        unit="board",
+    ),  # fmt: skip
+    _l(
         "herringbone",
         "herringbone planks",
         "herringbone",
@@ -252,6 +263,12 @@ def brick(w: Writer, spec: LayoutSpec) -> LayoutParts:
     return _bricks(w, 0.5, 0.5)
 
 
+def boards(w: Writer, spec: LayoutSpec) -> LayoutParts:
+    """Boards eight times as long as they are wide, each row's joints half a board along
+    (siding, floorboards, laminate)."""
+    return _bricks(w, 0.125, 0.5)
+
+
 def checks(w: Writer, spec: LayoutSpec) -> LayoutParts:
     """Squares of two colours; tiles with joints on hard bases, printed squares without."""
     if not spec.joints:
@@ -382,6 +399,7 @@ _BUILDERS: MappingProxyType[str, Callable[[Writer, LayoutSpec], LayoutParts]] = 
         "grid": grid,
         "rows": rows,
         "brick": brick,
+        "boards": boards,
         "checks": checks,
         "herringbone": herringbone,
         "basketweave": basketweave,
