@@ -179,3 +179,19 @@ def test_the_docs_count_the_parts() -> None:
     counts = (len(BASES), len(LAYOUTS), len(MOTIFS), len(named_materials()))
     sentence = "{} bases, {} layouts, {} motifs and {} named materials".format(*counts)
     assert sentence in " ".join(text.split()), f"docs/library.md should say: {sentence}"
+
+
+def test_small_cells_widen_the_view_by_whole_repeats() -> None:
+    """2 cm tesserae: the View shows at least MIN_VIEW_M of the material (whole repeats of the
+    layout, so it still tiles); a 20 cm tile keeps the layout's own View."""
+    from matloom.library.compose.plan import MAX_REPEATS, MIN_VIEW_M
+
+    small = compose(CompositionSpec(base="stone", layout="grid", size_m=0.02))
+    big = compose(CompositionSpec(base="stone", layout="grid", size_m=0.2))
+    assert small.tileable and big.tileable
+    v, w = small.program.view, big.program.view
+    assert v is not None and w is not None
+    side_small, side_big = v.x2 - v.x1, w.x2 - w.x1
+    assert side_big == LAYOUTS["grid"].side
+    assert side_small == LAYOUTS["grid"].side * MAX_REPEATS
+    assert side_small * small.unit_m >= min(MIN_VIEW_M, 0.02 * side_small - 1e-9)

@@ -4,6 +4,7 @@ origin, metres per unit and the motif lattice."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 from matloom.library.compose.bases import BASES, BaseSpec
@@ -15,6 +16,10 @@ from matloom.library.compose.writer import num
 
 #: the base used when the spec names none the composer knows
 FALLBACK_BASE = "plaster"
+#: a layout's View widens (by whole repeats of it) to show at least this much of the
+#: material, at most ``MAX_REPEATS`` times: four 2 cm tesserae would fill a preview
+MIN_VIEW_M = 0.3
+MAX_REPEATS = 4
 #: View side (units) of a plain base, and of a base with motifs but no layout
 PLAIN_SIDE = 1.0
 MOTIF_SIDE = 4.0
@@ -80,6 +85,10 @@ def plan(spec: CompositionSpec) -> Plan:
         cell_m = cell_m or layout.cell_m or base.cell_m
         side, origin, lattice = layout.side, layout.origin, layout.lattice
         unit_m = cell_m / layout.cell_w
+        # small cells (mosaic tesserae, fine perforations): whole repeats of the layout's own
+        # View until it shows MIN_VIEW_M of the material, at most MAX_REPEATS of them
+        repeats = min(MAX_REPEATS, max(1, math.ceil(MIN_VIEW_M / (side * unit_m))))
+        side *= repeats
         shown.append(f"size: {num(cell_m, 3)} m per {layout.unit}")
     elif motif is not None:
         cell_m = cell_m or base.cell_m
