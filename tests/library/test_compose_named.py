@@ -152,3 +152,21 @@ def test_every_named_layout_and_motif_is_shown() -> None:
             assert any(s.startswith(f"layout: {m.layout} ") for s in shown), name
         if m.motif is not None:
             assert any(s.startswith(f"motif: {m.motif} ") for s in shown), name
+
+
+def test_a_named_accent_colours_the_motif_on_a_base_without_accents(
+    tmp_path: Path,
+    monkeypatch,  # noqa: ANN001
+    fresh_cache,  # noqa: ANN001
+) -> None:
+    """Pepperoni on a pizza: the row's accent colours its motif where the base shows no
+    accents of its own; too close to the ground, the usual contrasting shade is used."""
+    row = '[gloop]\nbase = "plaster"\ndescription = "x"\nlayout = "scatter"\nmotif = "circle"\n'
+    _table(tmp_path, monkeypatch, {"a.toml": row + "colours = [[236, 186, 96], [220, 152, 64], [180, 40, 30]]\n"})  # fmt: skip
+    prog = compose(CompositionSpec(base="plaster", named="gloop")).program
+    rgb = tuple(prog.define(f"motif_{c}").expr.value for c in "rgb")  # type: ignore[union-attr]
+    assert rgb == (180, 40, 30)
+    _table(tmp_path, monkeypatch, {"a.toml": row + "colours = [[236, 186, 96], [220, 152, 64], [232, 184, 98]]\n"})  # fmt: skip
+    prog = compose(CompositionSpec(base="plaster", named="gloop")).program
+    rgb = tuple(prog.define(f"motif_{c}").expr.value for c in "rgb")  # type: ignore[union-attr]
+    assert rgb != (232, 184, 98)

@@ -141,8 +141,22 @@ def resolve(
     if ground:
         slots["grout"] = Slot("grout", "grout", given.get("grout", _grout(b, layout, base)))  # type: ignore[arg-type]
     if has_motif and not (layout is not None and layout.holes):
-        slots["motif"] = Slot("motif", "accent", given.get("motif", _contrast(b)))
+        motif = given.get("motif") or _named_motif(named, has_accent, b) or _contrast(b)
+        slots["motif"] = Slot("motif", "accent", motif)
     return Palette(slots, tuple(shown), tuple(dropped))
+
+
+def _named_motif(named: NamedMaterial | None, has_accent: bool, base: RGB) -> RGB | None:
+    """A named material's accent colour for its motif when its base shows no accents
+    (pepperoni on a pizza, cobalt flowers on Iznik ware), if it stands out on ``base``."""
+    acc = named.colour("accent") if named is not None and not has_accent else None
+    if acc is None or abs(luminance(acc) - luminance(base)) + _hue_gap(acc, base) < 0.15:
+        return None
+    return acc
+
+
+def _hue_gap(a: RGB, b: RGB) -> float:
+    return sum(abs(x - y) for x, y in zip(a, b, strict=True)) / (3 * 255)
 
 
 def _alt(name: str, base: RGB, rgb: RGB | None, contrast: float) -> Slot:
