@@ -441,6 +441,8 @@ class _Reader:
     # ------------------------------------------------------------------ overlays
     def overlays(self) -> None:
         for i in range(len(self.t)):
+            if i > 0 and f"{self.t[i - 1]}{self.t[i]}" in self.w.styles:
+                continue  # "hand painted": an art style, not a coat of paint
             if not self.free(i) or self.split_trigger(i):
                 continue
             for n in (3, 2, 1):

@@ -318,3 +318,11 @@ def test_a_colour_inside_a_two_word_condition_colours_it() -> None:
     assert got == [("lined", words().named["yellow"])]
     assert colours("painted yellow line") == ["yellow"]
     assert [o.name for o in req("white painted metal").overlays] == ["painted"]
+
+
+def test_hand_painted_is_a_style_not_a_coat_of_paint() -> None:
+    lib = library()
+    said = read("crystal cave floor, hand painted, 2x2m", words(), lib.triggers, lib.weak_triggers)
+    assert "painted" not in [m.name for m in said.overlays]
+    coat = read("painted brick wall", words(), lib.triggers, lib.weak_triggers)
+    assert "painted" in [m.name for m in coat.overlays]
