@@ -27,7 +27,7 @@ from matloom.lang.api import parse
 from matloom.lang.diagnostics import ProgramError
 from matloom.lang.rewrite import map_expr
 from matloom.library.entry import FrontMatterReader, LibraryError, split_front_matter
-from matloom.library.relief import relief_of
+from matloom.library.relief import height_expr, relief_of
 from matloom.vocab import FUNCTIONS
 
 OVERLAY_DIR = Path(__file__).resolve().parent / "overlays"
@@ -59,6 +59,10 @@ class Overlay:
     scalars: dict[str, str] = field(default_factory=dict)
     #: the Define bound to the host's relief (0 low .. 1 high, :mod:`matloom.library.relief`)
     relief: str | None = None
+    #: the Define bound to the host's composite height, in the overlay's height units (its
+    #: stand-in value where the host has no height line): what lies on the surface (drops of
+    #: water) raises its height from it, ``.height(host_surface + drop * 0.004)``
+    surface: str | None = None
 
     @property
     def streaks(self) -> str | None:
@@ -93,6 +97,9 @@ def load_overlay(path: Path | str) -> Overlay:
     relief = r.get("relief", None, required=False)
     if relief is not None and not (isinstance(relief, str) and relief):
         raise r.fail("relief", f"expected the name of a Define, got {relief!r}")
+    surface = r.get("surface", None, required=False)
+    if surface is not None and not (isinstance(surface, str) and surface):
+        raise r.fail("surface", f"expected the name of a Define, got {surface!r}")
     overlay = Overlay(
         name=path.stem,
         path=path,
@@ -105,6 +112,7 @@ def load_overlay(path: Path | str) -> Overlay:
         weak=tuple(t.lower() for t in r.words("weak")),
         scalars=dict(scalars),
         relief=relief,
+        surface=surface,
     )
     r.finish()
     if host is not None and host not in overlay.colours:
@@ -253,7 +261,8 @@ def compose(
     cracks" 0.65: smaller cells with thinner lines, the same cover); ``streaks``: its patches
     run down the surface as streaks (an overlay with a ``streaks`` scalar). The overlay's
     ``relief`` Define is bound to the host's relief (:func:`~matloom.library.relief.relief_of`)
-    when the host has one, so what settles in hollows finds the host's joints and pits.
+    when the host has one, so what settles in hollows finds the host's joints and pits; its
+    ``surface`` Define to the host's height, so what lies on the surface (drops) sits on it.
     """
     ov = overlay.ast
     if cover is not None and overlay.cover:
@@ -291,8 +300,17 @@ def compose(
         for d in ov.defines
         if d.name not in drop
     ]
-    if overlay.relief and ov.define(overlay.relief) is not None:
-        defines = _bind_relief(host, defines, names.get(overlay.relief, overlay.relief), taken)
+    relief = overlay.relief if overlay.relief and ov.define(overlay.relief) else None
+    surface = overlay.surface if overlay.surface and ov.define(overlay.surface) else None
+    if relief or surface:
+        defines = _bind_relief(
+            host,
+            defines,
+            names.get(relief, relief) if relief else None,
+            taken,
+            surface=names.get(surface, surface) if surface else None,
+            factor=factor,
+        )
     layers = []
     for layer in ov.layers[1:]:
         alpha = rename_refs(layer.alpha, names) if layer.alpha is not None else None
@@ -307,21 +325,40 @@ def compose(
 
 
 def _bind_relief(
-    host: A.Program, defines: list[A.Define], name: str, taken: set[str]
+    host: A.Program,
+    defines: list[A.Define],
+    name: str | None,
+    taken: set[str],
+    *,
+    surface: str | None = None,
+    factor: float = 1.0,
 ) -> list[A.Define]:
-    """``defines`` with Define ``name`` bound to the host's relief rank, read from a new Define
-    of the host's height placed before it (the host's own names: bound after the renames)."""
+    """``defines`` with Define ``name`` bound to the host's relief rank and Define ``surface``
+    to its height times ``factor`` (the overlay's View width over the host's: the composed
+    layers' heights are scaled by its inverse), both read from a new Define of the host's
+    height placed before the first of them (the host's own names: bound after the renames).
+    A relief too flat to follow leaves ``name`` as it is but still gives ``surface``."""
     height, k = HOST_HEIGHT, 2
     while height in taken:
         height, k = f"{HOST_HEIGHT}{k}", k + 1
-    found = relief_of(host, height)
-    if found is None:
+    found = relief_of(host, height) if name else None
+    expr = found[0] if found is not None else height_expr(host) if surface else None
+    if expr is None:
+        return defines
+    bound: dict[str, A.Node] = {}
+    if found is not None and name:
+        bound[name] = found[1]
+    if surface:
+        bound[surface] = A.BinOp("*", A.Ref(height), _num(factor))
+    if not bound:
         return defines
     taken.add(height)
     out: list[A.Define] = []
     for d in defines:
-        if d.name == name:
-            out += [replace(d, name=height, expr=found[0], comments=()), replace(d, expr=found[1])]
+        if d.name in bound:
+            if height not in {o.name for o in out}:
+                out.append(replace(d, name=height, expr=expr, comments=()))
+            out.append(replace(d, expr=bound[d.name]))
         else:
             out.append(d)
     return out
@@ -345,6 +382,6 @@ def check_overlay(overlay: Overlay) -> None:
                 )
     if overlay.cover and program.define(overlay.cover) is None:
         raise LibraryError(f"{overlay.path}: scalar {overlay.cover!r} has no Define")
-    for name in (overlay.streaks, overlay.relief):
+    for name in (overlay.streaks, overlay.relief, overlay.surface):
         if name and program.define(name) is None:
             raise LibraryError(f"{overlay.path}: {name!r} has no Define")
