@@ -14,6 +14,7 @@ finish and the roles of tone nouns are data (``data/words.toml``).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -31,6 +32,11 @@ NEUTRAL_SAT = 0.18
 #: a slot whose hue is this close (degrees) to a requested colour already fits the palette
 PALETTE_HUE = 30
 VIEW_RANGE = (0.25, 4.0)
+#: colours given in prompt order go to the entry's free slots in that order, unless swapping
+#: the first ``SWAP_MAX`` of them matches the slots' own lightness better by ``SWAP_GAIN``
+#: (lightness 0..1, summed): black and white are never swapped between light and dark squares
+SWAP_MAX = 3
+SWAP_GAIN = 0.6
 
 
 @dataclass(frozen=True)
@@ -218,6 +224,10 @@ class Adapter:
             if m.slot in e.colours and m.slot not in taken:
                 self.give(m, m.slot, "the colour of what the entry shows", taken)
                 continue
+            same = m.words.replace(" ", "_")  # "yellow and black" on slots yellow and black
+            if m.slot is None and same in e.colours and same not in taken:
+                self.give(m, same, "the slot of that colour", taken)
+                continue
             if m.role:
                 target = next(
                     (s for s in primary + derived if e.role(s) == m.role and s not in taken), None
@@ -232,8 +242,10 @@ class Adapter:
                 pending.append(m)
         free = [s for s in primary + secondary if s not in taken]
         grout = [s for s in e.colours if e.role(s) == "grout" and s not in taken and s not in free]
-        for m, slot in zip(pending, free + grout, strict=False):
-            self.give(m, slot, "prompt order", taken)
+        order = self.by_lightness(pending, free + grout)
+        for m, slot in zip(pending, order, strict=False):
+            why = "prompt order" if order == free + grout else "the slot nearest in lightness"
+            self.give(m, slot, why, taken)
         for m in pending[len(free + grout) :]:
             self.note(f"colour '{m.words}' unused: no free colour slot")
             self.unused.append(m.words)
@@ -247,6 +259,39 @@ class Adapter:
             self.palette(named, free_primary)
         explicit |= taken
         self.tones(explicit)
+
+    def by_lightness(self, pending: list[ColourMention], slots: list[str]) -> list[str]:
+        """``slots`` in prompt order, unless the first ones swapped between the colours would
+        fit their light and dark far better ("black and white checkerboard" on an entry whose
+        light squares come first: black goes to the dark squares)."""
+        n = min(len(pending), len(slots), SWAP_MAX)
+        if n < 2 or not self.listed(pending[:n]):
+            return slots
+        own = [slot_colour(self.program, s) for s in slots[:n]]
+        if any(c is None for c in own):
+            return slots
+
+        def cost(perm: tuple[int, ...]) -> float:
+            return sum(
+                abs(C.lightness(pending[i].rgb) - C.lightness(own[k]))  # type: ignore[arg-type]
+                for i, k in enumerate(perm)
+            )
+
+        best = min(itertools.permutations(range(n)), key=cost)
+        if cost(tuple(range(n))) - cost(best) < SWAP_GAIN:
+            return slots
+        return [slots[k] for k in best] + slots[n:]
+
+    def listed(self, mentions: list[ColourMention]) -> bool:
+        """Are the colours one list ("black and white", "blue/white"), only joining words
+        between them (not "dark blue with a gold motif", where the order says which is
+        which)?"""
+        t = self.req.tokens
+        for a, b in zip(mentions, mentions[1:], strict=False):
+            between = t[a.index + len(a.words.split()) : b.index]
+            if b.index <= a.index or not all(x in self.w.colour_join for x in between):
+                return False
+        return True
 
     def palette(self, named: list[tuple[C.RGB, str]], slots: list[str]) -> None:
         """Free primary slots whose colour contradicts the requested palette (a strong hue the

@@ -185,3 +185,25 @@ def test_an_area_is_the_extent_the_texture_covers_not_a_feature() -> None:
     assert read_parts("white vinyl siding, 20cm boards, 3x3m").size_m == 0.2
     tiles = author("square ceramic tiles, 30 cm")
     assert not any("across" in n for n in tiles.adaptations)
+
+
+def test_a_colour_before_a_modifier_of_the_material_is_the_materials() -> None:
+    """ "forest green polar fleece", "lilac mohair knit": the unknown word between the colour
+    and the material only modifies it; "red leaves on grey stone" stays the leaves' colour."""
+    fleece = author("This is a forest green polar fleece. The surface is fuzzy.")
+    assert any("forest green" in a for a in fleece.adaptations)
+    knit = author("This is a lilac mohair knit.")
+    assert any("'lilac'" in a for a in knit.adaptations)
+    leaves = author("grey flagstones with red leaves on them")
+    assert not any("'red'" in a for a in leaves.adaptations)
+
+
+def test_a_colour_goes_to_the_slot_of_its_name_and_light_to_light() -> None:
+    """ "yellow-and-black hazard stripe": yellow on the yellow stripes; "black and white
+    checkerboard": black on the dark squares, whatever slot comes first."""
+    hazard = author("diamond plate with a yellow-and-black hazard stripe")
+    assert "colour yellow = 'yellow' (236, 204, 40) (the slot of that colour)" in hazard.adaptations
+    for said in ("black and white checkerboard floor", "white and black checkerboard floor"):
+        checks = author(said)
+        got = {a.split(" = ")[0]: a.split("'")[1] for a in checks.adaptations if "colour" in a}
+        assert got.get("colour dark") == "black" and got.get("colour light") == "white", said

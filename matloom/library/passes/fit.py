@@ -163,6 +163,31 @@ def _slot_named(noun: str, entry: Entry) -> str | None:
     return None
 
 
+#: how many unknown modifiers may stand between a colour and the material it colours
+#: ("forest green polar fleece", "lilac mohair knit")
+MODIFIERS = 2
+
+
+def _modifies_material(
+    tokens: tuple[str, ...] | list[str],
+    j: int,
+    known: frozenset[str],
+    terms: frozenset[str],
+    lib: Library,
+    w: Words,
+) -> bool:
+    """Does the unknown word at ``j`` only modify a material noun right after it (at most
+    :data:`MODIFIERS` words, none a stop word or punctuation: "polar fleece", "mohair knit"),
+    so a colour before it is that material's ("red leaves on stone" is not)?"""
+    for k in range(j + 1, min(j + 1 + MODIFIERS, len(tokens))):
+        t = tokens[k]
+        if not t.isalpha() or t in w.stop_words:
+            return False
+        if t in known or lib.index.stem(t) in terms:
+            return True
+    return False
+
+
 def _foreign_colours(
     req: Request,
     colours: list[ColourMention],
@@ -204,17 +229,23 @@ def _foreign_colours(
             m.role not in {"grout", "overlay"}
             and not any(entry.role(s) == m.role for s in entry.colours)
         )
-        foreign = (
-            roleless
-            and m.slot is None
-            and noun.isalpha()
-            and j not in used
-            and noun not in w.stop_words
-            and noun not in known
-            and noun not in w.roles
-            and not noun.endswith(("ed", "ing", "ly"))
-            and lib.index.stem(noun) not in terms
-        )
+
+        def strange(t: str, k: int) -> bool:
+            """A noun the entry does not show, that no rule took and no table knows."""
+            return (
+                t.isalpha()
+                and k not in used
+                and t not in w.stop_words
+                and t not in known
+                and t not in w.roles
+                and not t.endswith(("ed", "ing", "ly"))
+                and lib.index.stem(t) not in terms
+            )
+
+        foreign = roleless and m.slot is None and strange(noun, j)
+        metal = m.words in w.metal_colours  # "copper carbonate mineral": the metal itself
+        if foreign and not metal and _modifies_material(tokens, j, known, terms, lib, w):
+            foreign = False  # "forest green polar fleece", "lilac mohair knit": the material's
         if foreign:
             dropped.append(f"{m.words} (the colour of '{noun}')")
         else:
