@@ -418,3 +418,41 @@ def test_a_colour_of_another_wish_is_not_the_conditions() -> None:
     assert len(mossy) == 1 and _look(mossy[0]) is None
     black = _look(_plan("drywall-painted", "some black mould spots")["note"])
     assert black is not None and max(black) < 50
+
+
+@pytest.mark.parametrize(
+    ("entry", "request_", "overlay"),
+    [
+        ("bokhara-gul-rug", "put a big dark wine stain on it", "stained"),
+        ("stylized-roof-tiles", "it just snowed, a light dusting on the tops", "snowy"),
+        ("molten-lava-flow", "yellow sulphur deposits around the edges", "efflorescence"),
+        ("polished-metal", "add verdigris", "rusty"),
+        ("camouflage-digital-pixel", "mud splatter", "muddy"),
+    ],
+)
+def test_a_condition_is_added_not_the_material_recoloured(
+    entry: str, request_: str, overlay: str
+) -> None:
+    """ "put a big dark wine stain on it": a stain (its size, its colour), not a darker rug; "it
+    just snowed"; deposits, verdigris (the rust overlay in the patina's green) and splatter
+    (small marks) are conditions too."""
+    plan = _plan(entry, request_)
+    assert plan["rule"] == "overlay" and f"'{overlay}'" in plan["note"], plan["note"]
+    if "dusting" in request_:
+        assert "(amount 0.3)" in plan["note"]
+    if "splatter" in request_:
+        assert "as spots" in plan["note"]
+    if "big" in request_:
+        assert "as spots" not in plan["note"]  # a big stain keeps the overlay's own size
+    look = _look(plan["note"])
+    if "yellow" in request_:
+        assert look is not None and look[0] > look[2] + 50 and look[1] > look[2] + 50
+    if "verdigris" in request_:
+        assert look is not None and look[1] > look[0]  # green, not rust orange
+
+
+def test_a_size_or_depth_word_still_changes_the_programs_own_features() -> None:
+    """Without a verb that adds, "bigger mud plates" scales and "deeper cracks" deepens what is
+    there: no condition is added."""
+    assert _plan("dry-lakebed-curled-mud", "Bigger mud plates")["rule"] == "scale"
+    assert _plan("charred-shou-sugi-ban", "deeper alligator cracks")["rule"] == "relief"

@@ -211,7 +211,7 @@ def _trigger_word(c: Context) -> tuple[str, tuple[str, ...]] | None:
     request asks for an amount of it (more, less, add, some ...), is that word alone or leads
     it (its first word that is not filler: "make it look snowy after a storm"), with
     the stems its layers would be named by."""
-    direction = c.ew["more"] | c.ew["less"] | set(c.vocabulary.amounts)
+    direction = c.ew["more"] | c.ew["less"] | c.ew["adding"] | set(c.vocabulary.amounts)
     alone = len([n for n in c.nouns if n not in direction]) == 1
     head = c.nouns[0] if c.nouns else None  # "make it look snowy after a storm": it leads
     # "make the roof look snowy": what it should look like
@@ -289,7 +289,8 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     cover = amounts[0] if amounts else None
     scale = 1.0
     if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
-        scale = c.ew.f("spot_scale")
+        # ("a big wine stain": marks at the overlay's own size)
+        scale = 1.0 if set(c.words) & c.ew["bigger"] else c.ew.f("spot_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     look, coloured = _look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
@@ -343,6 +344,7 @@ def _look(
     ws = c.words
     first = word.split()[0]
     i = ws.index(first) if first in ws else -1
+    own = c.ew.condition_colours.get(word)  # "green patina" on the rust overlay: the patina's
     for j in range(i - 1, max(-1, i - _LOOK_BACK - 1), -1):
         t = ws[j]
         rgb = _colour_of(c, t)
@@ -351,11 +353,11 @@ def _look(
                 break  # "darker grey and a bit wet": the grey is another wish's
             before = _colour_of(c, ws[j - 1]) if j > 0 else None  # "reddish brown"
             if before is None:
-                return _blend(rgb, ov), (t,)
-            return _blend(_mean(before, rgb), ov), (ws[j - 1], t)
+                return _blend(rgb, ov, own), (t,)
+            return _blend(_mean(before, rgb), ov, own), (ws[j - 1], t)
         noun = t not in c.vocabulary.tones and t not in c.ew["filler"]
-        if noun and (j == i - 1 or not _phrase_noun(c, t)):
-            break  # "green moss": next to it; "the red tiles and moss": another thing's
+        if noun and not _phrase_noun(c, t):
+            break  # "the red tiles and moss": another thing's ("yellow sulphur deposits")
     after = _described_after(c, first)
     for k, t in enumerate(after):
         rgb = _colour_of(c, t)
@@ -363,8 +365,8 @@ def _look(
             nxt = after[k + 1] if k + 1 < len(after) else ""
             more = _colour_of(c, nxt) if nxt else None  # "yellow-brown"
             if more is None:
-                return _blend(rgb, ov), (t,)
-            return _blend(_mean(rgb, more), ov), (t, nxt)
+                return _blend(rgb, ov, own), (t,)
+            return _blend(_mean(rgb, more), ov, own), (t, nxt)
     return c.ew.condition_colours.get(word), ()
 
 
@@ -400,8 +402,10 @@ def _mean(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, i
     return (round((a[0] + b[0]) / 2), round((a[1] + b[1]) / 2), round((a[2] + b[2]) / 2))
 
 
-def _blend(rgb: tuple[int, int, int], ov: Overlay) -> tuple[int, int, int]:
-    own = _own_colour(ov)
+def _blend(
+    rgb: tuple[int, int, int], ov: Overlay, look: tuple[int, int, int] | None = None
+) -> tuple[int, int, int]:
+    own = look or _own_colour(ov)
     if own is not None:
         k = _GREY_SHARE if max(rgb) - min(rgb) < 24 else _NAMED_SHARE
         rgb = tuple(a * k + b * (1 - k) for a, b in zip(rgb, own, strict=True))  # type: ignore[assignment]
@@ -487,8 +491,6 @@ def amount_rule(c: Context) -> Plan | None:
         plan = _more_of_layer(c)  # "fewer blisters": less of the layer they name, not bigger
         if plan is not None:
             return plan
-    if head & (size_words - {"fewer"}) or "fewer" in head and ws & (size_words - {"fewer"}):
-        return None  # "bigger chips", "finer cracks", "fewer, larger medallions": a scale
     # a concrete condition before an age word ("older, with some moss": the moss first)
     conds = sorted(
         (
@@ -498,6 +500,11 @@ def amount_rule(c: Context) -> Plan | None:
         ),
         key=lambda t: t in c.ew["age"],
     )
+    sized = head & (size_words - {"fewer"}) or "fewer" in head and ws & (size_words - {"fewer"})
+    adds = _added_word(c, conds) if sized and ws & c.ew["adding"] else None
+    if sized and not (adds and _absent(c, *adds)):
+        return None  # "bigger chips", "finer cracks", "fewer, larger medallions": a scale
+    # ("a big wine stain": the size of a stain to add, not of the program's features)
     if conds:
         word = conds[0]
         stems = c.ew.conditions[word]
@@ -515,6 +522,8 @@ def amount_rule(c: Context) -> Plan | None:
     # ("the holes should be deeper": a comparative changes what is there)
     changes = set(c.ew.comparative) | set(c.ew.relief) | c.ew["bigger"] | c.ew["smaller"]
     changes -= set(c.vocabulary.amounts)  # "a little green moss" is an amount
+    if ws & c.ew["adding"]:  # "put a big wine stain on it": the size of what is added
+        changes -= c.ew["bigger"] | c.ew["smaller"]
     added = absent and not word.endswith(("y", "ed")) and not set(c.words) & changes
     if asked is None and _property_word(c, word) and not added:
         # "drier mud", "a reddish mud", "prints deeper into the mud": the condition's noun
@@ -602,6 +611,39 @@ def _direction(c: Context, word: str) -> bool | None:
     return None
 
 
+def _added_word(c: Context, conds: Sequence[str]) -> tuple[str, Sequence[str]] | None:
+    """The condition a request adds (its word and stems): the first condition word, else an
+    overlay's trigger ("put a big wine stain on it")."""
+    if conds:
+        return conds[0], c.ew.conditions[conds[0]]
+    return _trigger_word(c)
+
+
+def _absent(c: Context, word: str, stems: Sequence[str] = ()) -> bool:
+    """Whether the program has nothing of the condition ``word`` (no labelled amount, layer or
+    part of its name): asked for, it is added."""
+    stems = stems or c.ew.conditions.get(word, ())
+    found = _labelled(c, stems) or _overlay_covers(c, stems) or _condition_layers(c, stems)
+    return not (found or named_in_program(c.program, [word, *stems], c.ew))
+
+
+def _conditions_colour(c: Context, said: Sequence[str], i: int) -> bool:
+    """Whether the colour at ``i`` is another condition's own ("black mould", "yellow sulphur
+    deposits"): a condition word follows within its noun phrase, past no part of the program
+    ("drier mud" is the mud's property)."""
+    w, t0 = c.vocabulary, said[i]
+    if t0 in c.ew.relief or t0 in c.ew.comparative:  # "deeper cracks": the cracks' property
+        return False
+    if w.ish_base(t0) not in w.named and t0 not in w.tones:
+        return False
+    for t in said[i + 1 : i + 4]:
+        if t in c.ew.conditions or _overlay_for(t, ()) is not None:
+            return True
+        if t in c.ew["filler"] or named_in_program(c.program, [t], c.ew):
+            return False
+    return False
+
+
 def _property_word(c: Context, word: str) -> bool:
     """Whether the request names a property of something (a colour, a finish, a relief), other
     than the condition's word itself."""
@@ -611,7 +653,11 @@ def _property_word(c: Context, word: str) -> bool:
     said = list(c.said) or tokens(c.request)  # as written: a look read as colours is none
     sub = replace(c, words=said)  # "more of the dark flecks": a part's look, no property
     return any(
-        t != word and t not in c.ew.conditions and _is_property(c, t) and not describes_part(sub, i)
+        t != word
+        and t not in c.ew.conditions
+        and _is_property(c, t)
+        and not describes_part(sub, i)
+        and not _conditions_colour(c, said, i)
         for i, t in enumerate(said)
     )
 
