@@ -419,9 +419,9 @@ class _Reader:
     def role_near(self, start: int, end: int) -> str | None:
         k = end  # the forward window is 4 words, not counting a list of colours after this one
         while k < len(self.t) and k < end + 4:
-            if self.t[k] in {"and", "or", ","} and self.colour_word_at(k + 1):
+            if k == end and self.t[k] in {"and", "or", ","} and self.colour_word_at(k + 1):
                 end, k = end + 2, k + 2  # "black and gray line patterns": both are the lines'
-            else:
+            else:  # ("black marble, white veins": the white is the veins', the black not)
                 k += 1
         forward = range(end, min(end + 4, len(self.t)))
         for span in (forward, range(start - 1, max(start - 7, -1), -1)):

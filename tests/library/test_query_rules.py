@@ -326,3 +326,12 @@ def test_hand_painted_is_a_style_not_a_coat_of_paint() -> None:
     assert "painted" not in [m.name for m in said.overlays]
     coat = read("painted brick wall", words(), lib.triggers, lib.weak_triggers)
     assert "painted" in [m.name for m in coat.overlays]
+
+
+def test_a_colour_list_is_only_colours_side_by_side() -> None:
+    """ "black marble, white veins": the white is the veins', the black the marble's (the
+    black took the veins' role across the comma and the marble came out white)."""
+    got = {m.words: m.role for m in req("nero marquina black marble, white veins").colours}
+    assert got["black"] is None and got["white"] == "accent"
+    listed = {m.words: m.role for m in req("black and gray line patterns").colours}
+    assert listed["black"] == listed["gray"] == "accent"
