@@ -443,7 +443,7 @@ def test_a_condition_is_added_not_the_material_recoloured(
     if "splatter" in request_:
         assert "as spots" in plan["note"]
     if "big" in request_:
-        assert "as spots" not in plan["note"]  # a big stain keeps the overlay's own size
+        assert "(size x2)" in plan["note"]  # one big stain: large marks, not a scatter
     look = _look(plan["note"])
     if "yellow" in request_:
         assert look is not None and look[0] > look[2] + 50 and look[1] > look[2] + 50
@@ -456,3 +456,10 @@ def test_a_size_or_depth_word_still_changes_the_programs_own_features() -> None:
     there: no condition is added."""
     assert _plan("dry-lakebed-curled-mud", "Bigger mud plates")["rule"] == "scale"
     assert _plan("charred-shou-sugi-ban", "deeper alligator cracks")["rule"] == "relief"
+
+
+def test_one_stain_is_one_or_two_large_marks_and_stains_a_scatter() -> None:
+    one = _plan("cardboard", "put a coffee stain on it")["note"]
+    many = _plan("cardboard", "add coffee stains")["note"]
+    few = _plan("cardboard", "add a few rust spots")["note"]
+    assert "(size x2)" in one and "(size x0.5)" in many and "(size x0.5)" in few

@@ -289,8 +289,11 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     cover = amounts[0] if amounts else None
     scale = 1.0
     if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
-        # ("a big wine stain": marks at the overlay's own size)
+        # ("a big wine stain": marks at the overlay's own size; "a coffee stain": one or two
+        # large marks per repeat, not a scatter)
         scale = 1.0 if set(c.words) & c.ew["bigger"] else c.ew.f("spot_scale")
+        if _one_mark(c, word):
+            scale = c.ew.f("single_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     look, coloured = _look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
@@ -328,6 +331,17 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         graded=bool(ov.cover),
         said=(*word.split(), *coloured),
     )
+
+
+def _one_mark(c: Context, word: str) -> bool:
+    """Whether the request asks for one mark ("a coffee stain", "one big water stain"): a
+    singular article before the condition's mark noun, and no plural mark noun."""
+    ws = c.words
+    marks = [k for k, t in enumerate(ws) if t in c.ew["spots"] or t == word]
+    if not marks or any(ws[k].endswith("s") for k in marks):  # "a few stains": several
+        return False
+    k = marks[0]
+    return any(t in c.ew["single"] for t in ws[max(0, k - 4) : k])
 
 
 def _look(
