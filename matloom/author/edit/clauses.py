@@ -52,15 +52,26 @@ def join_clauses(
         overlay = plan.rule.startswith("overlay")
         if overlay and _describing(tokens(clause)):
             continue  # a clause describing the condition ("rust, the kind you get ...")
-        # the condition's own words and colour are its own ("reddish-brown clay and dirt")
-        sub = replace(c, words=[t for t in tokens(clause) if not overlay or t not in plan.said])
+        # the condition's own clause: its words and colour are its own ("reddish-brown clay
+        # and dirt"); another clause keeps them ("add red rust and make the tiles red")
+        words = tokens(clause)
+        v = c.vocabulary
+        own = (
+            overlay
+            and bool(plan.said)
+            and (
+                plan.said[0] in words  # the condition's word ("snow" is a colour name too)
+                or any(t in plan.said and v.ish_base(t) not in v.named for t in words)
+            )
+        )
+        sub = replace(c, words=[t for t in words if not own or t not in plan.said])
         if (
             not single
             and (plan.rule.startswith("colour") or overlay)
             and _describes(c, sub.words, comparatives=not overlay)
         ):
             continue  # "the wires rusty, orange-brown": the colour of the same part
-        if overlay and not single and not named_in_program(c.program, sub.words, c.ew):
+        if overlay and not single and not named_in_program(c.program, words, c.ew):
             continue  # "lichen, those pale yellow-green patches": the added condition's look
         try:
             if single:

@@ -26,6 +26,7 @@ from dataclasses import replace
 from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
+from matloom.author.edit.looks import condition_look, one_mark
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
 from matloom.author.edit.targets import (
@@ -40,7 +41,6 @@ from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
-from matloom.lang.static import static_number
 from matloom.lang.tileable import tileable_warnings
 from matloom.library.overlay import HOST_HEIGHT, Overlay, constant
 
@@ -292,10 +292,10 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         # ("a big wine stain": marks at the overlay's own size; "a coffee stain": one or two
         # large marks per repeat, not a scatter)
         scale = 1.0 if set(c.words) & c.ew["bigger"] else c.ew.f("spot_scale")
-        if _one_mark(c, word):
+        if one_mark(c, word) and not set(c.words) & c.ew["smaller"]:  # "a tiny stain"
             scale = c.ew.f("single_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
-    look, coloured = _look(c, word, ov)
+    look, coloured = condition_look(c, word, ov)
     within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
     if gradient is not None:  # "near the bottom" of a program that does not tile
         within = gradient if within is None else A.BinOp("*", within, gradient)
@@ -331,120 +331,6 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         graded=bool(ov.cover),
         said=(*word.split(), *coloured),
     )
-
-
-def _one_mark(c: Context, word: str) -> bool:
-    """Whether the request asks for one mark ("a coffee stain", "one big water stain"): a
-    singular article before the condition's mark noun, and no plural mark noun."""
-    ws = c.words
-    marks = [k for k, t in enumerate(ws) if t in c.ew["spots"] or t == word]
-    if not marks or any(ws[k].endswith("s") for k in marks):  # "a few stains": several
-        return False
-    k = marks[0]
-    return any(t in c.ew["single"] for t in ws[max(0, k - 4) : k])
-
-
-def _look(
-    c: Context, word: str, ov: Overlay
-) -> tuple[tuple[int, int, int] | None, tuple[str, ...]]:
-    """The colour of the condition ``word``'s overlay ``ov`` and the words that said it: a
-    colour the request names before it in its noun phrase ("orange rust", "pale grey lichen",
-    "reddish-brown clay and dirt": a colour right before it or before another noun of the
-    phrase, not past a part of the program nor before "and", "darker grey and a bit wet"),
-    else the colour of a clause right after that describes it ("a water stain, that
-    yellow-brown ring"); half way from the overlay's own, which a colour name's pure value
-    would not resemble (a grey, black or white keeps most of its own: "black mould"); else its
-    own look in ``[condition_colours]``."""
-    ws = c.words
-    first = word.split()[0]
-    i = ws.index(first) if first in ws else -1
-    own = c.ew.condition_colours.get(word)  # "green patina" on the rust overlay: the patina's
-    for j in range(i - 1, max(-1, i - _LOOK_BACK - 1), -1):
-        t = ws[j]
-        rgb = _colour_of(c, t)
-        if rgb is not None:
-            if j < i - 1 and not _phrase_noun(c, ws[j + 1]):
-                break  # "darker grey and a bit wet": the grey is another wish's
-            before = _colour_of(c, ws[j - 1]) if j > 0 else None  # "reddish brown"
-            if before is None:
-                return _blend(rgb, ov, own), (t,)
-            return _blend(_mean(before, rgb), ov, own), (ws[j - 1], t)
-        noun = t not in c.vocabulary.tones and t not in c.ew["filler"]
-        if noun and not _phrase_noun(c, t):
-            break  # "the red tiles and moss": another thing's ("yellow sulphur deposits")
-    after = _described_after(c, first)
-    for k, t in enumerate(after):
-        rgb = _colour_of(c, t)
-        if rgb is not None:
-            nxt = after[k + 1] if k + 1 < len(after) else ""
-            more = _colour_of(c, nxt) if nxt else None  # "yellow-brown"
-            if more is None:
-                return _blend(rgb, ov, own), (t,)
-            return _blend(_mean(rgb, more), ov, own), (t, nxt)
-    return c.ew.condition_colours.get(word), ()
-
-
-def _phrase_noun(c: Context, t: str) -> bool:
-    """Whether ``t`` may stand inside a condition's noun phrase ("clay" in "reddish-brown clay
-    and dirt"): a word that is no filler, tone, colour or part of the program."""
-    return (
-        len(t) > 2
-        and t not in c.ew["filler"]
-        and t not in c.vocabulary.tones
-        and _colour_of(c, t) is None
-        and not named_in_program(c.program, [t], c.ew)
-    )
-
-
-#: how far back a condition's colour may stand ("reddish brown clay and dirt": four words)
-_LOOK_BACK = 4
-#: the clause after a condition's that describes it ("a water stain, that yellow-brown ring")
-_DESCRIBES = frozenset({"that", "those", "which", "like", "kind", "sort"})
-#: how much of its own a named colour keeps in a condition's look (the rest is the
-#: overlay's): a hue half, a grey, black or white most
-_NAMED_SHARE, _GREY_SHARE = 0.5, 0.8
-
-
-def _colour_of(c: Context, t: str) -> tuple[int, int, int] | None:
-    base = c.vocabulary.ish_base(t)
-    if base in c.vocabulary.named and base not in c.ew.conditions:
-        return c.vocabulary.named[base]
-    return None
-
-
-def _mean(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
-    return (round((a[0] + b[0]) / 2), round((a[1] + b[1]) / 2), round((a[2] + b[2]) / 2))
-
-
-def _blend(
-    rgb: tuple[int, int, int], ov: Overlay, look: tuple[int, int, int] | None = None
-) -> tuple[int, int, int]:
-    own = look or _own_colour(ov)
-    if own is not None:
-        k = _GREY_SHARE if max(rgb) - min(rgb) < 24 else _NAMED_SHARE
-        rgb = tuple(a * k + b * (1 - k) for a, b in zip(rgb, own, strict=True))  # type: ignore[assignment]
-    return (round(rgb[0]), round(rgb[1]), round(rgb[2]))
-
-
-def _described_after(c: Context, first: str) -> list[str]:
-    """The words of the clause right after the one naming the condition ``first``, when that
-    clause describes it (it opens with "that", "those", "which", "like", "the kind")."""
-    parts = [tokens(s) for s in re.split(r"[,;:]|\s[-–—]\s", c.request.lower())]
-    for k, words in enumerate(parts[:-1]):
-        after = [w for w in parts[k + 1] if w not in c.ew["articles"] or w == "that"]
-        if first in words and after and after[0] in _DESCRIBES:
-            return after
-    return []
-
-
-def _own_colour(ov: Overlay) -> tuple[float, float, float] | None:
-    """The overlay's own colour (its first colour slot that is not the host's)."""
-    slot = ov.accent_slot
-    if slot is None:
-        return None
-    defines = [ov.ast.define(f"{slot}_{ch}") for ch in "rgb"]
-    values = [None if d is None else static_number(d.expr) for d in defines]
-    return None if None in values else tuple(float(v) for v in values)  # type: ignore[return-value]
 
 
 def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
@@ -516,7 +402,7 @@ def amount_rule(c: Context) -> Plan | None:
     )
     sized = head & (size_words - {"fewer"}) or "fewer" in head and ws & (size_words - {"fewer"})
     adds = _added_word(c, conds) if sized and ws & c.ew["adding"] else None
-    if sized and not (adds and _absent(c, *adds)):
+    if sized and not (adds and _absent(c, *adds) and not _sizes_part(c, size_words)):
         return None  # "bigger chips", "finer cracks", "fewer, larger medallions": a scale
     # ("a big wine stain": the size of a stain to add, not of the program's features)
     if conds:
@@ -631,6 +517,17 @@ def _added_word(c: Context, conds: Sequence[str]) -> tuple[str, Sequence[str]] |
     if conds:
         return conds[0], c.ew.conditions[conds[0]]
     return _trigger_word(c)
+
+
+def _sizes_part(c: Context, size_words: set[str] | frozenset[str]) -> bool:
+    """Whether a size word sizes a part of the program ("add bigger tiles and some rust"), not
+    the condition added ("a big dark wine stain") nor another thing ("a few small dents")."""
+    ws = c.words
+    return any(
+        named_in_program(c.program, ws[j + 1 : j + 4], c.ew)
+        for j, t in enumerate(ws)
+        if t in size_words
+    )
 
 
 def _absent(c: Context, word: str, stems: Sequence[str] = ()) -> bool:
