@@ -138,13 +138,13 @@ def _names_colour(c: Context, words: list[str]) -> bool:
 _SIMILE = frozenset({"like", "as"})
 #: Words that open a clause describing an added condition ("a water stain, that yellow-brown
 #: ring"; "rust, the kind you get near the coast")
-_RELATIVE = frozenset({"that", "those", "which", "kind", "sort"})
+RELATIVE = frozenset({"that", "those", "which", "kind", "sort"})
 
 
 def _describing(words: list[str]) -> bool:
     """Whether a clause opens by describing the thing before it (a simile or a relative)."""
     lead = [w for w in words[:3] if w not in ("the", "a", "an")]
-    return bool(lead) and (lead[0] in _SIMILE or lead[0] in _RELATIVE)
+    return bool(lead) and (lead[0] in _SIMILE or lead[0] in RELATIVE)
 
 
 def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:

@@ -401,18 +401,16 @@ def amount_rule(c: Context) -> Plan | None:
         key=lambda t: t in c.ew["age"],
     )
     sized = head & (size_words - {"fewer"}) or "fewer" in head and ws & (size_words - {"fewer"})
-    adds = _added_word(c, conds) if sized and ws & c.ew["adding"] else None
-    if sized and not (adds and _absent(c, *adds) and not _sizes_part(c, size_words)):
+    adds = _added_word(c, conds)
+    adding = ws & c.ew["adding"]
+    if sized and not (
+        adds is not None and adding and _absent(c, *adds) and not _sizes_part(c, size_words)
+    ):
         return None  # "bigger chips", "finer cracks", "fewer, larger medallions": a scale
     # ("a big wine stain": the size of a stain to add, not of the program's features)
-    if conds:
-        word = conds[0]
-        stems = c.ew.conditions[word]
-    else:
-        found = _trigger_word(c)
-        if found is None:
-            return _more_of_layer(c)
-        word, stems = found
+    if adds is None:
+        return _more_of_layer(c)
+    word, stems = adds
     asked = _direction(c, word)
     found = _labelled(c, stems) or _overlay_covers(c, stems)
     layers = _condition_layers(c, stems)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 
+from matloom.author.edit.clauses import RELATIVE
 from matloom.author.edit.lexicon import tokens
 from matloom.author.edit.plan import Context
 from matloom.author.edit.targets import named_in_program
@@ -68,7 +69,7 @@ def _phrase_noun(c: Context, t: str) -> bool:
 #: how far back a condition's colour may stand ("reddish brown clay and dirt": four words)
 _LOOK_BACK = 4
 #: the clause after a condition's that describes it ("a water stain, that yellow-brown ring")
-_DESCRIBES = frozenset({"that", "those", "which", "like", "kind", "sort"})
+_DESCRIBES = RELATIVE | {"like"}
 #: how much of its own a named colour keeps in a condition's look (the rest is the
 #: overlay's): a hue half, a grey, black or white most
 _NAMED_SHARE, _GREY_SHARE = 0.5, 0.8

@@ -150,12 +150,13 @@ def _named_motif(named: NamedMaterial | None, has_accent: bool, base: RGB) -> RG
     """A named material's accent colour for its motif when its base shows no accents
     (pepperoni on a pizza, cobalt flowers on Iznik ware), if it stands out on ``base``."""
     acc = named.colour("accent") if named is not None and not has_accent else None
-    if acc is None or abs(luminance(acc) - luminance(base)) + _hue_gap(acc, base) < 0.15:
+    if acc is None or abs(luminance(acc) - luminance(base)) + _rgb_gap(acc, base) < 0.15:
         return None
     return acc
 
 
-def _hue_gap(a: RGB, b: RGB) -> float:
+def _rgb_gap(a: RGB, b: RGB) -> float:
+    """The mean channel difference of two colours, 0..1."""
     return sum(abs(x - y) for x, y in zip(a, b, strict=True)) / (3 * 255)
 
 

@@ -230,19 +230,17 @@ def _foreign_colours(
             and not any(entry.role(s) == m.role for s in entry.colours)
         )
 
-        def strange(t: str, k: int) -> bool:
-            """A noun the entry does not show, that no rule took and no table knows."""
-            return (
-                t.isalpha()
-                and k not in used
-                and t not in w.stop_words
-                and t not in known
-                and t not in w.roles
-                and not t.endswith(("ed", "ing", "ly"))
-                and lib.index.stem(t) not in terms
-            )
-
-        foreign = roleless and m.slot is None and strange(noun, j)
+        foreign = (  # a noun the entry does not show, that no rule took and no table knows
+            roleless
+            and m.slot is None
+            and noun.isalpha()
+            and j not in used
+            and noun not in w.stop_words
+            and noun not in known
+            and noun not in w.roles
+            and not noun.endswith(("ed", "ing", "ly"))
+            and lib.index.stem(noun) not in terms
+        )
         metal = m.words in w.metal_colours  # "copper carbonate mineral": the metal itself
         if foreign and not metal and _modifies_material(tokens, j, known, terms, lib, w):
             foreign = False  # "forest green polar fleece", "lilac mohair knit": the material's
