@@ -152,20 +152,18 @@ class DaskExecutor:
             on_progress(progress)
         for fut in as_completed(list(futures)):
             task = futures[fut]
-            if fut.status == "finished":
-                try:
-                    result = fut.result()
-                except Exception as err:  # noqa: BLE001 - lost between status and result
-                    outcomes[task.key] = Outcome(task.key, False, error=one_line(err))
-                    progress.failed += 1
-                else:
-                    outcomes[task.key] = Outcome(task.key, True, result=result)
-                    progress.done += 1
-            else:
-                err = fut.exception()
-                error = one_line(err) if err is not None else f"task {fut.status}"
-                outcomes[task.key] = Outcome(task.key, False, error=error)
+            # result() rather than status: a finished result held by a worker that then dies is
+            # lost and recomputed by the scheduler, so the status can leave "finished" for a
+            # while; result() waits for the recomputation, or raises the task's error (or
+            # KilledWorker, CancelledError) which becomes a one-line failed outcome.
+            try:
+                result = fut.result()
+            except Exception as err:  # noqa: BLE001 - any task error is an outcome, not a raise
+                outcomes[task.key] = Outcome(task.key, False, error=one_line(err))
                 progress.failed += 1
+            else:
+                outcomes[task.key] = Outcome(task.key, True, result=result)
+                progress.done += 1
             fut.release()
             progress.running -= 1
             if on_progress:
