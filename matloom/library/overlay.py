@@ -252,6 +252,7 @@ def compose(
     reseed: object = None,
     scale: float = 1.0,
     streaks: bool = False,
+    follow_relief: bool = True,
 ) -> A.Program:
     """``host`` with ``overlay``'s layers (all but its first) and their Defines on top.
 
@@ -263,6 +264,8 @@ def compose(
     ``relief`` Define is bound to the host's relief (:func:`~matloom.library.relief.relief_of`)
     when the host has one, so what settles in hollows finds the host's joints and pits; its
     ``surface`` Define to the host's height, so what lies on the surface (drops) sits on it.
+    ``follow_relief=False`` leaves the ``relief`` Define its stand-in value (a request that
+    places the overlay on the relief's high or low parts itself).
     """
     ov = overlay.ast
     if cover is not None and overlay.cover:
@@ -300,7 +303,9 @@ def compose(
         for d in ov.defines
         if d.name not in drop
     ]
-    relief = overlay.relief if overlay.relief and ov.define(overlay.relief) else None
+    relief = (
+        overlay.relief if follow_relief and overlay.relief and ov.define(overlay.relief) else None
+    )
     surface = overlay.surface if overlay.surface and ov.define(overlay.surface) else None
     if relief or surface:
         defines = _bind_relief(

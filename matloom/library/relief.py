@@ -107,6 +107,21 @@ def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
     return h, parse_expression(rank)
 
 
+def height_span(program: A.Program) -> tuple[A.Node, float, float] | None:
+    """(H, low, high): the program's composite height as one expression and its 1st and 99th
+    percentiles over the surface, for a mask of its low parts (the joints, grooves, crevices)
+    or its high ones (the tops, ridges); None when it has no height, a costly one, or one too
+    shallow to see."""
+    h = height_expr(program)
+    if h is None:
+        return None
+    measured = _height_quantiles(program)
+    if measured is None:
+        return None
+    knots, _ = measured
+    return h, knots[0][1], knots[-1][1]
+
+
 def _height_quantiles(
     program: A.Program,
 ) -> tuple[tuple[tuple[float, float], ...], float] | None:

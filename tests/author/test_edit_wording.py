@@ -278,7 +278,9 @@ def test_dirt_in_the_joints_without_a_joint_width_uses_the_joint_coloured_base()
 
 
 def test_something_put_in_joints_a_program_lacks_is_refused_not_spilled() -> None:
-    with pytest.raises(EditRefused, match="no joints"):
+    # no joint width, and its relief has no distinct low part (the blisters stand on a flat
+    # surface that is most of it): nothing to fill
+    with pytest.raises(EditRefused, match="no joints found in this program to put the moss in"):
         edit_offline(BLISTERED, "add a little moss growing in the gaps")
 
 

@@ -27,7 +27,8 @@ from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.looks import condition_look, one_mark
-from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
+from matloom.author.edit.measured import measured_coverage, measured_layer
+from matloom.author.edit.places import place_of
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
 from matloom.author.edit.targets import (
     define_closure,
@@ -35,7 +36,6 @@ from matloom.author.edit.targets import (
     mask_names,
     material_noun,
     named_in_program,
-    param_layers,
 )
 from matloom.lang import ast as A
 from matloom.lang.deps import BLENDED, MAXED
@@ -115,13 +115,16 @@ def overlay_lines(
     within: A.Node | None = None,
     colour: tuple[int, int, int] | None = None,
     streaks: bool = False,
+    follow_relief: bool = True,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
     where a name is taken, its seeds re-derived where one is taken; its host colour bound to
     the program's main colour slot), and the channels a layer on top changes where it covers.
     ``cover``: the overlay's amount (None: its own); ``scale``: its feature size factor;
     ``within``: a mask its layers are confined to (the joints); ``colour``: the colour of what
-    it adds (None: its own); ``streaks``: its patches run down as streaks. ValueError when it
+    it adds (None: its own); ``streaks``: its patches run down as streaks; ``follow_relief``:
+    whether it settles by the host's relief as it does on its own (not when the request places
+    it on the relief's high or low parts). ValueError when it
     would break the program's tiling."""
     from matloom.library.overlay import compose
     from matloom.library.passes.compose import reseed
@@ -147,6 +150,7 @@ def overlay_lines(
         reseed=fresh,
         scale=scale,
         streaks=streaks,
+        follow_relief=follow_relief,
     )
     if within is not None:  # confined: each new layer covers only where `within` is
         layers = tuple(
@@ -236,55 +240,11 @@ def _overlay_for(word: str, stems: Sequence[str]) -> Overlay | None:
     return None
 
 
-#: A place on the surface as a whole, not on each of its features ("near the bottom", "lower
-#: down", "rising damp"; "on top of each log" is each feature's own top).
-_PLACE_RE = re.compile(
-    r"\b(?:(?:near|at|towards?|along|round|around)\s+the\s+(?:bottom|top|base)\b"
-    r"(?!\s+of\s+(?:each|every|all|the\s+\w+s\b))"
-    r"|(?:lower|upper)\s+(?:down|up|part|half|courses|rows|section|edge|area)"
-    r"|(?:bottom|top)\s+of\s+the\s+(?:wall|surface|panel|texture|image|roof|floor)"
-    r"|rising\s+damp|higher\s+up|lower\s+down)\b"
-)
-
-
-def _placed_on_surface(c: Context) -> str | None:
-    """The place a request puts its condition on the surface as a whole, if any."""
-    m = _PLACE_RE.search(" ".join(c.said))
-    return m.group(0) if m else None
-
-
-def _gradient(c: Context, place: str) -> A.Node:
-    """A mask rising to 1 over the lower (or upper) half of the View: the place ``place``
-    names."""
-    _, y1, _, y2 = c.program.view_tuple
-    lo, hi = min(y1, y2), max(y1, y2)
-    h = hi - lo
-    up = any(w in place for w in ("top", "upper", "higher"))
-    edges = (lo + 0.45 * h, lo + 0.9 * h) if up else (lo + 0.55 * h, lo + 0.1 * h)
-    return A.Call(
-        "Smoothstep",
-        (
-            A.Arg("edge0", A.Num(round(edges[0], 6)), keyword=False),
-            A.Arg("edge1", A.Num(round(edges[1], 6)), keyword=False),
-            A.Arg("x", A.Call("Y"), keyword=False),
-        ),
-    )
-
-
 def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     ov = _overlay_for(word, stems)
     if ov is None:
         return None
-    place = _placed_on_surface(c)
-    if place is not None and c.program.tileable:
-        # a gradient over the surface cannot repeat seamlessly; the overlay everywhere would
-        # not be what was asked
-        raise c.refuse(
-            f"the {word} is asked for {place!r}, a place on the surface as a whole, which a "
-            "tileable program cannot have (every part of it repeats); make the program "
-            "non-tileable first"
-        )
-    gradient = _gradient(c, place) if place is not None else None
+    place = place_of(c, word)  # the joints, the relief's low or high parts, the middle ...
     amounts = [c.vocabulary.amounts[t] for t in c.words if t in c.vocabulary.amounts]
     cover = amounts[0] if amounts else None
     scale = 1.0
@@ -296,13 +256,9 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
             scale = c.ew.f("single_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     look, coloured = condition_look(c, word, ov)
-    within, where = _joint_mask(c) if set(c.words) & c.ew["joint"] else (None, "")
-    if gradient is not None:  # "near the bottom" of a program that does not tile
-        within = gradient if within is None else A.BinOp("*", within, gradient)
-        where += f" {place}"
-    if within is None and _in_joints(c):  # "moss in the gaps": never spilled over the stones
-        raise c.refuse(f"no joints found in this program to put the {word} in")
-    if within is not None and not amounts:  # the joints asked for are the joints it fills
+    within, where = place.mask, place.where
+    scattered = scale == c.ew.f("spot_scale")  # "mould spots from a corner": spots still
+    if within is not None and not amounts and not scattered:  # the place asked for is filled
         cover = c.ew.f("joint_cover")
     if c.strength > 1 and ov.cover:
         # a condition that does not show is added more strongly (the edit escalates it)
@@ -312,9 +268,13 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
             cover = round(min(c.ew.f("overlay_max_cover"), start * c.strength), 3)
     streaks = bool(ov.streaks) and bool(set(c.words) & c.vocabulary.streaks)
     try:
-        add, channels = overlay_lines(c.program, ov, cover, scale, within, look, streaks)
+        host = add_lines(c.program, place.lines)  # the Defines the place's mask reads
+        add, channels = overlay_lines(
+            host, ov, cover, scale, within, look, streaks, follow_relief=not place.on_relief
+        )
     except ValueError as err:
         raise c.refuse(str(err)) from None
+    add = (*place.lines, *add)
     amount = f" (amount {cover:g})" if cover is not None else ""
     if look is not None:
         amount += f" coloured {look}"
@@ -330,48 +290,6 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         intended=channels,
         graded=bool(ov.cover),
         said=(*word.split(), *coloured),
-    )
-
-
-def _joint_mask(c: Context) -> tuple[A.Node | None, str]:
-    """The joints ("dirt in the grout lines"): where the mask Define that holds the program's
-    joint width (``define:tiles.Bricks.mortar``) is low, or high when the joints are its
-    majority value's opposite; (None, "") when the program has no joint parameter."""
-    for p in c.params:
-        if p.kind != "size" or not any(k in p.address.lower() for k in c.ew.joint_params):
-            continue
-        m = re.fullmatch(r"define:(\w+)\.\w+\.\w+", p.address)
-        if m is None or c.program.define(m.group(1)) is None:
-            continue
-        name = m.group(1)
-        mask: A.Node = A.Ref(name)
-        # the joints are the thin part: the mask's minority value
-        if mask_coverage(c.program, mask) > 0.5:
-            mask = A.BinOp("-", A.Num(1), mask)
-        return mask, f" in the joints (of {name})"
-    # no joint width: the joints are what a joint-coloured base shows between the layers above
-    # ("Define(grout_r, ...)" paints the first layer; the tiles' layer covers the rest)
-    for p in c.params:
-        if p.kind != "colour" or not split_words(p.address.removeprefix("define:")) & c.ew["joint"]:
-            continue
-        if 0 in param_layers(p, c.program) and len(c.program.layers) > 1:
-            cover = c.program.layers[1].alpha
-            if cover is not None and mask_coverage(c.program, cover) > 0.5:
-                return A.BinOp(
-                    "-", A.Num(1), cover
-                ), " in the joints (where the layer above leaves them)"
-    return None, ""
-
-
-#: Words before a joint noun that place something in the joints ("moss in the gaps").
-_PLACE = frozenset({"in", "into", "between", "along", "inside", "within"})
-
-
-def _in_joints(c: Context) -> bool:
-    ws = c.words
-    return any(
-        t in c.ew["joint"] and any(w in _PLACE for w in ws[max(0, i - 3) : i])
-        for i, t in enumerate(ws)
     )
 
 

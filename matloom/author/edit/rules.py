@@ -357,7 +357,7 @@ _KEEP_RE = re.compile(
 #: the tiles up" bigger tiles.
 _DOWN_VERBS = r"(?:knock|tone|turn|bring|dial|take)"
 _GLOSS_WORDS = r"gloss|shine|shininess|glossiness|reflections?|sheen"
-_PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+_PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...] = (
     (re.compile(r"\b(?:pull|cut|dial|roll|hold|push)\s+((?:the\s+)?\w+)\s+back\b"), r"less \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})up\b"), r"bigger \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})down\b"), r"smaller \1"),
@@ -378,6 +378,26 @@ _PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
         re.compile(r"\b(?:white\s+)?(?:salt|salty)\s+(?:stains?|bloom|deposits?|marks)\b"),
         "efflorescence",
     ),
+    # "yellow it with age", "grey them a little": a colour word as a verb moves towards it
+    (
+        re.compile(r"\b(yellow|brown|grey|gray|red|white|black)\s+(?:it|them)\b"),
+        lambda m: {"grey": "greyer", "gray": "grayer", "red": "redder"}.get(
+            m.group(1), f"{m.group(1)}er"
+        ),
+    ),
+    # "dark water spots", "rain spots": wet marks (darker and glossier where they are)
+    (re.compile(r"\b(?:water|rain|raindrop)\s+(spots?|marks?|splashes)\b"), r"wet \1"),
+    # "a layer of grey volcanic ash", "a crust of ash": grey dust (not the colour ash)
+    (re.compile(r"\bvolcanic\s+ash\b"), "ash"),
+    (
+        re.compile(
+            r"\b(layer|crust|film|dusting|coat|coating|covering)\s+of\s+"
+            r"((?:fine|light|thin|thick|grey|gray|white|black|dark|pale)\s+)?ash\b"
+        ),
+        lambda m: f"{m.group(1)} of {m.group(2) or 'grey '}dust",
+    ),
+    # "sun-bleached", "sun faded": bleached (the sun is no part of the material)
+    (re.compile(r"\bsun[\s-]+(bleached|faded)\b"), r"\1"),
     # "spaced further apart", "space them out": sparser
     (
         re.compile(r"\b(?:spaced?|spread)\s+(?:\w+\s+)?(?:further|farther|more)\s+apart\b"),
