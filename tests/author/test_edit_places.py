@@ -42,6 +42,21 @@ Material(
 )
 """
 
+#: blue wires (a layer covering a third of the surface) over a pale ground
+WIRES = """View(0, 0, 1, 1, tileable=True)
+Define(ground_r, 220)
+Define(ground_g, 215)
+Define(ground_b, 205)
+Define(wire_r, 60)
+Define(wire_g, 90)
+Define(wire_b, 160)
+Define(wire, Smoothstep(0.34, 0.3, Abs((Fract((X() * 6)) - 0.5))))
+Material(
+  Layer(1).basecolor(ground_r, ground_g, ground_b).roughness(0.8),
+  Layer(wire).basecolor(wire_r, wire_g, wire_b).roughness(0.4)
+)
+"""
+
 N = 64
 
 
@@ -168,3 +183,12 @@ def test_a_colour_word_as_a_verb_moves_towards_it() -> None:
     assert "yellower" in result.report.plan["note"]
     r, g, b = (float(v) for v in result.report.changes[0].to_json()["after"])
     assert 100 < b < 190 and r > 200 and g > 190  # a warmer pale plaster, not bright yellow
+
+
+def test_a_condition_on_a_part_is_on_that_part() -> None:
+    result = _edit(WIRES, "add rust to the wires")
+    assert "on the wires" in result.report.plan["note"]
+    change = _change(WIRES, result.program)
+    colour = np.asarray(evaluate(WIRES, N, N).basecolor_linear)
+    cover = colour[..., 2] > 2 * colour[..., 0]  # the blue wires
+    assert change[cover].mean() > 4 * change[~cover].mean()

@@ -21,10 +21,10 @@ import re
 from dataclasses import dataclass
 
 from matloom.author.edit.apply import add_lines
-from matloom.author.edit.lexicon import split_words
+from matloom.author.edit.lexicon import split_words, stem
 from matloom.author.edit.measured import mask_coverage
 from matloom.author.edit.plan import Context
-from matloom.author.edit.targets import param_layers
+from matloom.author.edit.targets import layer_words, param_layers
 from matloom.lang import ast as A
 from matloom.lang.api import parse_expression
 from matloom.lang.printer import format_expr
@@ -82,6 +82,9 @@ _HIGH = (0.62, 0.82)
 #: "the gaps" of a surface that is mostly low).
 _LOW_SHARE = (0.02, 0.5)
 _HIGH_SHARE = (0.02, 0.9)
+#: Shares of the surface a part's layer may cover to be a part a condition is put on (beyond:
+#: the material itself, "moss on the bricks").
+_PART_SHARE = (0.03, 0.8)
 
 
 def _said(c: Context) -> str:
@@ -310,6 +313,37 @@ def _relief_mask(c: Context, kind: str) -> tuple[A.Node, tuple[str, ...]] | None
     return mask, lines
 
 
+def _part_mask(c: Context, word: str) -> tuple[A.Node, str] | None:
+    """The part a condition is put on ("rust on the wires", "wear the yellow stripes down",
+    "dust on the leaves"): the coverage of the layer (not the first) a noun near the
+    condition names, when it covers part of the surface (:data:`_PART_SHARE`)."""
+    ws = c.words
+    first = word.split()[0]
+    at = ws.index(first) if first in ws else 0
+    skip = c.ew["filler"] | c.ew["joint"] | c.ew["low_places"] | c.ew["high_places"]
+    nouns = [
+        (abs(i - at), i, t)
+        for i, t in enumerate(ws)
+        if 0 < abs(i - at) <= _WINDOW
+        and len(t) > 2
+        and t not in skip
+        and t not in c.ew.conditions
+        and i > 0
+        and ws[i - 1] in _ARTICLES | {"on", "to", "onto", "of"}
+    ]
+    for _, _, t in sorted(nouns):
+        for index in range(1, len(c.program.layers)):
+            alpha = c.program.layers[index].alpha
+            if alpha is None or stem(t) not in {
+                stem(w) for w in layer_words(c.program, index, c.ew)
+            }:
+                continue
+            least, most = _PART_SHARE
+            if least <= mask_coverage(c.program, alpha) <= most:
+                return alpha, f" on the {t}"
+    return None
+
+
 def _times(a: A.Node | None, b: A.Node) -> A.Node:
     return b if a is None else A.BinOp("*", a, b)
 
@@ -331,6 +365,10 @@ def place_of(c: Context, word: str) -> Place:
         )
     # ("moss in the cracks" of a relief with no distinct low part: the overlay settles by the
     # relief as it does on its own, as "moss" alone would)
+    part = _part_mask(c, word) if mask is None else None
+    if part is not None:
+        mask = _times(mask, part[0])
+        where += part[1]
     surface = _surface_mask(c, word)
     if surface is not None:
         mask = _times(mask, surface[0])

@@ -396,6 +396,20 @@ _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ..
         ),
         lambda m: f"{m.group(1)} of {m.group(2) or 'grey '}dust",
     ),
+    # "a thin crust of frost", "a light frost", "a light layer of dust": a little of it
+    (
+        re.compile(
+            r"\b(?:a\s+)?(?:light|thin|fine)\s+(layer|coat|film|crust|covering|skin)\s+of\b"
+        ),
+        r"a little \1 of",
+    ),
+    (
+        re.compile(
+            r"\b(?:a\s+)?(?:light|thin)\s+(frost|snow|dust|rust|moss|dirt|grime|mould|mold|algae|soot"
+            r"|lichen|patina)\b"
+        ),
+        r"a little \1",
+    ),
     # "sun-bleached", "sun faded": bleached (the sun is no part of the material)
     (re.compile(r"\bsun[\s-]+(bleached|faded)\b"), r"\1"),
     # "spaced further apart", "space them out": sparser
