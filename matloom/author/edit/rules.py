@@ -441,9 +441,20 @@ _AS_IS_RE = re.compile(
 )
 
 
+#: A clause saying why, naming what the edit should go with, not what to change ("so it sits
+#: better with the red", "to match the grout").
+_PURPOSE_RE = re.compile(
+    r"\s*,?\s*\b(?:so\s+(?:that\s+)?(?:it|they)\s+(?:sits?|goes?|works?|blends?|pairs?|matches"
+    r"|match|fits?|suits?)|to\s+(?:match|go\s+with|suit|complement))\b[^.;]*",
+    re.IGNORECASE,
+)
+
+
 def _kept_off(request: str) -> str:
-    """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged")."""
+    """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged")
+    and the clauses that say what it should go with ("so it sits better with the red")."""
     asked = _KEEP_RE.sub("", request) or request
+    asked = _PURPOSE_RE.sub("", asked) or asked
     return _AS_IS_RE.sub("", asked) or asked
 
 

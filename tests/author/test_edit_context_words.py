@@ -1,0 +1,46 @@
+"""Words around an edit's target: "too bright" is a colour (not a finish), "rosettes" are a
+print's spots, and a clause saying what the edit should go with ("so it sits better with the
+red", "to match the grout") names no colour to paint."""
+
+from __future__ import annotations
+
+from matloom.author.edit.core import edit_offline
+
+PRINT = """View(0, 0, 1, 1, tileable=True)
+Define(ground_r, 236)
+Define(ground_g, 226)
+Define(ground_b, 200)
+Define(spot_col_r, 40)
+Define(spot_col_g, 30)
+Define(spot_col_b, 20)
+Define(spot, Smoothstep(0.3, 0.25, Worley(base_freq=6, to_01=True, seed=4)))
+Material(
+  Layer(1).basecolor(ground_r, ground_g, ground_b).roughness(0.7),
+  Layer(spot).basecolor(spot_col_r, spot_col_g, spot_col_b).roughness(0.7)
+)
+"""
+
+
+def _changed(request: str) -> dict[str, object]:
+    result = edit_offline(PRINT, request, size=32)
+    rows = (c.to_json() for c in result.report.changes)
+    # the colour parameters (an RGB triple's own lines are listed too)
+    return {r["address"]: r["after"] for r in rows if not r["address"].endswith(("_r", "_g", "_b"))}
+
+
+def test_too_bright_is_a_muted_colour_not_a_rougher_finish() -> None:
+    changed = _changed("the background is too bright")
+    assert not any("roughness" in a for a in changed)
+    r, g, b = changed["define:ground"]  # type: ignore[misc]
+    assert r < 236 and (r - b) < (236 - 200)  # darker and less saturated
+
+
+def test_rosettes_are_the_spots() -> None:
+    assert set(_changed("darker rosettes")) == {"define:spot_col"}
+
+
+def test_a_purpose_clause_names_no_colour() -> None:
+    changed = _changed("make the background oatmeal so it sits better with the red")
+    r, g, b = changed["define:ground"]  # type: ignore[misc]
+    assert r > 180 and g > 170 and abs(r - g) < 30  # oatmeal, not red
+    assert set(changed) == {"define:ground"}
