@@ -70,6 +70,11 @@ class Overlay:
         return next((k for k, kind in self.scalars.items() if kind == "streaks"), None)
 
     @property
+    def ring(self) -> str | None:
+        """The scalar that draws its marks as rings, their rims only (0 or 1), if any."""
+        return next((k for k, kind in self.scalars.items() if kind == "ring"), None)
+
+    @property
     def accent_slot(self) -> str | None:
         """The colour slot of what the overlay adds: its first that is not the host's."""
         return next((c for c in self.colours if c != self.host), None)
@@ -253,6 +258,7 @@ def compose(
     scale: float = 1.0,
     streaks: bool = False,
     follow_relief: bool = True,
+    ring: bool = False,
 ) -> A.Program:
     """``host`` with ``overlay``'s layers (all but its first) and their Defines on top.
 
@@ -264,7 +270,8 @@ def compose(
     ``relief`` Define is bound to the host's relief (:func:`~matloom.library.relief.relief_of`)
     when the host has one, so what settles in hollows finds the host's joints and pits; its
     ``surface`` Define to the host's height, so what lies on the surface (drops) sits on it.
-    ``follow_relief=False`` leaves the ``relief`` Define its stand-in value (a request that
+    ``ring``: its marks are rings, their rims only (an overlay with a ``ring`` scalar: "coffee
+    rings"). ``follow_relief=False`` leaves the ``relief`` Define its stand-in value (a request that
     places the overlay on the relief's high or low parts itself).
     """
     ov = overlay.ast
@@ -272,6 +279,8 @@ def compose(
         ov = define_value(ov, overlay.cover, cover)
     if streaks and overlay.streaks:
         ov = define_value(ov, overlay.streaks, 1)
+    if ring and overlay.ring:
+        ov = define_value(ov, overlay.ring, 1)
     if colour is not None and overlay.colours:
         slot = overlay.accent_slot
         if slot is not None:
@@ -387,6 +396,6 @@ def check_overlay(overlay: Overlay) -> None:
                 )
     if overlay.cover and program.define(overlay.cover) is None:
         raise LibraryError(f"{overlay.path}: scalar {overlay.cover!r} has no Define")
-    for name in (overlay.streaks, overlay.relief, overlay.surface):
+    for name in (overlay.streaks, overlay.ring, overlay.relief, overlay.surface):
         if name and program.define(name) is None:
             raise LibraryError(f"{overlay.path}: {name!r} has no Define")

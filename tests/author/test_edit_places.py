@@ -192,3 +192,16 @@ def test_a_condition_on_a_part_is_on_that_part() -> None:
     colour = np.asarray(evaluate(WIRES, N, N).basecolor_linear)
     cover = colour[..., 2] > 2 * colour[..., 0]  # the blue wires
     assert change[cover].mean() > 4 * change[~cover].mean()
+
+
+def test_a_coffee_ring_is_a_ring_stain_not_a_coffee_colour() -> None:
+    result = _edit(FLAT, "add a coffee ring")
+    note = result.report.plan["note"]
+    assert "'stained' overlay" in note and "as rings" in note
+    assert not any(
+        c.to_json()["address"].startswith("define:plaster") for c in result.report.changes
+    )
+    ring = _change(FLAT, result.program)
+    blot = _change(FLAT, _edit(FLAT, "add a big coffee stain").program)
+    # a ring's strong change is its rim, a thin share of what it marks; a stain's is its body
+    assert 0 < (ring > 0.5 * ring.max()).mean() < 0.5 * (blot > 0.5 * blot.max()).mean()

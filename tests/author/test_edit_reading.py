@@ -462,7 +462,7 @@ def test_one_stain_is_one_or_two_large_marks_and_stains_a_scatter() -> None:
     one = _plan("cardboard", "put a coffee stain on it")["note"]
     many = _plan("cardboard", "add coffee stains")["note"]
     few = _plan("cardboard", "add a few rust spots")["note"]
-    assert "(size x2)" in one and "(size x0.5)" in many and "(size x0.5)" in few
+    assert "(size x2)" in one and "(size x0.35)" in many and "(size x0.35)" in few
 
 
 def test_another_clause_keeps_the_colour_and_the_size_it_asks_for() -> None:
@@ -472,5 +472,5 @@ def test_another_clause_keeps_the_colour_and_the_size_it_asks_for() -> None:
     both = _plan("square-tiles", "add red rust and make the tiles red")
     assert both["rule"] == "overlay+colour"
     assert _plan("square-tiles", "add bigger tiles and some rust")["rule"] == "scale"
-    assert "(size x0.5)" in _plan("cardboard", "put a small coffee stain on it")["note"]
+    assert "(size x0.35)" in _plan("cardboard", "put a small coffee stain on it")["note"]
     assert "(size x2)" in _plan("cardboard", "put a moss stain on it")["note"]

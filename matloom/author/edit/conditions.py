@@ -116,6 +116,7 @@ def overlay_lines(
     colour: tuple[int, int, int] | None = None,
     streaks: bool = False,
     follow_relief: bool = True,
+    ring: bool = False,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The lines that put the library ``overlay`` on top of ``program`` (its Defines renamed
     where a name is taken, its seeds re-derived where one is taken; its host colour bound to
@@ -124,7 +125,7 @@ def overlay_lines(
     ``within``: a mask its layers are confined to (the joints); ``colour``: the colour of what
     it adds (None: its own); ``streaks``: its patches run down as streaks; ``follow_relief``:
     whether it settles by the host's relief as it does on its own (not when the request places
-    it on the relief's high or low parts). ValueError when it
+    it on the relief's high or low parts); ``ring``: its marks are rings. ValueError when it
     would break the program's tiling."""
     from matloom.library.overlay import compose
     from matloom.library.passes.compose import reseed
@@ -151,6 +152,7 @@ def overlay_lines(
         scale=scale,
         streaks=streaks,
         follow_relief=follow_relief,
+        ring=ring,
     )
     if within is not None:  # confined: each new layer covers only where `within` is
         layers = tuple(
@@ -255,6 +257,9 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         if one_mark(c, word) and not set(c.words) & c.ew["smaller"]:  # "a tiny stain"
             scale = c.ew.f("single_scale")
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
+    ring = bool(ov.ring) and bool(set(c.words) & c.ew["rings"])  # "a coffee ring"
+    if ring and not set(c.words) & c.ew["smaller"]:
+        scale = max(scale, 1.0)  # a mug's ring, not a scatter of small marks
     look, coloured = condition_look(c, word, ov)
     within, where = place.mask, place.where
     scattered = scale == c.ew.f("spot_scale")  # "mould spots from a corner": spots still
@@ -270,7 +275,15 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     try:
         host = add_lines(c.program, place.lines)  # the Defines the place's mask reads
         add, channels = overlay_lines(
-            host, ov, cover, scale, within, look, streaks, follow_relief=not place.on_relief
+            host,
+            ov,
+            cover,
+            scale,
+            within,
+            look,
+            streaks,
+            follow_relief=not place.on_relief,
+            ring=ring,
         )
     except ValueError as err:
         raise c.refuse(str(err)) from None
@@ -282,6 +295,8 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
         amount += f" as spots (size x{scale:g})"
     if streaks:
         amount += " in streaks running down"
+    if ring:
+        amount += " as rings"
     amount += where
     return Plan(
         "overlay",

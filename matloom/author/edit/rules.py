@@ -410,6 +410,8 @@ _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ..
         ),
         r"a little \1",
     ),
+    # "a coffee ring", "mug rings": ring stains (not the colour coffee)
+    (re.compile(r"\b(coffee|tea|mug|cup|glass|wine|water)\s+(rings?)\b"), r"\1 \2 stains"),
     # "sun-bleached", "sun faded": bleached (the sun is no part of the material)
     (re.compile(r"\bsun[\s-]+(bleached|faded)\b"), r"\1"),
     # "spaced further apart", "space them out": sparser
