@@ -205,3 +205,24 @@ def test_a_coffee_ring_is_a_ring_stain_not_a_coffee_colour() -> None:
     blot = _change(FLAT, _edit(FLAT, "add a big coffee stain").program)
     # a ring's strong change is its rim, a thin share of what it marks; a stain's is its body
     assert 0 < (ring > 0.5 * ring.max()).mean() < 0.5 * (blot > 0.5 * blot.max()).mean()
+
+
+#: a perforated sheet: round holes where no layer covers (alpha 0)
+PERFORATED = """View(0, 0, 1, 1, tileable=True)
+Define(sheet_r, 120)
+Define(sheet_g, 120)
+Define(sheet_b, 125)
+Define(hole, Smoothstep(0.22, 0.2, Worley(base_freq=5, to_01=True, seed=8)))
+Material(
+  Layer((1 - hole)).basecolor(sheet_r, sheet_g, sheet_b).roughness(0.5)
+)
+"""
+
+
+def test_a_condition_added_to_a_cut_out_keeps_its_holes_open() -> None:
+    result = _edit(PERFORATED, "make it dusty")
+    assert result.report.ok, result.report.locality.to_json()
+    a = np.asarray(evaluate(PERFORATED, N, N).alpha)
+    b = np.asarray(evaluate(result.program, N, N).alpha)
+    assert (a < 0.5).mean() > 0.05  # it has holes
+    assert np.abs(a - b).max() < 0.002

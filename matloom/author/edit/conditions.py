@@ -27,7 +27,7 @@ from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
 from matloom.author.edit.looks import condition_look, one_mark
-from matloom.author.edit.measured import measured_coverage, measured_layer
+from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.places import place_of
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
 from matloom.author.edit.targets import (
@@ -38,6 +38,7 @@ from matloom.author.edit.targets import (
     named_in_program,
 )
 from matloom.lang import ast as A
+from matloom.lang.api import parse_expression
 from matloom.lang.deps import BLENDED, MAXED
 from matloom.lang.params import Param
 from matloom.lang.printer import format_expr, format_layer
@@ -107,6 +108,24 @@ def _seeds(program: A.Program) -> set[int]:
     }
 
 
+def _host_cover(program: A.Program) -> A.Node | None:
+    """Where the program covers the surface when some of it is uncovered (its holes, where the
+    alpha map is 0: every layer has a coverage mask), None when a layer covers everywhere."""
+    alphas = [layer.alpha for layer in program.layers]
+    if not alphas or any(a is None or (isinstance(a, A.Num) and a.value >= 1) for a in alphas):
+        return None
+    union = (
+        alphas[0]
+        if len(alphas) == 1
+        else parse_expression(f"Max({', '.join(format_expr(a) for a in alphas if a is not None)})")
+    )
+    if mask_coverage(program, union) >= 0.995:
+        return None
+    # only where it covers fully: over a partly covered edge the added layer would raise the
+    # alpha there (a layer's coverage composites over those below it)
+    return parse_expression(f"Smoothstep(0.998, 1, {format_expr(union)})")
+
+
 def overlay_lines(
     program: A.Program,
     overlay: Overlay,
@@ -154,6 +173,9 @@ def overlay_lines(
         follow_relief=follow_relief,
         ring=ring,
     )
+    host = _host_cover(program)
+    if host is not None:  # a cut-out (lace, perforations): what is added keeps its holes open
+        within = host if within is None else A.BinOp("*", within, host)
     if within is not None:  # confined: each new layer covers only where `within` is
         layers = tuple(
             replace(
