@@ -44,3 +44,23 @@ def test_a_purpose_clause_names_no_colour() -> None:
     r, g, b = changed["define:ground"]  # type: ignore[misc]
     assert r > 180 and g > 170 and abs(r - g) < 30  # oatmeal, not red
     assert set(changed) == {"define:ground"}
+
+
+#: a cream print with pale periwinkle flowers: far from the named blue in CIELAB, of its hue
+FLOWERS = PRINT.replace(
+    "Define(spot_col_r, 40)\nDefine(spot_col_g, 30)\nDefine(spot_col_b, 20)",
+    "Define(spot_col_r, 120)\nDefine(spot_col_g, 150)\nDefine(spot_col_b, 210)",
+)
+
+
+def test_the_blue_is_the_part_of_that_hue_a_darker_blue_is_a_colour_to_paint() -> None:
+    result = edit_offline(FLOWERS, "make the blue darker", size=32)
+    rows = {c.to_json()["address"]: c.to_json()["after"] for c in result.report.changes}
+    assert "define:spot_col" in rows and "define:ground" not in rows
+    r, g, b = rows["define:spot_col"]  # type: ignore[misc]
+    assert b < 210 and b > r  # the same blue, darker
+    rows = {
+        c.to_json()["address"]
+        for c in edit_offline(FLOWERS, "make it a darker blue", size=32).report.changes
+    }
+    assert "define:ground" in rows

@@ -19,7 +19,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.families import by_colour, colour_value
+from matloom.author.edit.families import by_colour, colour_value, hue_family, the_colour
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
@@ -463,6 +463,8 @@ def colour_rule(c: Context) -> Plan | None:
     if rgb is not None and step is not None:
         pool = matching(colours, nouns, c.program, c.ew) if nouns else colours
         chosen = _select(c, rgb, pool)
+        if not chosen and the_colour(c):  # "make the blue darker": the part of that hue
+            chosen = hue_family(c, rgb, pool)
         main = main_colour(colours, c.program, c.ew)
         if not nouns and main in chosen:  # no noun: the main colour first when it is close
             chosen = [main] + [p for p in chosen if p is not main]

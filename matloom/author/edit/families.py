@@ -53,3 +53,32 @@ def same_family(c: Context, rgb: Sequence[float], named: Sequence[float]) -> boo
         return False
     turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
     return min(turn, 360 - turn) <= c.ew.f("family_hue_deg")
+
+
+def hue_family(c: Context, rgb: Sequence[float], colours: Sequence[Param]) -> list[Param]:
+    """The coloured (not grey) parameters whose hue is within ``family_hue_deg`` of ``rgb``'s,
+    nearest hue first: "make the blue darker" where the blue is a pale periwinkle, too far from
+    the named blue in CIELAB to be selected as close to it."""
+    _, a2, b2 = to_lab(rgb)
+    if math.hypot(a2, b2) < c.ew.f("family_grey_chroma"):
+        return []
+    found = []
+    for i, p in enumerate(colours):
+        _, a1, b1 = to_lab(colour_value(p))
+        if math.hypot(a1, b1) < c.ew.f("family_grey_chroma"):
+            continue
+        turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
+        turn = min(turn, 360 - turn)
+        if turn <= c.ew.f("family_hue_deg"):
+            found.append((turn, i, p))
+    return [p for _, _, p in sorted(found)]
+
+
+def the_colour(c: Context) -> bool:
+    """Whether the request names a colour as a part ("the blue", "those reds"), not as the
+    colour to paint ("a darker blue")."""
+    ws = c.words
+    return any(
+        a in ("the", "those", "these", "its") and c.vocabulary.ish_base(b) in c.vocabulary.named
+        for a, b in zip(ws, ws[1:], strict=False)
+    )
