@@ -64,3 +64,17 @@ def test_the_blue_is_the_part_of_that_hue_a_darker_blue_is_a_colour_to_paint() -
         for c in edit_offline(FLOWERS, "make it a darker blue", size=32).report.changes
     }
     assert "define:ground" in rows
+
+
+def test_a_purpose_clause_keeps_the_clauses_after_it() -> None:
+    result = edit_offline(
+        PRINT, "make the background oatmeal so it goes with the spots and add moss", size=32
+    )
+    assert "'mossy' overlay" in result.report.plan["note"]
+    assert any(c.to_json()["address"] == "define:ground" for c in result.report.changes)
+
+
+def test_white_as_a_verb() -> None:
+    """ "white it a little": whiter (it was read as the unknown word "whiteer" and refused)."""
+    r, g, b = _changed("white it a little")["define:ground"]  # type: ignore[misc]
+    assert b > 200 and min(r, g, b) >= 200

@@ -226,3 +226,26 @@ def test_a_condition_added_to_a_cut_out_keeps_its_holes_open() -> None:
     b = np.asarray(evaluate(result.program, N, N).alpha)
     assert (a < 0.5).mean() > 0.05  # it has holes
     assert np.abs(a - b).max() < 0.002
+
+
+@pytest.mark.parametrize(
+    "request_",
+    [
+        "add dirt but not in the middle",
+        "add moss, but not in the cracks",
+        "add dust, avoiding the tops",
+    ],
+)
+def test_a_place_the_request_excludes_gets_no_mask(request_: str) -> None:
+    note = _edit(STONES, request_).report.plan["note"]
+    assert "middle" not in note and "relief" not in note, note
+
+
+def test_the_corner_of_each_tile_is_no_corner_of_the_surface() -> None:
+    note = _edit(FLAT, "add grime at the corner of each tile").report.plan["note"]
+    assert "corner" not in note
+
+
+def test_a_sheer_material_still_takes_a_condition() -> None:
+    sheer = FLAT.replace("Layer(1)", "Layer(0.6)")
+    assert "'dusty' overlay" in _edit(sheer, "add dust").report.plan["note"]

@@ -109,8 +109,8 @@ def _seeds(program: A.Program) -> set[int]:
 
 
 def _host_cover(program: A.Program) -> A.Node | None:
-    """Where the program covers the surface when some of it is uncovered (its holes, where the
-    alpha map is 0: every layer has a coverage mask), None when a layer covers everywhere."""
+    """Where the program covers the surface fully when it has holes (texels no layer covers,
+    alpha 0: a lace, a perforated sheet), None when it has none or is sheer everywhere."""
     alphas = [layer.alpha for layer in program.layers]
     if not alphas or any(a is None or (isinstance(a, A.Num) and a.value >= 1) for a in alphas):
         return None
@@ -119,11 +119,15 @@ def _host_cover(program: A.Program) -> A.Node | None:
         if len(alphas) == 1
         else parse_expression(f"Max({', '.join(format_expr(a) for a in alphas if a is not None)})")
     )
-    if mask_coverage(program, union) >= 0.995:
+    text = format_expr(union)
+    holes = mask_coverage(program, parse_expression(f"Smoothstep(0.02, 0, {text})"))
+    full = parse_expression(f"Smoothstep(0.998, 1, {text})")
+    # holes (alpha 0 somewhere) in a material that covers fully elsewhere: the added layers go
+    # only where it covers fully (over a partly covered edge they would raise its alpha); a
+    # sheer material, covered partly everywhere, keeps them where it is
+    if holes < 0.01 or mask_coverage(program, full) < 0.2:
         return None
-    # only where it covers fully: over a partly covered edge the added layer would raise the
-    # alpha there (a layer's coverage composites over those below it)
-    return parse_expression(f"Smoothstep(0.998, 1, {format_expr(union)})")
+    return full
 
 
 def overlay_lines(

@@ -87,26 +87,18 @@ _HIGH_SHARE = (0.02, 0.9)
 _PART_SHARE = (0.03, 0.8)
 
 
+#: Words that exclude the place after them ("moss, but not in the cracks", "avoiding the
+#: ridges"): no mask is made for it.
+_NOT_RE = re.compile(r"\b(?:not|except|avoid|avoiding|without|apart\s+from|away\s+from|never)\b")
+
+
+def _excluded(before: str) -> bool:
+    """Whether the words just before a place exclude it (its last four words)."""
+    return bool(_NOT_RE.search(" ".join(before.split()[-4:])))
+
+
 def _said(c: Context) -> str:
     return " ".join(c.said or tuple(c.words))
-
-
-def surface_place(c: Context) -> str | None:
-    """The words that put a condition on the surface as a whole, if any (for the note)."""
-    text = _said(c)
-    for rx in (
-        _GRADIENT_RE,
-        _CORNER_RE,
-        _SIDE_RE,
-        _BAND_DOWN_RE,
-        _BAND_ACROSS_RE,
-        _PATCH_RE,
-        _EDGES_RE,
-    ):
-        m = rx.search(text)
-        if m:
-            return m.group(0)
-    return None
 
 
 def _cos(coord: str, start: float, span: float) -> str:
@@ -127,14 +119,14 @@ def _surface_mask(c: Context, word: str) -> tuple[A.Node, str] | None:
     w, h = x2 - x1, y2 - y1
     lo, hi = min(y1, y2), max(y1, y2)
     cx, cy = _cos("X", x1, w), _cos("Y", y1, h)
-    corner = _CORNER_RE.search(text)
+    corner = _found(_CORNER_RE, text)
     if corner is not None and c.program.tileable:
         # the corners of a repeat meet where four repeats do: one patch there, which the
         # single repeat shows in its four corners
         return _smooth(0.3, 0.7, f"((1 - {cx}) * (1 - {cy}))"), (
             f"{corner.group(0)} (the program tiles: where the corners of four repeats meet)"
         )
-    fixed = [rx.search(text) for rx in (_GRADIENT_RE, _CORNER_RE, _SIDE_RE)]
+    fixed = [_found(rx, text) for rx in (_GRADIENT_RE, _CORNER_RE, _SIDE_RE)]
     m = next((f for f in fixed if f), None)
     if m is not None:
         if c.program.tileable:
@@ -157,10 +149,23 @@ def _surface_mask(c: Context, word: str) -> tuple[A.Node, str] | None:
         (_PATCH_RE, _smooth(0.25, 0.7, f"({cx} * {cy})")),
         (_EDGES_RE, _smooth(0.4, 0.08, f"({cx} * {cy})")),
     ):
-        found = next((f for f in rx.finditer(text) if not _of_features(text[f.end() :])), None)
+        found = _found(rx, text)
         if found:
             return mask, found.group(0)
     return None
+
+
+def _found(rx: re.Pattern[str], text: str) -> re.Match[str] | None:
+    """The first match of ``rx`` in ``text`` that is a place on the surface: not on features
+    ("the corner of each tile") and not excluded ("but not in the middle")."""
+    return next(
+        (
+            m
+            for m in rx.finditer(text)
+            if not _of_features(text[m.end() :]) and not _excluded(text[: m.start()])
+        ),
+        None,
+    )
 
 
 def _of_features(rest: str) -> bool:
@@ -264,6 +269,8 @@ def _relief_words(c: Context, word: str) -> tuple[str, str] | None:
     low = c.ew["low_places"] | c.ew["joint"]
     for i, t in enumerate(ws):
         before = ws[max(0, i - 3) : i]
+        if _excluded(" ".join(ws[max(0, i - 5) : i])):  # "moss, but not in the cracks"
+            continue
         prep = next((w for w in reversed(before) if w in _IN), None)
         if t in low and prep is not None:
             found.append((i, "low", f"{prep} the {t}"))

@@ -381,7 +381,7 @@ _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ..
     # "yellow it with age", "grey them a little": a colour word as a verb moves towards it
     (
         re.compile(r"\b(yellow|brown|grey|gray|red|white|black)\s+(?:it|them)\b"),
-        lambda m: {"grey": "greyer", "gray": "grayer", "red": "redder"}.get(
+        lambda m: {"grey": "greyer", "gray": "grayer", "red": "redder", "white": "whiter"}.get(
             m.group(1), f"{m.group(1)}er"
         ),
     ),
@@ -447,7 +447,8 @@ _AS_IS_RE = re.compile(
 #: better with the red", "to match the grout").
 _PURPOSE_RE = re.compile(
     r"\s*,?\s*\b(?:so\s+(?:that\s+)?(?:it|they)\s+(?:sits?|goes?|works?|blends?|pairs?|matches"
-    r"|match|fits?|suits?)|to\s+(?:match|go\s+with|suit|complement))\b[^.;]*",
+    r"|match|fits?|suits?)|to\s+(?:match|go\s+with|suit|complement))\b"
+    r"(?:(?![,.;]|\band\b|\bbut\b).)*",
     re.IGNORECASE,
 )
 
@@ -456,7 +457,7 @@ def _kept_off(request: str) -> str:
     """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged")
     and the clauses that say what it should go with ("so it sits better with the red")."""
     asked = _KEEP_RE.sub("", request) or request
-    asked = _PURPOSE_RE.sub("", asked) or asked
+    asked = re.sub(r"\s+", " ", _PURPOSE_RE.sub(" ", asked)).strip() or asked
     return _AS_IS_RE.sub("", asked) or asked
 
 
