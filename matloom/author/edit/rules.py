@@ -393,6 +393,7 @@ _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ..
         re.compile(
             r"\b(layer|crust|film|dusting|coat|coating|covering)\s+of\s+"
             r"((?:fine|light|thin|thick|grey|gray|white|black|dark|pale)\s+)?ash\b"
+            r"(?!\s+(?:grey|gray|blond|blonde|wood|veneer|paint|colou?r|tone|white|brown))"
         ),
         lambda m: f"{m.group(1)} of {m.group(2) or 'grey '}dust",
     ),
