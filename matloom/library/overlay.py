@@ -18,6 +18,7 @@ layers, and the Defines they use, are appended on top of the entry's layers. Com
 from __future__ import annotations
 
 import functools
+from collections.abc import Collection
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TypeGuard
@@ -247,6 +248,14 @@ def view_width(program: A.Program) -> float:
     return abs(x2 - x1) or 1.0
 
 
+def fresh_name(stem: str, taken: Collection[str]) -> str:
+    """``stem``, or ``stem2``, ``stem3`` ... : the first of them not in ``taken``."""
+    name, k = stem, 2
+    while name in taken:
+        name, k = f"{stem}{k}", k + 1
+    return name
+
+
 def compose(
     host: A.Program,
     overlay: Overlay,
@@ -296,9 +305,7 @@ def compose(
     for d in ov.defines:
         if d.name in drop:
             continue
-        new, k = d.name, 2
-        while new in taken:
-            new, k = f"{d.name}{k}", k + 1
+        new = fresh_name(d.name, taken)
         if new != d.name:
             names[d.name] = new
         taken.add(new)
@@ -352,9 +359,7 @@ def _bind_relief(
     layers' heights are scaled by its inverse), both read from a new Define of the host's
     height placed before the first of them (the host's own names: bound after the renames).
     A relief too flat to follow leaves ``name`` as it is but still gives ``surface``."""
-    height, k = HOST_HEIGHT, 2
-    while height in taken:
-        height, k = f"{HOST_HEIGHT}{k}", k + 1
+    height = fresh_name(HOST_HEIGHT, taken)
     found = relief_of(host, height) if name else None
     expr = found[0] if found is not None else height_expr(host) if surface else None
     if expr is None:

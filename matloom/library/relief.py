@@ -90,13 +90,10 @@ def relief_of(program: A.Program, height: str) -> tuple[A.Node, A.Node] | None:
     "the lowest fifth" means the joints on a brick wall and the pits on a plaster one alike.
     The rank reads H as the Define ``height``. None when it has no height, it is costly, or
     it is flat."""
-    h = height_expr(program)
-    if h is None:
+    measured = _measured_height(program)
+    if measured is None:
         return None
-    knots = _height_quantiles(program)
-    if knots is None:
-        return None
-    knots, weight = knots
+    h, knots, weight = measured
     terms = []
     for (q0, v0), (q1, v1) in itertools.pairwise(knots):
         step = f"Clamp((H - ({v0:.6g})) / {max(v1 - v0, _FLAT):.6g})"
@@ -112,14 +109,27 @@ def height_span(program: A.Program) -> tuple[A.Node, float, float] | None:
     percentiles over the surface, for a mask of its low parts (the joints, grooves, crevices)
     or its high ones (the tops, ridges); None when it has no height, a costly one, or one too
     shallow to see."""
+    measured = _measured_height(program)
+    if measured is None:
+        return None
+    h, knots, _ = measured
+    return h, knots[0][1], knots[-1][1]
+
+
+def _measured_height(
+    program: A.Program,
+) -> tuple[A.Node, tuple[tuple[float, float], ...], float] | None:
+    """(H, knots, weight): the composite height expression, its measured (rank, height) knots
+    and how fully an overlay follows it; None when it has no height, a costly one, or a flat
+    one."""
     h = height_expr(program)
     if h is None:
         return None
     measured = _height_quantiles(program)
     if measured is None:
         return None
-    knots, _ = measured
-    return h, knots[0][1], knots[-1][1]
+    knots, weight = measured
+    return h, knots, weight
 
 
 def _height_quantiles(

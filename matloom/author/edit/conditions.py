@@ -275,21 +275,22 @@ def _add_overlay(c: Context, word: str, stems: Sequence[str]) -> Plan | None:
     place = place_of(c, word)  # the joints, the relief's low or high parts, the middle ...
     amounts = [c.vocabulary.amounts[t] for t in c.words if t in c.vocabulary.amounts]
     cover = amounts[0] if amounts else None
-    scale = 1.0
+    scale, scattered = 1.0, False
     if set(c.words) & c.ew["spots"]:  # "rust spots": small scattered marks, a little cover
         # ("a big wine stain": marks at the overlay's own size; "a coffee stain": one or two
         # large marks per repeat, not a scatter)
-        scale = 1.0 if set(c.words) & c.ew["bigger"] else c.ew.f("spot_scale")
-        if one_mark(c, word) and not set(c.words) & c.ew["smaller"]:  # "a tiny stain"
-            scale = c.ew.f("single_scale")
+        one = one_mark(c, word) and not set(c.words) & c.ew["smaller"]  # not "a tiny stain"
+        big = bool(set(c.words) & c.ew["bigger"])
+        scale = c.ew.f("single_scale") if one else 1.0 if big else c.ew.f("spot_scale")
+        scattered = not (one or big)
         cover = min(cover if cover is not None else 1.0, c.ew.f("spot_cover"))
     ring = bool(ov.ring) and bool(set(c.words) & c.ew["rings"])  # "a coffee ring"
     if ring and not set(c.words) & c.ew["smaller"]:
-        scale = max(scale, 1.0)  # a mug's ring, not a scatter of small marks
+        scale, scattered = max(scale, 1.0), False  # a mug's ring, not a scatter of small marks
     look, coloured = condition_look(c, word, ov)
     within, where = place.mask, place.where
-    scattered = scale == c.ew.f("spot_scale")  # "mould spots from a corner": spots still
-    if within is not None and not amounts and not scattered:  # the place asked for is filled
+    # the place asked for is filled ("mould spots from a corner": spots there still)
+    if within is not None and not amounts and not scattered:
         cover = c.ew.f("joint_cover")
     if c.strength > 1 and ov.cover:
         # a condition that does not show is added more strongly (the edit escalates it)

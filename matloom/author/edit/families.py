@@ -51,8 +51,13 @@ def same_family(c: Context, rgb: Sequence[float], named: Sequence[float]) -> boo
         return c1 < c.ew.f("family_grey_chroma") and abs(l1 - l2) <= c.ew.f("family_grey_dl")
     if c1 < c.ew.f("family_chroma") * c2:
         return False
+    return _hue_turn(a1, b1, a2, b2) <= c.ew.f("family_hue_deg")
+
+
+def _hue_turn(a1: float, b1: float, a2: float, b2: float) -> float:
+    """The angle between two CIELAB hues, 0 to 180 degrees."""
     turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
-    return min(turn, 360 - turn) <= c.ew.f("family_hue_deg")
+    return min(turn, 360 - turn)
 
 
 def hue_family(c: Context, rgb: Sequence[float], colours: Sequence[Param]) -> list[Param]:
@@ -67,8 +72,7 @@ def hue_family(c: Context, rgb: Sequence[float], colours: Sequence[Param]) -> li
         _, a1, b1 = to_lab(colour_value(p))
         if math.hypot(a1, b1) < c.ew.f("family_grey_chroma"):
             continue
-        turn = abs(math.degrees(math.atan2(b1, a1) - math.atan2(b2, a2))) % 360
-        turn = min(turn, 360 - turn)
+        turn = _hue_turn(a1, b1, a2, b2)
         if turn <= c.ew.f("family_hue_deg"):
             found.append((turn, i, p))
     return [p for _, _, p in sorted(found)]

@@ -36,6 +36,8 @@ class EditWords:
     condition_colours: dict[str, tuple[int, int, int]] = dataclasses.field(default_factory=dict)
     #: "too <adjective>" -> the comparative it asks for ("too big": smaller)
     too: dict[str, str] = dataclasses.field(default_factory=dict)
+    #: a colour word as a verb -> the comparative it asks for ("yellow it with age": yellower)
+    colour_verbs: dict[str, str] = dataclasses.field(default_factory=dict)
     #: look words read as what they change everywhere ("wet": "darker overall, glossier")
     looks: dict[str, str] = dataclasses.field(default_factory=dict)
     #: ... and what a flipped one changes ("less faded": "richer overall")
@@ -97,6 +99,7 @@ def edit_words() -> EditWords:
         },
         intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
         too={k: str(v) for k, v in raw.get("too", {}).items()},
+        colour_verbs={k: str(v) for k, v in raw.get("colour_verbs", {}).items()},
         looks={w: str(look["as"]) for look in raw.get("looks", {}).values() for w in look["words"]},
         unlooks={
             w: str(look["opposite"])

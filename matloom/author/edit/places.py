@@ -28,6 +28,7 @@ from matloom.author.edit.targets import layer_words, param_layers
 from matloom.lang import ast as A
 from matloom.lang.api import parse_expression
 from matloom.lang.printer import format_expr
+from matloom.library.overlay import fresh_name
 from matloom.library.relief import height_span
 
 
@@ -69,8 +70,6 @@ _EDGES_RE = re.compile(
     r"\b(?:at|toward|towards|around|round|along|near|on|by|to)\s+the\s+"
     r"(?:edges|borders|margins|perimeter|outside|rim)\b(?!\s+of\s+(?:each|every|all|the\s+\w+s\b))"
 )
-#: Words before a noun that put a condition in it ("moss in the gaps", "crust around the cracks").
-_IN = frozenset({"in", "into", "between", "along", "inside", "within", "around", "round"})
 #: Nouns after "high"/"highest" that make a high part ("the high spots").
 _PARTS = frozenset({"points", "spots", "parts", "areas", "bits", "places", "ground", "sections"})
 #: Tokens between a condition word and the place words that may name its place.
@@ -95,6 +94,12 @@ _NOT_RE = re.compile(r"\b(?:not|except|avoid|avoiding|without|apart\s+from|away\
 def _excluded(before: str) -> bool:
     """Whether the words just before a place exclude it (its last four words)."""
     return bool(_NOT_RE.search(" ".join(before.split()[-4:])))
+
+
+def _inside(c: Context) -> frozenset[str]:
+    """Words before a noun that put a condition in it ("moss in the gaps", "crust around the
+    cracks"): the place words but "from" (where something comes from)."""
+    return c.ew["place"] - {"from"}
 
 
 def _said(c: Context) -> str:
@@ -126,7 +131,7 @@ def _surface_mask(c: Context, word: str) -> tuple[A.Node, str] | None:
         return _smooth(0.3, 0.7, f"((1 - {cx}) * (1 - {cy}))"), (
             f"{corner.group(0)} (the program tiles: where the corners of four repeats meet)"
         )
-    fixed = [_found(rx, text) for rx in (_GRADIENT_RE, _CORNER_RE, _SIDE_RE)]
+    fixed = [_found(_GRADIENT_RE, text), corner, _found(_SIDE_RE, text)]
     m = next((f for f in fixed if f), None)
     if m is not None:
         if c.program.tileable:
@@ -252,9 +257,9 @@ def joint_mask(c: Context) -> tuple[A.Node | None, str]:
 
 def in_joints(c: Context) -> bool:
     """Whether the request puts something in joints ("moss in the gaps")."""
-    ws = c.words
+    ws, inside = c.words, _inside(c)
     return any(
-        t in c.ew["joint"] and any(w in _IN for w in ws[max(0, i - 3) : i])
+        t in c.ew["joint"] and any(w in inside for w in ws[max(0, i - 3) : i])
         for i, t in enumerate(ws)
     )
 
@@ -267,14 +272,15 @@ def _relief_words(c: Context, word: str) -> tuple[str, str] | None:
     at = ws.index(first) if first in ws else 0
     found: list[tuple[int, str, str]] = []
     low = c.ew["low_places"] | c.ew["joint"]
+    inside, articles = _inside(c), c.ew["articles"]
     for i, t in enumerate(ws):
         before = ws[max(0, i - 3) : i]
         if _excluded(" ".join(ws[max(0, i - 5) : i])):  # "moss, but not in the cracks"
             continue
-        prep = next((w for w in reversed(before) if w in _IN), None)
+        prep = next((w for w in reversed(before) if w in inside), None)
         if t in low and prep is not None:
             found.append((i, "low", f"{prep} the {t}"))
-        elif i > 1 and ws[i - 2] == "between" and ws[i - 1] in _ARTICLES and t.endswith("s"):
+        elif i > 1 and ws[i - 2] == "between" and ws[i - 1] in articles and t.endswith("s"):
             found.append((i, "low", f"between the {t}"))
         elif t in c.ew["high_places"]:
             found.append((i, "high", f"on the {t}"))
@@ -291,17 +297,6 @@ def _relief_words(c: Context, word: str) -> tuple[str, str] | None:
     return kind, text
 
 
-_ARTICLES = frozenset({"the", "its", "their"})
-
-
-def _fresh(program: A.Program, stem: str) -> str:
-    taken = {d.name for d in program.defines}
-    n = 1
-    while (name := stem if n == 1 else f"{stem}{n}") in taken:
-        n += 1
-    return name
-
-
 def _relief_mask(c: Context, kind: str) -> tuple[A.Node, tuple[str, ...]] | None:
     """The mask of the host's low (high) part and the Define it reads, None when its relief
     has no such part (flat, too shallow, or mostly low: no gaps to fill)."""
@@ -309,7 +304,7 @@ def _relief_mask(c: Context, kind: str) -> tuple[A.Node, tuple[str, ...]] | None
     if span is None:
         return None
     height, lo, hi = span
-    name = _fresh(c.program, "where_height")
+    name = fresh_name("where_height", {d.name for d in c.program.defines})
     e0, e1 = _LOW if kind == "low" else _HIGH
     mask = _smooth(round(lo + e0 * (hi - lo), 6), round(lo + e1 * (hi - lo), 6), name)
     lines = (f"Define({name}, {format_expr(height)})",)
@@ -336,7 +331,7 @@ def _part_mask(c: Context, word: str) -> tuple[A.Node, str] | None:
         and t not in skip
         and t not in c.ew.conditions
         and i > 0
-        and ws[i - 1] in _ARTICLES | {"on", "to", "onto", "of"}
+        and ws[i - 1] in c.ew["articles"] | {"on", "to", "onto", "of"}
     ]
     for _, _, t in sorted(nouns):
         for index in range(1, len(c.program.layers)):

@@ -378,13 +378,6 @@ _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ..
         re.compile(r"\b(?:white\s+)?(?:salt|salty)\s+(?:stains?|bloom|deposits?|marks)\b"),
         "efflorescence",
     ),
-    # "yellow it with age", "grey them a little": a colour word as a verb moves towards it
-    (
-        re.compile(r"\b(yellow|brown|grey|gray|red|white|black)\s+(?:it|them)\b"),
-        lambda m: {"grey": "greyer", "gray": "grayer", "red": "redder", "white": "whiter"}.get(
-            m.group(1), f"{m.group(1)}er"
-        ),
-    ),
     # "dark water spots", "rain spots": wet marks (darker and glossier where they are)
     (re.compile(r"\b(?:water|rain|raindrop)\s+(spots?|marks?|splashes)\b"), r"wet \1"),
     # "a layer of grey volcanic ash", "a crust of ash": grey dust (not the colour ash)
@@ -468,9 +461,17 @@ def normalise(request: str) -> str:
     asked = _kept_off(request).lower()
     for pattern, repl in _PHRASES:
         asked = pattern.sub(repl, asked)
+    verbs = edit_words().colour_verbs  # "yellow it with age": yellower
+    asked = _colour_verb_re().sub(lambda m: verbs[m.group(1)], asked)
     too = edit_words().too  # "far too big": smaller ("a bit too dark": a bit lighter)
     asked = _too_re().sub(lambda m: too[m.group(1)], asked)
     return _looks(asked)
+
+
+@functools.cache
+def _colour_verb_re() -> re.Pattern[str]:
+    """A colour word of ``[colour_verbs]`` used as a verb: "<colour> it|them" (compiled once)."""
+    return re.compile(rf"\b({'|'.join(edit_words().colour_verbs)})\s+(?:it|them)\b")
 
 
 @functools.cache
