@@ -127,6 +127,10 @@ class AuthorConfig(BaseModel):
     #: ranks with its own wherever it writes P0 (``--library``, ``$MATLOOM_LIBRARY_PATH``;
     #: :func:`matloom.library.user.library_for`); empty: the built-in entries only.
     library_dirs: tuple[str, ...] = ()
+    #: Show the generator the material library's programs for the request from its N best
+    #: candidates, to reuse or ignore (:mod:`matloom.author.library_refs`); 0: none (the
+    #: paper's). Not used with ``start = "library"``, where the library's program is P0.
+    library_refs: int = Field(0, ge=0, le=5)
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS

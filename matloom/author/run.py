@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from matloom.author.finalize import export_final, material_name, tileable_text
+from matloom.author.library_refs import library_references
 from matloom.author.llm.base import ChatModel, ImageInput
 from matloom.author.prompts.critic import CriticOptions
 from matloom.author.prompts.revision import (
@@ -151,12 +152,20 @@ class Run:
             self.start_from_library()
             return
         assert self.generator is not None
+        refs = library_references(
+            self.record.prompt,
+            self.config.library_refs,
+            seed=self.config.seed,
+            library_dirs=self.config.library_dirs,
+        )
+        if refs:
+            self.notify("generate", f"library references: {', '.join(r.entry for r in refs)}")
         self.notify("generate", "generating P0", round=0)
         run_turn(
             self.generator,
             self.store,
             kind="generate",
-            user_text=request_message(self.record.prompt),
+            user_text=request_message(self.record.prompt, refs),
             program_seed=derive_seed(self.config.seed, 0),
             repair_turns=self.config.repair_turns,
             notify=lambda m: self.notify("generate", m, round=0),

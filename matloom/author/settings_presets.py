@@ -51,6 +51,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "no_change_threshold": NO_CHANGE_THRESHOLD,
         "score_only_last": True,
         "examples": "v3",
+        "library_refs": 2,
     },
 }
 #: Config fields a preset may not set (models come from profiles; the name is recorded).

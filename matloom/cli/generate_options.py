@@ -36,6 +36,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "few_shot": "few_shot",
     "examples": "examples",
     "start": "start",
+    "library_refs": "library_refs",
     "pick": "pick",
     "max_reply_chars": "max_reply_chars",
     "tileable": "tileable",
@@ -377,6 +378,14 @@ def pipeline_options(f: Any) -> Any:
             show_default=True,
             help="The few-shot examples: the paper's six, or v3 (language 2 and 3 idioms, "
             "subjects far from the benchmark; the recommended settings' choice).",
+        ),
+        click.option(
+            "--library-refs",
+            type=click.IntRange(0, 5),
+            default=d.library_refs,
+            show_default=True,
+            help="Show the generator the library's programs for the request from its N best "
+            "candidates, to reuse or ignore (the recommended settings: 2).",
         ),
         click.option(
             "--tileable/--no-tileable",

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from matloom.author.library_refs import LibraryReference
 from matloom.author.prompts.system import ANSWER_FORMAT
 from matloom.author.records import EditRecord
 from matloom.lang.diagnostics import Diagnostic
@@ -21,12 +22,38 @@ from matloom.lang.diagnostics import Diagnostic
 MAX_DIAGNOSTICS = 5
 
 
-def request_message(description: str) -> str:
-    """The first user turn of a generator conversation."""
-    return (
+def request_message(description: str, references: Sequence[LibraryReference] = ()) -> str:
+    """The first user turn of a generator conversation; ``references`` are the material
+    library's programs for the request (``library_refs``), offered to reuse or ignore."""
+    text = (
         "Write a layered-material DSL program for this material:\n"
         f"<description>{description}</description>"
     )
+    if not references:
+        return text
+    blocks = [text, _REFERENCES_INTRO]
+    for k, ref in enumerate(references, start=1):
+        missing = (
+            f"The library says it does not show: {'; '.join(ref.missing)}.\n"
+            if ref.missing
+            else ""
+        )
+        blocks.append(
+            f"<library_program n=\"{k}\" entry=\"{ref.entry}\">\n"
+            f"{missing}{ref.program.rstrip()}\n</library_program>"
+        )
+    return "\n\n".join(blocks)
+
+
+#: What the generator is told about the library's programs (``library_refs``).
+_REFERENCES_INTRO = (
+    "For reference, MatLoom's material library (hand-written programs, adapted by rules to "
+    "the request; they check and render) gives the programs below for this request. They may "
+    "be the requested material, a near one or a wrong one, and they may miss requested "
+    "details. Reuse what fits the description (structure, scales, colours, conditions), fix "
+    "or add what it asks for and they lack, or ignore them. Write your own complete program "
+    "for the description."
+)
 
 
 def missing_program_message() -> str:

@@ -1,0 +1,75 @@
+"""`--library-refs N` (the recommended settings: 2): the generator's first turn carries the
+material library's programs for the request, to reuse or ignore.
+
+Runs against the scripted Chat Completions server on 127.0.0.1 (see chat_server.py); the
+expected programs are what :func:`matloom.library.author` writes for the same prompt and seed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from author.chat_server import ChatServer
+from author.conftest import FAST_FLAGS, is_critic, text_of
+from matloom.author.config import AuthorConfig
+from matloom.author.library_refs import library_references
+from matloom.author.prompts.revision import request_message
+from matloom.author.records import validate_record_file
+from matloom.author.settings_presets import preset_values
+from matloom.cli.main import cli
+from matloom.library import author
+
+PROMPT = "weathered red brick wall"
+
+
+def _generate(server: ChatServer, out: Path, *extra: str) -> None:
+    args = ["generate", PROMPT, "-o", str(out), "--model", "test-vision-model"]
+    args += ["--base-url", server.base_url, "--retry-backoff", "0.01", "--timeout", "20"]
+    args += ["--scorer", "none", "--variants", "0", "--rounds", "0", *FAST_FLAGS, *extra]
+    result = CliRunner().invoke(cli, args)
+    assert result.exit_code == 0, result.stderr
+
+
+def test_references_are_the_offline_author_then_the_next_entries() -> None:
+    refs = library_references(PROMPT, 3, seed=5)
+    assert len(refs) == 3 and len({r.entry for r in refs}) == 3
+    best = author(PROMPT, seed=5)
+    assert refs[0].entry == best.entry and refs[0].program == best.program
+    ranked = [c.name for c in best.candidates]
+    assert [r.entry for r in refs[1:]] == [n for n in ranked if n != best.entry][:2]
+    assert library_references(PROMPT, 0) == []
+
+
+def test_the_first_turn_carries_the_library_programs(server: ChatServer, tmp_path: Path) -> None:
+    _generate(server, tmp_path / "run", "--library-refs", "2", "--seed", "3")
+    (first,) = [r for r in server.requests if not is_critic(r)]
+    text = text_of(first["messages"][1])
+    refs = library_references(PROMPT, 2, seed=3)
+    assert text == request_message(PROMPT, refs)
+    for k, ref in enumerate(refs, start=1):
+        assert f'<library_program n="{k}" entry="{ref.entry}">' in text
+        assert ref.program.strip() in text
+    record = validate_record_file(tmp_path / "run" / "record.json")
+    assert record.settings.library_refs == 2
+    assert record.conversation[0].text == text  # the turn is recorded as sent
+
+
+def test_paper_settings_send_the_request_alone(server: ChatServer, tmp_path: Path) -> None:
+    _generate(server, tmp_path / "run")
+    (first,) = [r for r in server.requests if not is_critic(r)]
+    assert text_of(first["messages"][1]) == request_message(PROMPT)
+    assert "library_program" not in text_of(first["messages"][1])
+
+
+def test_recommended_shows_two_and_paper_none() -> None:
+    assert AuthorConfig.model_validate(preset_values("recommended")).library_refs == 2
+    assert AuthorConfig().library_refs == 0
+
+
+def test_what_the_library_misses_is_said() -> None:
+    refs = library_references("red brick wall with a golden unicorn motif", 1)
+    assert refs and refs[0].missing, "the library draws no unicorn: it must say so"
+    text = request_message("x", refs)
+    assert "does not show" in text and refs[0].missing[0] in text
