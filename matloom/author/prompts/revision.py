@@ -34,12 +34,10 @@ def request_message(description: str, references: Sequence[LibraryReference] = (
     blocks = [text, _REFERENCES_INTRO]
     for k, ref in enumerate(references, start=1):
         missing = (
-            f"The library says it does not show: {'; '.join(ref.missing)}.\n"
-            if ref.missing
-            else ""
+            f"The library says it does not show: {'; '.join(ref.missing)}.\n" if ref.missing else ""
         )
         blocks.append(
-            f"<library_program n=\"{k}\" entry=\"{ref.entry}\">\n"
+            f'<library_program n="{k}" entry="{ref.entry}">\n'
             f"{missing}{ref.program.rstrip()}\n</library_program>"
         )
     return "\n\n".join(blocks)
