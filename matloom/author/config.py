@@ -160,6 +160,9 @@ class AuthorConfig(BaseModel):
     no_change_threshold: float | None = Field(None, ge=0, le=255, allow_inf_nan=False)
     #: The loop stops after this many revisions with no visible change.
     no_change_limit: int = Field(2, ge=1)
+    #: The revision turn lists the checker's warnings of the program it revises (a Define a
+    #: built-in shadows, a layer that is never visible ...); the paper's does not.
+    revision_warnings: bool = False
     #: The last program's critique asks for the score only (its suggestions cannot be used).
     score_only_last: bool = False
     #: Blender layouts to render the final material in after export ("flat", "staged"), into

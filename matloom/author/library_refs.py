@@ -9,7 +9,9 @@ program it writes is still its own (it is checked, critiqued and selected like a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+
+from matloom.lang import ast as A
 
 
 @dataclass(frozen=True)
@@ -18,10 +20,22 @@ class LibraryReference:
 
     entry: str
     description: str
-    #: the program's text with the library's header comments (entry, adaptations, overlays)
+    #: the program in the language the generator's system prompt teaches: no comments, a
+    #: View of four numbers (the library's ``tileable=True, unit_m=...`` left out)
     program: str
     #: requested parts the library says this program does not show
     missing: tuple[str, ...] = ()
+    #: how the library adapted the entry to the request, and the overlays it added
+    notes: tuple[str, ...] = ()
+
+
+def _as_prompted(program: A.Program) -> str:
+    from matloom.lang.printer import format_program
+
+    view = program.view
+    if view is not None:
+        program = replace(program, view=replace(view, tileable=False, unit_m=None))
+    return format_program(program)
 
 
 def library_references(
@@ -53,8 +67,9 @@ def library_references(
             LibraryReference(
                 entry=result.entry,
                 description=result.description,
-                program=result.program,
+                program=_as_prompted(result.ast),
                 missing=tuple(result.dropped),
+                notes=tuple([*result.adaptations, *result.overlay_notes]),
             )
         )
     return refs

@@ -24,6 +24,7 @@ from matloom.author.prompts.revision import (
     canonical_assistant_turn,
     request_message,
     revision_message,
+    warning_lines,
 )
 from matloom.author.records import (
     CritiqueRecord,
@@ -316,6 +317,12 @@ class Run:
         self.store.save()
         return result
 
+    def _warnings(self, index: int) -> list[str]:
+        """The checker's warnings of P_index, at the positions of the text the model wrote."""
+        program = self.record.programs[index]
+        written = extract_answer(program.authored)[0] if program.authored else None
+        return warning_lines(written or program.text)
+
     def revise(self, k: int, base: int | None = None, loop: LoopState | None = None) -> None:
         """Ask the generator for P_{k+1}, revising ``base`` (P_k unless the loop continues from
         the best program so far)."""
@@ -340,6 +347,7 @@ class Run:
             edits=critique.edits,
             views=self.views if images else (),
             added_seeds=self.record.programs[base].added_seeds,
+            warnings=self._warnings(base) if cfg.revision_warnings else (),
             previous_score=before.match_score if before is not None and before.ok else None,
             **loop_sections(
                 self.record,

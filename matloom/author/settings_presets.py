@@ -52,6 +52,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "score_only_last": True,
         "examples": "v3",
         "library_refs": 2,
+        "revision_warnings": True,
     },
 }
 #: Config fields a preset may not set (models come from profiles; the name is recorded).

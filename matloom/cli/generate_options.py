@@ -47,6 +47,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "blender_size": "blender_size",
     "critic_stats": "critic_stats",
     "revision_images": "revision_images",
+    "revision_warnings": "revision_warnings",
     "reference": "reference",
     "polish": "polish",
     "polish_evaluations": "polish_evaluations",
@@ -347,6 +348,13 @@ def pipeline_options(f: Any) -> Any:
             default=d.revision_images,
             show_default=True,
             help="Attach the previews to the revision turn when the generator takes images.",
+        ),
+        click.option(
+            "--revision-warnings/--no-revision-warnings",
+            default=d.revision_warnings,
+            show_default=True,
+            help="List the checker's warnings of the program being revised in the revision "
+            "turn (the recommended settings: on).",
         ),
         click.option("--seed", type=int, default=d.seed, show_default=True),
         click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),

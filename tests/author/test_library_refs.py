@@ -1,5 +1,6 @@
 """`--library-refs N` (the recommended settings: 2): the generator's first turn carries the
-material library's programs for the request, to reuse or ignore.
+material library's programs for the request, to reuse or ignore; `--revision-warnings` (on in
+recommended): the revision turn lists the checker's warnings of the program it revises.
 
 Runs against the scripted Chat Completions server on 127.0.0.1 (see chat_server.py); the
 expected programs are what :func:`matloom.library.author` writes for the same prompt and seed.
@@ -12,13 +13,15 @@ from pathlib import Path
 from click.testing import CliRunner
 
 from author.chat_server import ChatServer
-from author.conftest import FAST_FLAGS, is_critic, text_of
+from author.conftest import FAST_FLAGS, Script, is_critic, text_of
 from matloom.author.config import AuthorConfig
 from matloom.author.library_refs import library_references
-from matloom.author.prompts.revision import request_message
+from matloom.author.prompts.revision import request_message, warning_lines
 from matloom.author.records import validate_record_file
 from matloom.author.settings_presets import preset_values
 from matloom.cli.main import cli
+from matloom.lang.api import parse
+from matloom.lang.printer import format_program
 from matloom.library import author
 
 PROMPT = "weathered red brick wall"
@@ -36,7 +39,15 @@ def test_references_are_the_offline_author_then_the_next_entries() -> None:
     refs = library_references(PROMPT, 3, seed=5)
     assert len(refs) == 3 and len({r.entry for r in refs}) == 3
     best = author(PROMPT, seed=5)
-    assert refs[0].entry == best.entry and refs[0].program == best.program
+    assert refs[0].entry == best.entry and refs[0].notes[: len(best.adaptations)] == tuple(
+        best.adaptations
+    )
+    # the language the system prompt teaches: no comments, a View of four numbers
+    program = parse(refs[0].program)
+    assert "#" not in refs[0].program and program.view is not None
+    assert not program.view.tileable and program.view.unit_m is None
+    same = parse(format_program(best.ast))
+    assert program.defines == same.defines and program.layers == same.layers
     ranked = [c.name for c in best.candidates]
     assert [r.entry for r in refs[1:]] == [n for n in ranked if n != best.entry][:2]
     assert library_references(PROMPT, 0) == []
@@ -73,3 +84,34 @@ def test_what_the_library_misses_is_said() -> None:
     assert refs and refs[0].missing, "the library draws no unicorn: it must say so"
     text = request_message("x", refs)
     assert "does not show" in text and refs[0].missing[0] in text
+
+
+# ------------------------------------------------------------------ the checker's warnings
+
+
+SHADOWED = """Define(e, 0.5)
+Define(plate, Smoothstep(0.2, 0.3, Worley(base_freq=6, to_01=True, seed=2)))
+Material(
+  Layer(1).basecolor(120, 100, 80).roughness(0.9),
+  Layer((plate * e)).basecolor(200, 180, 150).roughness(0.8)
+)
+"""
+
+
+def test_warning_lines_name_a_define_a_builtin_shadows() -> None:
+    (line,) = [w for w in warning_lines(SHADOWED) if w.startswith("W005")]
+    assert line.startswith("W005 at line 1, column 8:") and "'e'" in line
+
+
+def test_the_revision_turn_carries_the_warnings(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    script.default_generator = lambda body: f"<material>\n{SHADOWED}</material>"
+    _generate(server, tmp_path / "run", "--rounds", "1", "--revision-warnings")
+    (revision,) = [r for r in server.requests if not is_critic(r)][1:]
+    text = text_of(revision["messages"][-1])
+    assert "## Checker warnings" in text and "W005 at line 1, column 8" in text
+    server.requests.clear()
+    _generate(server, tmp_path / "paper", "--rounds", "1")
+    (revision,) = [r for r in server.requests if not is_critic(r)][1:]
+    assert "Checker warnings" not in text_of(revision["messages"][-1])

@@ -33,12 +33,13 @@ def request_message(description: str, references: Sequence[LibraryReference] = (
         return text
     blocks = [text, _REFERENCES_INTRO]
     for k, ref in enumerate(references, start=1):
-        missing = (
-            f"The library says it does not show: {'; '.join(ref.missing)}.\n" if ref.missing else ""
-        )
+        about = [f"Entry: {ref.description}"]
+        about += [f"Adapted: {'; '.join(ref.notes)}"] if ref.notes else []
+        about += [f"It does not show: {'; '.join(ref.missing)}"] if ref.missing else []
         blocks.append(
             f'<library_program n="{k}" entry="{ref.entry}">\n'
-            f"{missing}{ref.program.rstrip()}\n</library_program>"
+            + "\n".join(about)
+            + f"\n<program>\n{ref.program.rstrip()}\n</program>\n</library_program>"
         )
     return "\n\n".join(blocks)
 
@@ -172,6 +173,7 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
     no_change: str | None = None,
     dropped: tuple[int, Sequence[str]] | None = None,
     structural: Sequence[str] = (),
+    warnings: Sequence[str] = (),
 ) -> str:
     """The revision turn: the critic's score, what differs, what to change and its concrete
     edits under their own headings; the attached previews (``views``, when images go with the
@@ -179,7 +181,9 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
 
     Loop v3 sections, first: which version it continues from (``continue_from``), a revision
     with no visible change (``no_change``), what the critic said of a dropped round
-    (``dropped``: its index and differences); and the critic's ``structural`` changes."""
+    (``dropped``: its index and differences); and the critic's ``structural`` changes.
+    ``warnings``: the checker's warnings of the program being revised (``revision_warnings``),
+    e.g. a Define a built-in shadows, which the render silently ignores."""
     sections = []
     if continue_from:
         sections.append(("Continue from", continue_from))
@@ -203,6 +207,14 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
         sections.append(("Structural changes", _bullets(structural, "")))
     if edits:
         sections.append(("Concrete edits", _bullets([edit_line(e) for e in edits], "")))
+    if warnings:
+        sections.append(
+            (
+                "Checker warnings",
+                "The checker accepted the program with these warnings; each may mean that "
+                "what you wrote is not what renders:\n" + _bullets(warnings, ""),
+            )
+        )
     if views:
         sections.append(("Preview", _views_text(views)))
     if added_seeds:
@@ -225,6 +237,25 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
     )
     body = "\n\n".join(f"## {title}\n{text}" for title, text in sections)
     return "A critic reviewed your material against the original description.\n\n" + body
+
+
+#: At most this many checker warnings go with one revision turn.
+MAX_WARNINGS = 6
+
+
+def warning_lines(source: str) -> list[str]:
+    """The checker's warnings of ``source`` as ``W005 at line 3, column 8: ... (hint)``, at
+    most :data:`MAX_WARNINGS`."""
+    from matloom.lang.api import analyse
+
+    _, diagnostics = analyse(source)
+    out = []
+    for d in diagnostics:
+        if d.is_error:
+            continue
+        hint = f" ({d.hint})" if d.hint else ""
+        out.append(f"{d.code} at line {d.line}, column {d.column}: {d.message}{hint}")
+    return out[:MAX_WARNINGS]
 
 
 def canonical_assistant_turn(preamble: str, canonical: str) -> str:
