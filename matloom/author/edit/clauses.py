@@ -24,7 +24,7 @@ _CLAUSE_RE = re.compile(rf"[,;:]|{AND_VERB}")
 
 #: Rules whose plans two clauses of one request may join ("olive drab, satin finish",
 #: "wider grout joints, and make the grout a darker grey", "smaller cells, a bit more matte").
-_JOINABLE = frozenset({"colour", "roughness", "channel", "relief", "joints", "scale"})
+_JOINABLE = frozenset({"colour", "roughness", "channel", "relief", "joints", "scale", "contrast"})
 #: Words that join two wishes inside one clause ("bigger tiles with thinner joints").
 _WISHES_RE = re.compile(r"\b(?:and|with|plus|but)\b")
 
@@ -38,9 +38,15 @@ def join_clauses(
     clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
     if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
         return plan  # an overlay joins a clause's colour or finish ("worn, faded")
-    if len(clauses) < 2 and plan.rule in ("joints", "scale"):
-        # "bigger tiles with thinner joints": two wishes in one clause
+    if len(clauses) < 2 and plan.rule in ("joints", "scale", "roughness"):
+        # "bigger tiles with thinner joints", "a satin finish with more visible grain",
+        # "thinner and less prominent": two wishes in one clause
         clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
+    if plan.rule == "contrast":
+        # "bolder and thicker veins": the whole request without the contrast word, then its
+        # clauses ("larger, bolder patina patches": the size is the patches')
+        rest = re.sub(rf"\b(?:{'|'.join(map(re.escape, plan.said))})\b", " ", asked)
+        clauses = [rest, *clauses] if len(clauses) > 1 else [rest]
     single = len(clauses) < 2
     if single and plan.add:
         return plan

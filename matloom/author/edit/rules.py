@@ -41,6 +41,7 @@ from matloom.author.edit.apply import apply_edit, parse_program, set_view
 from matloom.author.edit.clauses import AND_VERB, join_clauses
 from matloom.author.edit.colours import colour_rule
 from matloom.author.edit.conditions import amount_rule
+from matloom.author.edit.contrast import contrast_rule, feature_rule
 from matloom.author.edit.finish import channel_rule, relief_rule, roughness_rule
 from matloom.author.edit.lexicon import (
     EditWords,
@@ -522,8 +523,10 @@ RULES: tuple[Callable[[Context], Plan | None], ...] = (
     roughness_rule,
     channel_rule,
     relief_rule,
+    contrast_rule,
     colour_rule,
     _scale,
+    feature_rule,
 )
 
 

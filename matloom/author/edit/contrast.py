@@ -1,0 +1,249 @@
+"""How strongly a named feature shows: "more visible grain", "less prominent spalt lines",
+"subtler veins", "more contrast in the marbling", "less variation in the tile colour", "a more
+uniform blue".
+
+The feature is the program's Define the request's noun names (``grain``, ``spalt_line``,
+``vein``; "variation" and "uniform" name the tone Defines: ``tone``, ``shade``, ``vary``). Its
+values are measured on the program's window and the Define is rewritten to spread around its
+mean by a factor: over 1 it shows more (clamped to the range it had, so a mask stays a mask),
+under 1 less, 0 would be uniform. Everything the Define feeds changes with it, which is what the
+request names; the locality check holds the edit to those channels.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from matloom.author.edit.lexicon import split_words, stem
+from matloom.author.edit.plan import Context, Plan
+from matloom.author.edit.targets import define_closure, refs_of
+from matloom.engine.evaluate import evaluate
+from matloom.lang import ast as A
+from matloom.lang.printer import format_expr
+
+#: Words saying the feature should show more (+1) or less (-1), when a degree word comes
+#: before them ("more visible", "less prominent", "too bold"); comparatives need none.
+_SHOW = {
+    "contrast": 1, "contrasty": 1, "prominent": 1, "visible": 1, "pronounced": 1,
+    "bold": 1, "defined": 1, "varied": 1, "variation": 1, "variety": 1,
+    "subtle": -1, "uniform": -1, "even": -1, "consistent": -1,
+}  # fmt: skip
+#: The ``_SHOW`` words that are nouns: a word may come between them and their degree.
+_NOUN_SHOW = frozenset({"contrast", "variation", "variety"})
+#: Comparatives that say it alone ("make the grain subtler").
+_COMPARATIVES = {"bolder": 1, "subtler": -1, "fainter": -1, "evener": -1}
+#: Degree words before a ``_SHOW`` word; the ``_LESS`` ones turn its direction around.
+_DEGREE = frozenset({"more", "less", "much", "too", "so", "very", "barely", "hardly", "higher",
+                     "lower", "stronger", "weaker", "increase", "boost", "reduce", "add", "extra",
+                     "bump", "crank", "some"})  # fmt: skip
+_LESS = frozenset({"less", "reduce", "lower", "weaker", "barely", "hardly", "fewer"})
+#: Words between a degree word and its ``_SHOW`` word ("a bit more", "much less").
+_SOFT = frozenset({"bit", "little", "lot", "much", "way", "far", "slightly", "a"})
+#: Words after which the next words name a place, not the feature ("between the tiles").
+_PLACE = frozenset({"between", "among", "across", "around", "under", "behind", "beside"})
+#: Words of the request that are neither the feature nor its direction.
+_NOT_NOUNS = frozenset(
+    {"more", "much", "bit", "little", "lot", "make", "give", "it", "the", "a", "an", "and",
+     "with", "in", "of", "to", "so", "them", "its", "tone", "stand", "out", "look", "looks",
+     "colour", "color", "overall", "slightly", "very", "way", "too", "please"}
+)  # fmt: skip
+#: Define name words that carry a material's tone variation ("less variation in colour").
+_TONE = frozenset({"tone", "shade", "vary", "variation", "var", "mottle", "tint", "hue"})
+#: The feature's spread at step 1: shown more (x1.8) or less (x0.45); a stronger step
+#: (an escalated edit, "much more") goes further.
+_MORE, _LESS_F = 0.8, 0.55
+#: Grid the feature is measured on.
+_PROBE = 64
+
+
+def _direction(words: list[str]) -> tuple[int, int] | None:
+    """(direction, index of the word) of the first ``_SHOW`` word said with a degree ("more
+    visible", "less prominent", "too busy" is not one) or comparative ("subtler"), or None.
+    "Contrast stitching", "a subtle red" and "for more contrast" (a reason for another
+    change) are not requests for contrast."""
+    for i, w in enumerate(words):
+        if w in _COMPARATIVES:
+            sign = _COMPARATIVES[w]
+            if i > 0 and words[i - 1] in _LESS:
+                sign = -sign  # "less bold"
+            return sign, i
+        if w not in _SHOW:
+            continue
+        j = i - 1
+        if w in _NOUN_SHOW and j > 0 and words[j] not in _DEGREE and words[j - 1] in _DEGREE:
+            j -= 1  # "more colour variation", "less grain contrast"
+        while j >= 0 and words[j] in _SOFT:
+            j -= 1
+        if j < 0 or words[j] not in _DEGREE:
+            continue  # no degree: an adjective ("contrast stitching", "a subtle red")
+        if j > 0 and words[j - 1] in ("for", "give", "gives", "get"):
+            continue  # "... for more contrast": the reason for another change
+        if w == "even" and words[i + 1 : i + 2] and words[i + 1] not in ("tone", "colour"):
+            continue  # "even more grain": no evenness
+        sign = _SHOW[w]
+        return (-sign if words[j] in _LESS else sign), i
+    return None
+
+
+def _feature_words(words: list[str]) -> set[str]:
+    """The stemmed words that may name the feature: not degree, direction or filler words,
+    and none that follow a place word ("barely visible between the tiles")."""
+    out: set[str] = set()
+    place = False
+    for w in words:
+        if w in _PLACE:
+            place = True
+        if place or w in _NOT_NOUNS or w in _DEGREE or w in _SOFT:
+            continue
+        if w in _SHOW or w in _COMPARATIVES:
+            continue
+        out.add(stem(w))
+    return out
+
+
+def _candidates(program: A.Program, nouns: set[str], tone: bool) -> list[tuple[int, A.Define]]:
+    """(score, Define) of the field Defines the nouns name (a tone Define scores 2 more when
+    the request speaks of variation or uniformity), best first."""
+    scored: list[tuple[int, int, A.Define]] = []
+    painted = _painted(program)
+    for k, d in enumerate(program.defines):
+        if getattr(d, "params", ()) or not any(isinstance(n, A.Call) for n in A.walk(d.expr)):
+            continue  # a constant or a parameterised Define is no feature of the surface
+        parts = split_words(d.name)
+        if parts & {"r", "g", "b"} and len(parts) <= 2:
+            continue  # a colour component
+        hits = len(parts & nouns) + (2 if tone and parts & _TONE else 0)
+        if hits and painted.get(d.name, set()) & nouns:
+            hits += 1  # the coverage of a layer whose colour the noun names ("line_r")
+        if hits:
+            scored.append((-hits, k, d))
+    scored.sort(key=lambda t: (t[0], t[1]))
+    return [(-h, d) for h, _, d in scored]
+
+
+def _painted(program: A.Program) -> dict[str, set[str]]:
+    """Coverage Define -> the words of the colour Defines its layer paints with (a layer
+    ``Layer(zone_line).basecolor(line_r, line_g, line_b)``: zone_line -> {line})."""
+    out: dict[str, set[str]] = {}
+    for layer in program.layers:
+        if not isinstance(layer.alpha, A.Ref):
+            continue
+        colour = layer.channel("basecolor")
+        names = {n.name for a in (colour.args if colour else ()) for n in A.walk(a)
+                 if isinstance(n, A.Ref)}  # fmt: skip
+        words = {w for n in names for w in split_words(n)} - {"r", "g", "b", "col", "colour"}
+        out.setdefault(layer.alpha.name, set()).update(words)
+    return out
+
+
+def _top(program: A.Program, scored: list[tuple[int, A.Define]]) -> A.Define | None:
+    """Of the best-scored Defines, the first that none of the others reads (the whole
+    feature, not one of its parts)."""
+    if not scored:
+        return None
+    best = [d for h, d in scored if h == scored[0][0]]
+    closure = define_closure(program)
+    for d in best:
+        if not any(o is not d and d.name in closure.get(o.name, ()) for o in best):
+            return d
+    return best[0]
+
+
+def _channels(program: A.Program, name: str) -> tuple[str, ...]:
+    """The channels the Define feeds; "alpha" when it draws a layer's coverage (a coverage
+    change may move every map)."""
+    closure = define_closure(program)
+    out: dict[str, None] = {}
+    for layer in program.layers:
+        if name in refs_of(layer.alpha, closure):
+            out["alpha"] = None
+        for ch in layer.channels:
+            if any(name in refs_of(a, closure) for a in ch.args):
+                out[ch.name] = None
+    return tuple(out)
+
+
+def _measure(program: A.Program, name: str) -> tuple[float, float, float] | None:
+    probe = A.Program(
+        program.view,
+        program.defines,
+        (A.Layer(None, (A.ChannelSet("height", (A.Ref(name),)),)),),
+    )
+    h = np.asarray(evaluate(probe, _PROBE, _PROBE).height, np.float64)
+    if not np.isfinite(h).all() or float(np.ptp(h)) < 1e-6:
+        return None
+    return float(h.mean()), float(h.min()), float(h.max())
+
+
+def _num(v: float) -> str:
+    return f"{v:.4g}"
+
+
+def contrast_rule(c: Context) -> Plan | None:
+    """Show a named feature more or less (module docstring); None when the request says
+    nothing of how strongly something shows, or names no feature of the program."""
+    found = _direction(c.words)
+    if found is None:
+        return None
+    sign, at = found
+    nouns = _feature_words(c.words)
+    tone = c.words[at] in ("variation", "varied", "variety", "uniform", "even", "evener",
+                           "consistent", "contrast")  # fmt: skip
+    target = _top(c.program, _candidates(c.program, nouns, tone))
+    if target is None:
+        return None
+    measured = _measure(c.program, target.name)
+    if measured is None:
+        return None
+    mean, lo, hi = measured
+    if sign > 0:
+        k = 1 + _MORE * c.k
+        spread = f"(({_num(mean)} + (({format_expr(target.expr)}) - {_num(mean)}) * {_num(k)}))"
+        text = f"Define({target.name}, Clamp(x={spread}, lo={_num(lo)}, hi={_num(hi)}))"
+        how = "shows more"
+    else:
+        k = _LESS_F**c.k
+        spread = f"({_num(mean)} + (({format_expr(target.expr)}) - {_num(mean)}) * {_num(k)})"
+        text = f"Define({target.name}, {spread})"
+        how = "shows less"
+    note = f"{target.name} {how} (its spread around {mean:.3g} x{k:.2f})"
+    intended = _channels(c.program, target.name)
+    return Plan(
+        "contrast",
+        note,
+        lines={f"define:{target.name}": text},
+        intended=intended,
+        graded=True,
+        said=(c.words[at],),
+    )
+
+
+#: "less speckle", "more mottling": an amount word before the feature's noun.
+_AMOUNT = {"less": -1, "reduce": -1, "more": 1, "extra": 1}
+#: Nouns after "more"/"less" that are no feature's look ("more space between the pipes").
+_NOT_FEATURES = frozenset({"space", "room", "gap", "distance", "spacing", "time", "detail"})
+
+
+def feature_rule(c: Context) -> Plan | None:
+    """ "less crystal speckle", "more mottling", "more pucker": a feature of the program (a
+    field Define the noun names) shown less or more, when no other rule read the request (it
+    comes last). Only a mass noun: "more pebbles", "more creases" ask for a count, which
+    showing them more does not give (refused as before)."""
+    for i, w in enumerate(c.words):
+        sign = _AMOUNT.get(w)
+        if sign is None:
+            continue
+        following = [x for x in c.words[i + 1 : i + 4] if x not in _NOT_NOUNS]
+        if not following or following[0] in _NOT_FEATURES:
+            continue
+        if any(stem(x) != x for x in following[:2]):
+            continue  # a plural: a count
+        word = "visible" if sign > 0 else "subtle"
+        sub = Context(
+            c.request, ["more", word, *c.words[i + 1 : i + 4]], c.params, c.program, c.vocabulary,
+            c.strength, c.ew, c.said,
+        )  # fmt: skip
+        plan = contrast_rule(sub)
+        if plan is not None:
+            return plan
+    return None
