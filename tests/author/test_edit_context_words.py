@@ -78,3 +78,29 @@ def test_white_as_a_verb() -> None:
     """ "white it a little": whiter (it was read as the unknown word "whiteer" and refused)."""
     r, g, b = _changed("white it a little")["define:ground"]  # type: ignore[misc]
     assert b > 200 and min(r, g, b) >= 200
+
+
+GLAZE = """View(0, 0, 1, 1, tileable=True)
+Define(tile_r, 230)
+Define(tile_g, 230)
+Define(tile_b, 226)
+Material(
+  Layer(1).basecolor(tile_r, tile_g, tile_b).roughness(0.12)
+)
+"""
+
+
+def test_wet_darkens_what_is_porous_not_a_glaze() -> None:
+    soil = GLAZE.replace(".roughness(0.12)", ".roughness(0.95)")
+    glaze = edit_offline(GLAZE, "make it look wet", size=32)
+    rough = edit_offline(soil, "make it look wet", size=32)
+
+    def colour(result: object) -> list[float]:
+        rows = {c.to_json()["address"]: c.to_json()["after"] for c in result.report.changes}  # type: ignore[attr-defined]
+        return rows.get("define:tile", [230, 230, 226])  # type: ignore[return-value]
+
+    assert sum(colour(glaze)) > 3 * 215  # a glaze stays its colour when wet
+    assert sum(colour(rough)) < 3 * 190  # soil soaks it up
+    # "wet and darker" is darker whatever the surface
+    darker = edit_offline(GLAZE, "make it look wet and darker", size=32)
+    assert sum(colour(darker)) < 3 * 190

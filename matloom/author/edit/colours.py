@@ -19,6 +19,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
+import numpy as np
+
 from matloom.author.edit.families import by_colour, colour_value, hue_family, the_colour
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
@@ -39,6 +41,23 @@ from matloom.lang.constants import constant_defines
 from matloom.lang.params import Param
 from matloom.lang.static import static_number
 from matloom.library.colour import RGB, apply_tone, clamp_rgb
+
+#: The comparative a wet look is read as ("wet": "wetter overall, glossier"): darker as
+#: the surface is porous (:func:`porosity`).
+SOAKED = "wetter"
+#: Mean roughness at which a wet surface darkens not at all (a glaze, a polished stone), and
+#: at which it darkens as much as "darker" (sand, soil, concrete, cloth).
+_SEALED, _POROUS = 0.3, 0.8
+
+
+def porosity(program: A.Program) -> float:
+    """How much a wet look darkens ``program``, 0 .. 1, from its mean roughness (a sealed,
+    glossy surface stays its colour when wet; a rough, porous one darkens): water darkens
+    what it soaks into."""
+    from matloom.engine.evaluate import evaluate
+
+    r = float(np.mean(np.asarray(evaluate(program, 32, 32).roughness, np.float64)))
+    return min(1.0, max(0.0, (r - _SEALED) / (_POROUS - _SEALED)))
 
 
 def comparative(rgb: Sequence[float], step: tuple[float, float, float], k: float) -> Lab:
@@ -497,6 +516,10 @@ def colour_rule(c: Context) -> Plan | None:
     stronger = _TINT_STRONGER if tint and step is not None else 1.0
     share = min(_TINT_MAX, _TINT_SHARE * c.intensity * stronger) if tint else _LIKE_SHARE
     base_lab = to_lab(colour_value(primary))
+    # "make it wet": as dark as the surface is porous, unless the request says darker too
+    wet = 1.0
+    if comp == SOAKED and not {"darker", "dark", "darken"} & set(c.said or c.words):
+        wet = porosity(c.program)
     new: dict[Param, Value] = {}
     for p in targets:
         current = colour_value(p)
@@ -514,12 +537,12 @@ def colour_rule(c: Context) -> Plan | None:
             if p is not primary:
                 lab = _with_offset(lab, to_lab(current), base_lab)
         elif step is not None:
-            lab = comparative(current, step, c.k)
+            lab = comparative(current, step, c.k * wet)
         else:  # an absolute tone alone ("dark"): the library's tone on the current colour
             lab = to_lab(apply_tone(clamp_rgb(current), tone or "", c.vocabulary.tones[tone or ""]))
         out = from_lab(lab)
         least = c.ew.f("colour_min_de") * min(1.0, c.intensity)  # "slightly": a smaller least
-        if delta_e(current, out) < least and step is not None and not tint:
+        if delta_e(current, out) < least and step is not None and not tint and comp != SOAKED:
             lab = comparative(current, step, c.k * 2)
             out = from_lab(lab)
         new[p] = tuple(float(x) for x in out)  # type: ignore[assignment]

@@ -38,7 +38,7 @@ _DEGREE = frozenset({"more", "less", "much", "too", "so", "very", "barely", "har
                      "bump", "crank", "some"})  # fmt: skip
 _LESS = frozenset({"less", "reduce", "lower", "weaker", "barely", "hardly", "fewer"})
 #: Words between a degree word and its ``_SHOW`` word ("a bit more", "much less").
-_SOFT = frozenset({"bit", "little", "lot", "much", "way", "far", "slightly", "a"})
+_SOFT = frozenset({"bit", "little", "lot", "much", "way", "far", "slightly", "a", "the"})
 #: Words after which the next words name a place, not the feature ("between the tiles").
 _PLACE = frozenset({"between", "among", "across", "around", "under", "behind", "beside"})
 #: Words of the request that are neither the feature nor its direction.
@@ -163,16 +163,31 @@ def _channels(program: A.Program, name: str) -> tuple[str, ...]:
     return tuple(out)
 
 
-def _measure(program: A.Program, name: str) -> tuple[float, float, float] | None:
+#: A feature whose values span more than this is a coordinate or an index (a ply number, a
+#: phase), not a look: spreading it would scramble the pattern.
+_MAX_SPAN = 3.0
+#: A feature with this share of its samples at its two ends is a hard mask: spreading it
+#: more changes nothing.
+_HARD = 0.99
+
+
+def _measure(program: A.Program, name: str, sign: int) -> tuple[float, float, float] | None:
+    """(mean, min, max) of the Define over the window, or None when it cannot be shown more
+    or less by spreading it (flat, a coordinate or index, or a hard mask asked to show more)."""
     probe = A.Program(
         program.view,
         program.defines,
         (A.Layer(None, (A.ChannelSet("height", (A.Ref(name),)),)),),
     )
     h = np.asarray(evaluate(probe, _PROBE, _PROBE).height, np.float64)
-    if not np.isfinite(h).all() or float(np.ptp(h)) < 1e-6:
+    span = float(np.ptp(h)) if np.isfinite(h).all() else 0.0
+    if span < 1e-6 or span > _MAX_SPAN:
         return None
-    return float(h.mean()), float(h.min()), float(h.max())
+    lo, hi = float(h.min()), float(h.max())
+    ends = np.mean((h < lo + 0.02 * span) | (h > hi - 0.02 * span))
+    if sign > 0 and ends >= _HARD:
+        return None
+    return float(h.mean()), lo, hi
 
 
 def _num(v: float) -> str:
@@ -189,11 +204,14 @@ def contrast_rule(c: Context) -> Plan | None:
     nouns = _feature_words(c.words)
     tone = c.words[at] in ("variation", "varied", "variety", "uniform", "even", "evener",
                            "consistent", "contrast")  # fmt: skip
-    target = _top(c.program, _candidates(c.program, nouns, tone))
-    if target is None:
-        return None
-    measured = _measure(c.program, target.name)
-    if measured is None:
+    scored = _candidates(c.program, nouns, tone)
+    target, measured = None, None
+    while scored and measured is None:
+        target = _top(c.program, scored)
+        assert target is not None
+        measured = _measure(c.program, target.name, sign)
+        scored = [(h, d) for h, d in scored if d is not target]
+    if target is None or measured is None:
         return None
     mean, lo, hi = measured
     if sign > 0:
@@ -220,6 +238,8 @@ def contrast_rule(c: Context) -> Plan | None:
 
 #: "less speckle", "more mottling": an amount word before the feature's noun.
 _AMOUNT = {"less": -1, "reduce": -1, "more": 1, "extra": 1}
+#: Words after "more"/"less" that make it no amount of a feature.
+_NOT_AFTER = frozenset({"of", "like", "than", "as", "to", "and", "or", "in", "on"})
 #: Nouns after "more"/"less" that are no feature's look ("more space between the pipes").
 _NOT_FEATURES = frozenset({"space", "room", "gap", "distance", "spacing", "time", "detail"})
 
@@ -233,6 +253,8 @@ def feature_rule(c: Context) -> Plan | None:
         sign = _AMOUNT.get(w)
         if sign is None:
             continue
+        if c.words[i + 1 : i + 2] and c.words[i + 1] in _NOT_AFTER:
+            continue  # "more like birch ply", "cover more of the wall", "more than"
         following = [x for x in c.words[i + 1 : i + 4] if x not in _NOT_NOUNS]
         if not following or following[0] in _NOT_FEATURES:
             continue
