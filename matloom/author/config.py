@@ -163,6 +163,10 @@ class AuthorConfig(BaseModel):
     #: The revision turn lists the checker's warnings of the program it revises (a Define a
     #: built-in shadows, a layer that is never visible ...); the paper's does not.
     revision_warnings: bool = False
+    #: Checker warnings answered with a repair turn, like errors, before a program is
+    #: accepted (``W005``: a Define named ``e`` or ``pi``, which the built-in constant shadows,
+    #: so the program silently renders something else); the paper's accepts every warning.
+    refuse_warnings: tuple[str, ...] = ()
     #: The last program's critique asks for the score only (its suggestions cannot be used).
     score_only_last: bool = False
     #: Blender layouts to render the final material in after export ("flat", "staged"), into

@@ -171,6 +171,7 @@ class Run:
             repair_turns=self.config.repair_turns,
             notify=lambda m: self.notify("generate", m, round=0),
             max_reply_chars=self.config.max_reply_chars,
+            refused_warnings=frozenset(self.config.refuse_warnings),
         )
 
     def start_from_library(self) -> None:
@@ -368,6 +369,7 @@ class Run:
             notify=lambda m: self.notify("revise", m, round=k + 1),
             max_reply_chars=cfg.max_reply_chars,
             images=images,
+            refused_warnings=frozenset(cfg.refuse_warnings),
         )
 
     # ------------------------------------------------------------------ stage III

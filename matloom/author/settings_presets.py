@@ -53,6 +53,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "examples": "v3",
         "library_refs": 2,
         "revision_warnings": True,
+        "refuse_warnings": ("W005",),
     },
 }
 #: Config fields a preset may not set (models come from profiles; the name is recorded).

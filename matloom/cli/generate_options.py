@@ -48,6 +48,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "critic_stats": "critic_stats",
     "revision_images": "revision_images",
     "revision_warnings": "revision_warnings",
+    "refuse_warnings": "refuse_warnings",
     "reference": "reference",
     "polish": "polish",
     "polish_evaluations": "polish_evaluations",
@@ -355,6 +356,15 @@ def pipeline_options(f: Any) -> Any:
             show_default=True,
             help="List the checker's warnings of the program being revised in the revision "
             "turn (the recommended settings: on).",
+        ),
+        click.option(
+            "--refuse-warning",
+            "refuse_warnings",
+            multiple=True,
+            default=d.refuse_warnings,
+            show_default=True,
+            help="A checker warning code (W005: a Define a built-in constant shadows) answered "
+            "with a repair turn like an error; repeat for several (recommended: W005).",
         ),
         click.option("--seed", type=int, default=d.seed, show_default=True),
         click.option("--repair-turns", type=int, default=d.repair_turns, show_default=True),

@@ -115,3 +115,28 @@ def test_the_revision_turn_carries_the_warnings(
     _generate(server, tmp_path / "paper", "--rounds", "1")
     (revision,) = [r for r in server.requests if not is_critic(r)][1:]
     assert "Checker warnings" not in text_of(revision["messages"][-1])
+
+
+def test_a_refused_warning_gets_a_repair_turn(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    fixed = SHADOWED.replace("Define(e, 0.5)", "Define(amount, 0.5)").replace("* e)", "* amount)")
+    script.generator.extend(
+        [f"<material>\n{SHADOWED}</material>", f"<material>\n{fixed}</material>"]
+    )
+    _generate(server, tmp_path / "run", "--refuse-warning", "W005")
+    generator = [r for r in server.requests if not is_critic(r)]
+    assert len(generator) == 2  # the shadowed Define was answered with a repair turn
+    repair = text_of(generator[1]["messages"][-1])
+    assert "W005" in repair and "'e'" in repair
+    record = validate_record_file(tmp_path / "run" / "record.json")
+    assert "Define(amount, 0.5)" in record.programs[0].text
+    assert [a.outcome for a in record.turns[0].attempts] == ["parse_error", "accepted"]
+
+
+def test_warnings_are_accepted_by_default(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    script.generator.append(f"<material>\n{SHADOWED}</material>")
+    _generate(server, tmp_path / "run")
+    assert len([r for r in server.requests if not is_critic(r)]) == 1

@@ -78,10 +78,13 @@ def _direction(words: list[str]) -> tuple[int, int] | None:
             continue  # no degree: an adjective ("contrast stitching", "a subtle red")
         if j > 0 and words[j - 1] in ("for", "give", "gives", "get"):
             continue  # "... for more contrast": the reason for another change
+        if "so" in words[max(0, j - 4) : j - 1] or "so" == words[j - 1 : j] == ["so"] and i == j:
+            continue  # "shallower so the hammering is more subtle": the reason
         if w == "even" and words[i + 1 : i + 2] and words[i + 1] not in ("tone", "colour"):
             continue  # "even more grain": no evenness
         sign = _SHOW[w]
-        return (-sign if words[j] in _LESS else sign), i
+        # "less visible"; "too subtle", "too bold": less of what it is, the other way
+        return (-sign if words[j] in _LESS or words[j] == "too" else sign), i
     return None
 
 
@@ -201,7 +204,8 @@ def contrast_rule(c: Context) -> Plan | None:
     if found is None:
         return None
     sign, at = found
-    nouns = _feature_words(c.words)
+    # a condition's amount is the amount rule's ("less visible rust": less rust)
+    nouns = _feature_words(c.words) - {stem(w) for w in c.ew.conditions}
     tone = c.words[at] in ("variation", "varied", "variety", "uniform", "even", "evener",
                            "consistent", "contrast")  # fmt: skip
     scored = _candidates(c.program, nouns, tone)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal
 
 from matloom.author.config import DEFAULT_MAX_REPLY_CHARS
@@ -48,6 +48,7 @@ from matloom.author.records import (
 from matloom.author.replies import refusal, shown_reply
 from matloom.lang import ast as A
 from matloom.lang.api import analyse
+from matloom.lang.diagnostics import Severity
 from matloom.lang.extract import extract_program
 from matloom.lang.printer import format_program
 from matloom.lang.rewrite import map_program
@@ -118,10 +119,17 @@ def committed_messages(store: RecordStore) -> list[ChatMessage]:
     return [ChatMessage(role="system", text=system), *history]
 
 
-def _check(program_text: str) -> tuple[str | None, list[dict[str, object]], str | None]:
-    """(canonical text or None, error dicts, repair message or None) for extracted text."""
+def _check(
+    program_text: str, refused: frozenset[str] = frozenset()
+) -> tuple[str | None, list[dict[str, object]], str | None]:
+    """(canonical text or None, error dicts, repair message or None) for extracted text;
+    warnings whose code is in ``refused`` count as errors (a Define a built-in shadows)."""
     program, diags = analyse(program_text)
-    errors = [d for d in diags if d.is_error]
+    errors = [
+        d if d.is_error else replace(d, severity=Severity.ERROR)
+        for d in diags
+        if d.is_error or d.code in refused
+    ]
     if program is None or errors:
         return None, [d.to_dict() for d in errors], diagnostics_message(program_text, errors)
     return format_program(program), [], None
@@ -141,7 +149,9 @@ class _Outcome:
     source: str = ""
 
 
-def _read_reply(reply: ChatReply, max_reply_chars: int) -> _Outcome:
+def _read_reply(
+    reply: ChatReply, max_reply_chars: int, strict: frozenset[str] = frozenset()
+) -> _Outcome:
     """Extract and check the program of one reply (refused unread when over the cap)."""
     refused = refusal(reply, max_reply_chars)
     if refused is not None:
@@ -152,7 +162,7 @@ def _read_reply(reply: ChatReply, max_reply_chars: int) -> _Outcome:
     program_text, preamble = extract_answer(reply.text)
     if program_text is None:
         return _Outcome("no_program", preamble=preamble, repair=missing_program_message())
-    canonical, errors, repair = _check(program_text)
+    canonical, errors, repair = _check(program_text, strict)
     if canonical is None:
         return _Outcome("parse_error", preamble=preamble, errors=errors, repair=repair or "")
     return _Outcome("accepted", canonical=canonical, preamble=preamble, source=program_text)
@@ -169,10 +179,12 @@ def run_turn(
     notify: Notify | None = None,
     max_reply_chars: int = DEFAULT_MAX_REPLY_CHARS,
     images: Sequence[ImageInput] = (),
+    refused_warnings: frozenset[str] = frozenset(),
 ) -> ProgramRecord:
     """Run one generation/revision turn to an accepted program; record every attempt.
 
-    ``images`` go with the new user message (and its repairs), not with later turns."""
+    ``images`` go with the new user message (and its repairs), not with later turns;
+    ``refused_warnings``: checker warnings answered with a repair turn like errors."""
     record = store.record
     index = len(record.programs)
     turn = TurnRecord(program_index=index, kind="initial" if index == 0 else "revision")
@@ -191,7 +203,7 @@ def run_turn(
             turn.attempts.append(_bad_attempt(attempt, str(err), t0, model.model_id))
             store.save()
             continue
-        read = _read_reply(reply, max_reply_chars)
+        read = _read_reply(reply, max_reply_chars, refused_warnings)
         shown = shown_reply(reply, max_reply_chars)
         turn.attempts.append(
             AttemptRecord(
