@@ -104,3 +104,13 @@ def test_wet_darkens_what_is_porous_not_a_glaze() -> None:
     # "wet and darker" is darker whatever the surface
     darker = edit_offline(GLAZE, "make it look wet and darker", size=32)
     assert sum(colour(darker)) < 3 * 190
+
+
+def test_add_some_yellowing_is_the_look_but_wet_patches_are_patches() -> None:
+    from matloom.author.edit.rules import normalise
+
+    assert normalise("add some yellowing") == "add some yellower overall"
+    assert normalise("add some wet patches") == "add some wet patches"
+    changed = _changed("add some yellowing")
+    r, g, b = changed["define:ground"]  # type: ignore[misc]
+    assert b < 200 - 20 and r >= 230  # the cream ground is yellower

@@ -498,7 +498,11 @@ def _looks(asked: str) -> str:
         lead = next((w for w in ws if w not in ew["filler"]), None) == t
         said = bool(ew["look"] & set(ws[max(0, i - 3) : i])) or ws[i + 1 : i + 2] == ["look"]
         # "make it wet", "get them damp", "more wet" ("where it stays damp" is a place)
-        made = any(w in ("make", "get", "more", "less") for w in ws[max(0, i - 3) : i])
+        # ("add some yellowing": a look no overlay draws; "add some wet patches" are patches)
+        verbs = ("make", "get", "more", "less") + (
+            ("add", "some") if t in ew["added_looks"] else ()
+        )
+        made = any(w in verbs for w in ws[max(0, i - 3) : i])
         if not (lead or said or made):
             continue  # "the sample from the wet room"
         if {"than", "instead"} & set(ws[max(0, i - 3) : i]):
