@@ -52,8 +52,9 @@ _TONE = frozenset({"tone", "shade", "vary", "variation", "var", "mottle", "tint"
 #: The feature's spread at step 1: shown more (x1.8) or less (x0.45); a stronger step
 #: (an escalated edit, "much more") goes further.
 _MORE, _LESS_F = 0.8, 0.55
-#: Grid the feature is measured on.
-_PROBE = 64
+#: Grid the feature is measured on (fine enough for threads and fibres: a coarser one misses
+#: the gaps of a weave and reads it as flat).
+_PROBE = 192
 
 
 def _direction(words: list[str]) -> tuple[int, int] | None:
@@ -190,7 +191,9 @@ def _measure(program: A.Program, name: str, sign: int) -> tuple[float, float, fl
     ends = np.mean((h < lo + 0.02 * span) | (h > hi - 0.02 * span))
     if sign > 0 and ends >= _HARD:
         return None
-    return float(h.mean()), lo, hi
+    if lo >= 0 and hi <= 1:  # a mask or a share: it may use the whole of [0, 1]
+        return float(h.mean()), 0.0, 1.0
+    return float(h.mean()), lo - 0.1 * span, hi + 0.1 * span
 
 
 def _num(v: float) -> str:
