@@ -31,6 +31,7 @@ from __future__ import annotations
 from typing import Any
 
 from matloom.author.config import AuthorConfig, ConfigError
+from matloom.lang.codes import Code
 
 #: The recommended ``no_change_threshold`` in levels of 255 (measured with
 #: ``benchmarks/visible_change.py``; docs/authoring.md, "Critic loop v3").
@@ -53,7 +54,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "examples": "v3",
         "library_refs": 2,
         "revision_warnings": True,
-        "refuse_warnings": ("W005",),
+        "refuse_warnings": (Code.SHADOWED_DEFINE.code,),
     },
 }
 #: Config fields a preset may not set (models come from profiles; the name is recorded).
