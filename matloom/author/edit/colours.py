@@ -19,8 +19,6 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-import numpy as np
-
 from matloom.author.edit.families import by_colour, colour_value, hue_family, the_colour
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
@@ -36,28 +34,12 @@ from matloom.author.edit.targets import (
     param_words,
     wanted,
 )
+from matloom.author.edit.wetness import SOAKED, porosity
 from matloom.lang import ast as A
 from matloom.lang.constants import constant_defines
 from matloom.lang.params import Param
 from matloom.lang.static import static_number
 from matloom.library.colour import RGB, apply_tone, clamp_rgb
-
-#: The comparative a wet look is read as ("wet": "wetter overall, glossier"): darker as
-#: the surface is porous (:func:`porosity`).
-SOAKED = "wetter"
-#: Mean roughness at which a wet surface darkens not at all (a glaze, a polished stone), and
-#: at which it darkens as much as "darker" (sand, soil, concrete, cloth).
-_SEALED, _POROUS = 0.3, 0.8
-
-
-def porosity(program: A.Program) -> float:
-    """How much a wet look darkens ``program``, 0 .. 1, from its mean roughness (a sealed,
-    glossy surface stays its colour when wet; a rough, porous one darkens): water darkens
-    what it soaks into."""
-    from matloom.engine.evaluate import evaluate
-
-    r = float(np.mean(np.asarray(evaluate(program, 32, 32).roughness, np.float64)))
-    return min(1.0, max(0.0, (r - _SEALED) / (_POROUS - _SEALED)))
 
 
 def comparative(rgb: Sequence[float], step: tuple[float, float, float], k: float) -> Lab:
