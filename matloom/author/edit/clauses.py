@@ -38,7 +38,7 @@ def join_clauses(
     clauses = [s for s in _CLAUSE_RE.split(asked) if s and s.strip()]
     if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
         return plan  # an overlay joins a clause's colour or finish ("worn, faded")
-    if len(clauses) < 2 and plan.rule in ("joints", "scale", "roughness"):
+    if len(clauses) < 2 and plan.rule in ("joints", "scale"):
         # "bigger tiles with thinner joints", "a satin finish with more visible grain",
         # "thinner and less prominent": two wishes in one clause
         clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
@@ -122,6 +122,28 @@ def join_clauses(
             exact=plan.exact or other.exact,
         )
     return plan
+
+
+def with_contrast(c: Context, plan: Plan, contrast: Plan | None) -> Plan:
+    """``plan`` joined by the contrast rule's plan of the same request ("a satin finish with a
+    bit more visible grain": the finish leads, the grain joins), when it changes other lines."""
+    if (
+        contrast is None
+        or "contrast" in plan.rule.split("+")
+        or plan.view
+        or plan.add
+        or set(contrast.lines) & set(plan.lines)
+    ):
+        return plan
+    return Plan(
+        f"{plan.rule}+contrast",
+        f"{plan.note}; {contrast.note}",
+        assignments=dict(plan.assignments),
+        intended=tuple(dict.fromkeys(plan.intended + contrast.intended)),
+        lines={**plan.lines, **contrast.lines},
+        graded=plan.graded and contrast.graded,
+        exact=plan.exact,
+    )
 
 
 def _rule_parts(*plans: Plan) -> set[str]:

@@ -38,7 +38,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from matloom.author.edit.apply import apply_edit, parse_program, set_view
-from matloom.author.edit.clauses import AND_VERB, join_clauses
+from matloom.author.edit.clauses import AND_VERB, join_clauses, with_contrast
 from matloom.author.edit.colours import colour_rule
 from matloom.author.edit.conditions import amount_rule
 from matloom.author.edit.contrast import contrast_rule, feature_rule
@@ -554,7 +554,10 @@ def plan_edit(
     for rule in RULES:
         plan = rule(c)
         if plan is not None:
-            return join_clauses(c, asked, plan, RULES)
+            plan = join_clauses(c, asked, plan, RULES)
+            if plan.rule in ("roughness", "roughness+colour"):  # "satin, more visible grain"
+                plan = with_contrast(c, plan, contrast_rule(replace(c, words=tokens(asked))))
+            return plan
     raise EditRefused(
         request,
         "no offline rule understands it (colours, rougher/glossier, sheen, clearcoat, metallic, "
