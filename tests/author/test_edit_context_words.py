@@ -4,7 +4,10 @@ red", "to match the grout") names no colour to paint."""
 
 from __future__ import annotations
 
+import pytest
+
 from matloom.author.edit.core import edit_offline
+from matloom.author.edit.plan import EditRefused
 
 PRINT = """View(0, 0, 1, 1, tileable=True)
 Define(ground_r, 236)
@@ -114,3 +117,20 @@ def test_add_some_yellowing_is_the_look_but_wet_patches_are_patches() -> None:
     changed = _changed("add some yellowing")
     r, g, b = changed["define:ground"]  # type: ignore[misc]
     assert b < 200 - 20 and r >= 230  # the cream ground is yellower
+
+
+def test_a_clear_coat_asked_for_where_none_is_written_is_added() -> None:
+    import numpy as np
+
+    from matloom.engine.evaluate import evaluate
+    from matloom.lang.api import parse
+
+    result = edit_offline(PRINT, "give it a clear varnish", size=32)
+    assert result.report.plan["rule"] == "channel" and result.report.locality.ok
+    coat = np.asarray(evaluate(parse(result.program), 32, 32).coat)
+    assert coat.min() > 0.7  # every layer is coated
+    before = evaluate(parse(PRINT), 32, 32)
+    after = evaluate(parse(result.program), 32, 32)
+    assert np.array_equal(before.basecolor_linear, after.basecolor_linear)
+    with pytest.raises(EditRefused):  # nothing to take away
+        edit_offline(PRINT, "no clear coat", size=32)

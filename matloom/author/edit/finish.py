@@ -233,6 +233,8 @@ def channel_rule(c: Context) -> Plan | None:
         if p.kind == "scalar" and channel in p.affects and set(p.affects) <= {channel}
     ]
     if not params:
+        if d > 0 and not zero and channel in _ADDED and _asks_coat(c, i):
+            return _added_channel(c, channel)  # "give it a clear lacquer": a coat on top
         raise c.refuse(f"no {channel} parameter (no layer writes {channel} as a number)")
     skip = c.ew.channels[channel] | c.ew["more"] | c.ew["flip"] | {channel}
     nouns = [n for n in c.nouns if n not in skip]
@@ -253,6 +255,35 @@ def channel_rule(c: Context) -> Plan | None:
             new[p] = clamp(p, max(lo, v - step))
     word = "no" if zero else "more" if d > 0 else "less"
     return assign(c, "channel", f"{word} {channel}", new, (channel,), graded=not zero)
+
+
+#: Channels a request may add where no layer writes them, and the value each layer gets
+#: ("give it a clear varnish": a clear coat of 0.8). Not sheen: "a wet sheen", "a slight
+#: sheen" on stone mean gloss, and a cloth's sheen lobe would be wrong there.
+_ADDED = {"coat": 0.8}
+#: Words that ask for a clear coat ("coat" alone only after "clear": "a bold 1960s coat").
+_COAT_WORDS = frozenset({"clearcoat", "lacquer", "lacquered", "varnish", "varnished"})
+
+
+def _asks_coat(c: Context, i: int) -> bool:
+    """Whether word ``i`` asks for a clear coat, not a part the program names ("lighten the
+    desert varnish") nor a garment ("like a 1960s coat")."""
+    w = c.words[i]
+    if w not in _COAT_WORDS and not (w == "coat" and c.words[i - 1 : i] == ["clear"]):
+        return False
+    return not named_in_program(c.program, [w], c.ew)
+
+
+def _added_channel(c: Context, channel: str) -> Plan:
+    """Every layer writes ``channel`` at its added value (a clear coat or a sheen asked for on a
+    material that has none): the layers' lines are rewritten, nothing else moves."""
+    value = round(min(1.0, _ADDED[channel] * min(1.0, c.k)), 3)
+    lines: dict[str, str] = {}
+    for n, layer in enumerate(c.program.layers, start=1):
+        added = A.Layer(layer.alpha, (*layer.channels, A.ChannelSet(channel, (A.Num(value),))))
+        lines[f"layer:{n}"] = " ".join(x.strip() for x in format_layer(added))
+    note = f"{channel} {value:g} added to every layer (none wrote it)"
+    return Plan("channel", note, lines=lines, intended=(channel,), exact=True)
 
 
 # ---- relief ------------------------------------------------------------------------------------
