@@ -239,6 +239,23 @@ class AuthorConfig(BaseModel):
         """``"builtin"`` (records and flags from before the library) means ``"library"``."""
         return START_ALIASES.get(value, value) if isinstance(value, str) else value
 
+    @field_validator("refuse_warnings", mode="before")
+    @classmethod
+    def _warning_codes(cls, value: Any) -> Any:
+        """Warning codes of the checker's table, upper-cased ("w005" is W005); an unknown code
+        or an error code is refused (errors are always repaired)."""
+        if isinstance(value, str):
+            value = [value]
+        if not isinstance(value, list | tuple):
+            return value
+        from matloom.lang.codes import CODES
+
+        codes = tuple(str(v).strip().upper() for v in value)
+        bad = [v for v in codes if v not in CODES or not v.startswith("W")]
+        if bad:
+            raise ValueError(f"not a checker warning code: {', '.join(bad)} (e.g. W005)")
+        return codes
+
     @field_validator("critic_signals", mode="before")
     @classmethod
     def _parse_signals(cls, value: Any) -> Any:

@@ -127,3 +127,26 @@ def test_more_of_a_counted_feature_is_no_contrast() -> None:
     with pytest.raises(EditRefused):
         edit_offline(WOOD, "more grains", size=32)
     assert edit_offline(WOOD, "more grain", size=32).report.plan["rule"] == "contrast"
+
+
+@pytest.mark.parametrize(
+    ("request_", "narrower"),
+    [
+        ("make the grain not so prominent", True),
+        ("the grain shouldn't be so visible", True),
+        ("decrease the contrast of the grain", True),
+        ("boost the contrast of the grain so it pops", False),
+        ("give more contrast to the grain", False),
+    ],
+)
+def test_negations_purposes_and_verbs(request_: str, narrower: bool) -> None:
+    result = edit_offline(WOOD, request_, size=32)
+    assert result.report.plan["rule"].startswith("contrast")
+    before, after = _lum(WOOD), _lum(result.program)
+    wood = before > 0.3 * before.max()
+    assert (after[wood].std() < before[wood].std()) == narrower
+
+
+def test_a_more_even_color_is_the_tone() -> None:
+    result = edit_offline(TILES, "give the tiles a more even color", size=32)
+    assert list(result.report.plan["replace"]) == ["define:tile_tone"]

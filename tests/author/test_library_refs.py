@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
+from pydantic import ValidationError
 
 from author.chat_server import ChatServer
 from author.conftest import FAST_FLAGS, Script, is_critic, text_of
@@ -140,3 +142,20 @@ def test_warnings_are_accepted_by_default(
     script.generator.append(f"<material>\n{SHADOWED}</material>")
     _generate(server, tmp_path / "run")
     assert len([r for r in server.requests if not is_critic(r)]) == 1
+
+
+def test_refused_warning_codes_are_checked() -> None:
+    assert AuthorConfig(refuse_warnings=("w005",)).refuse_warnings == ("W005",)
+    for bad in (("E001",), ("W999",), ("bogus",)):
+        with pytest.raises(ValidationError):
+            AuthorConfig(refuse_warnings=bad)
+
+
+def test_the_last_attempt_keeps_a_program_with_only_refused_warnings(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    script.generator.extend([f"<material>\n{SHADOWED}</material>"] * 3)
+    _generate(server, tmp_path / "run", "--refuse-warning", "W005", "--repair-turns", "1")
+    record = validate_record_file(tmp_path / "run" / "record.json")
+    assert [a.outcome for a in record.turns[0].attempts] == ["parse_error", "accepted"]
+    assert record.status == "finished"

@@ -42,12 +42,13 @@ def join_clauses(
         # "bigger tiles with thinner joints", "a satin finish with more visible grain",
         # "thinner and less prominent": two wishes in one clause
         clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
-    if plan.rule == "contrast":
+    contrast = plan.rule == "contrast"
+    if contrast:
         # "bolder and thicker veins": the whole request without the contrast word, then its
         # clauses ("larger, bolder patina patches": the size is the patches')
         rest = re.sub(rf"\b(?:{'|'.join(map(re.escape, plan.said))})\b", " ", asked)
         clauses = [rest, *clauses] if len(clauses) > 1 else [rest]
-    single = len(clauses) < 2
+    single = len(clauses) < 2 and not contrast
     if single and plan.add:
         return plan
     if single:
@@ -94,6 +95,8 @@ def join_clauses(
                     other = colour_rule(sub)  # "darker and a bit shiny": its colour part
         except EditRefused:
             continue
+        if contrast and other is not None and "colour" in other.rule and "between" in words:
+            continue  # "more contrast between the blue and white yarn": the parts, not a paint
         # "paint the pipes safety yellow and add some rust streaks": a condition added on top
         # of the clause before's change (once: the plan adds nothing yet)
         added = other is not None and other.rule == "overlay" and not plan.add

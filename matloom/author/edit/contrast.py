@@ -35,8 +35,12 @@ _COMPARATIVES = {"bolder": 1, "subtler": -1, "fainter": -1, "evener": -1}
 #: Degree words before a ``_SHOW`` word; the ``_LESS`` ones turn its direction around.
 _DEGREE = frozenset({"more", "less", "much", "too", "so", "very", "barely", "hardly", "higher",
                      "lower", "stronger", "weaker", "increase", "boost", "reduce", "add", "extra",
-                     "bump", "crank", "some"})  # fmt: skip
-_LESS = frozenset({"less", "reduce", "lower", "weaker", "barely", "hardly", "fewer"})
+                     "bump", "crank", "some", "decrease", "lessen"})  # fmt: skip
+_LESS = frozenset(
+    {"less", "reduce", "lower", "weaker", "barely", "hardly", "fewer", "decrease", "lessen"}
+)
+#: Negations before the degree word ("not so prominent", "shouldn't be so visible").
+_NOT = frozenset({"not", "t", "never", "no"})
 #: Words between a degree word and its ``_SHOW`` word ("a bit more", "much less").
 _SOFT = frozenset({"bit", "little", "lot", "much", "way", "far", "slightly", "a", "the"})
 #: Words after which the next words name a place, not the feature ("between the tiles").
@@ -77,15 +81,20 @@ def _direction(words: list[str]) -> tuple[int, int] | None:
             j -= 1
         if j < 0 or words[j] not in _DEGREE:
             continue  # no degree: an adjective ("contrast stitching", "a subtle red")
-        if j > 0 and words[j - 1] in ("for", "give", "gives", "get"):
+        if j > 0 and words[j - 1] == "for":
             continue  # "... for more contrast": the reason for another change
-        if "so" in words[max(0, j - 4) : j - 1] or "so" == words[j - 1 : j] == ["so"] and i == j:
+        if j > 0 and "so" in words[max(0, j - 4) : j]:
             continue  # "shallower so the hammering is more subtle": the reason
-        if w == "even" and words[i + 1 : i + 2] and words[i + 1] not in ("tone", "colour"):
+        if w == "even" and words[i + 1 : i + 2] and words[i + 1] not in ("tone", "colour", "color"):
             continue  # "even more grain": no evenness
         sign = _SHOW[w]
-        # "less visible"; "too subtle", "too bold": less of what it is, the other way
-        return (-sign if words[j] in _LESS or words[j] == "too" else sign), i
+        # "less visible"; "too subtle", "too bold": less of what it is, the other way;
+        # "not so prominent", "shouldn't be so visible": the other way too
+        if words[j] in _LESS or words[j] == "too":
+            sign = -sign
+        if any(x in _NOT for x in words[max(0, j - 3) : j]):
+            sign = -sign
+        return sign, i
     return None
 
 

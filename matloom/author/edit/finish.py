@@ -279,6 +279,9 @@ def _added_channel(c: Context, channel: str) -> Plan:
     material that has none): the layers' lines are rewritten, nothing else moves."""
     value = round(min(1.0, _ADDED[channel] * min(1.0, c.k)), 3)
     lines: dict[str, str] = {}
+    if any(layer.channel(channel) is not None for layer in c.program.layers):
+        # a layer writes it as an expression (a wet coat mask): not overwritten
+        raise c.refuse(f"the {channel} is an expression of the program; no number to raise")
     for n, layer in enumerate(c.program.layers, start=1):
         added = A.Layer(layer.alpha, (*layer.channels, A.ChannelSet(channel, (A.Num(value),))))
         lines[f"layer:{n}"] = " ".join(x.strip() for x in format_layer(added))

@@ -14,6 +14,10 @@ SOAKED = "wetter"
 #: Mean roughness at which a wet surface darkens not at all (a glaze, a polished stone), and
 #: at which it darkens as much as "darker" (sand, soil, concrete, cloth).
 _SEALED, _POROUS = 0.3, 0.8
+#: The least share of the darkening: the mean roughness is the whole material's, and the
+#: rough grout between glazed tiles does darken (with none, "make it wet" on tiles changed
+#: too little to show and was refused).
+_LEAST = 0.3
 
 
 def porosity(program: A.Program) -> float:
@@ -21,4 +25,4 @@ def porosity(program: A.Program) -> float:
     glossy surface stays its colour when wet; a rough, porous one darkens): water darkens
     what it soaks into."""
     r = float(np.mean(np.asarray(evaluate(program, 32, 32).roughness, np.float64)))
-    return min(1.0, max(0.0, (r - _SEALED) / (_POROUS - _SEALED)))
+    return min(1.0, max(_LEAST, (r - _SEALED) / (_POROUS - _SEALED)))

@@ -203,7 +203,14 @@ def run_turn(
             turn.attempts.append(_bad_attempt(attempt, str(err), t0, model.model_id))
             store.save()
             continue
+        last = attempt == repair_turns + 1
         read = _read_reply(reply, max_reply_chars, refused_warnings)
+        if last and read.outcome == "parse_error" and refused_warnings:
+            # the last attempt: a program with only refused warnings is kept (it renders),
+            # rather than failing the run; the warning reaches the revision turn
+            lenient = _read_reply(reply, max_reply_chars)
+            if lenient.canonical is not None:
+                read = lenient
         shown = shown_reply(reply, max_reply_chars)
         turn.attempts.append(
             AttemptRecord(
