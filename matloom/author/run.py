@@ -318,12 +318,6 @@ class Run:
         self.store.save()
         return result
 
-    def _warnings(self, index: int) -> list[str]:
-        """The checker's warnings of P_index, at the positions of the text the model wrote."""
-        program = self.record.programs[index]
-        written = extract_answer(program.authored)[0] if program.authored else None
-        return warning_lines(written or program.text)
-
     def revise(self, k: int, base: int | None = None, loop: LoopState | None = None) -> None:
         """Ask the generator for P_{k+1}, revising ``base`` (P_k unless the loop continues from
         the best program so far)."""
@@ -348,7 +342,8 @@ class Run:
             edits=critique.edits,
             views=self.views if images else (),
             added_seeds=self.record.programs[base].added_seeds,
-            warnings=self._warnings(base) if cfg.revision_warnings else (),
+            # at the positions of the text the model wrote (or was shown as its own)
+            warnings=warning_lines(self.shown_text(base)) if cfg.revision_warnings else (),
             previous_score=before.match_score if before is not None and before.ok else None,
             **loop_sections(
                 self.record,

@@ -39,8 +39,7 @@ def join_clauses(
     if plan.view or plan.rule not in _JOINABLE | {"overlay"}:
         return plan  # an overlay joins a clause's colour or finish ("worn, faded")
     if len(clauses) < 2 and plan.rule in ("joints", "scale"):
-        # "bigger tiles with thinner joints", "a satin finish with more visible grain",
-        # "thinner and less prominent": two wishes in one clause
+        # "bigger tiles with thinner joints": two wishes in one clause
         clauses = [s for s in _WISHES_RE.split(asked) if s and s.strip()]
     contrast = plan.rule == "contrast"
     if contrast:
@@ -113,18 +112,23 @@ def join_clauses(
             or set(other.lines) & set(plan.lines)
         ):
             continue
-        plan = Plan(
-            f"{plan.rule}+{other.rule}",
-            f"{plan.note}; {other.note}",
-            assignments={**plan.assignments, **other.assignments},
-            intended=tuple(dict.fromkeys(plan.intended + other.intended)),
-            lines={**plan.lines, **other.lines},
-            view=dict(plan.view or other.view),
-            add=tuple(plan.add) + tuple(other.add),
-            graded=plan.graded and other.graded,
-            exact=plan.exact or other.exact,
-        )
+        plan = _joined(plan, other)
     return plan
+
+
+def _joined(plan: Plan, other: Plan) -> Plan:
+    """One plan making both plans' changes ("roughness+colour")."""
+    return Plan(
+        f"{plan.rule}+{other.rule}",
+        f"{plan.note}; {other.note}",
+        assignments={**plan.assignments, **other.assignments},
+        intended=tuple(dict.fromkeys(plan.intended + other.intended)),
+        lines={**plan.lines, **other.lines},
+        view=dict(plan.view or other.view),
+        add=tuple(plan.add) + tuple(other.add),
+        graded=plan.graded and other.graded,
+        exact=plan.exact or other.exact,
+    )
 
 
 def with_contrast(c: Context, plan: Plan, contrast: Plan | None) -> Plan:
@@ -138,15 +142,7 @@ def with_contrast(c: Context, plan: Plan, contrast: Plan | None) -> Plan:
         or set(contrast.lines) & set(plan.lines)
     ):
         return plan
-    return Plan(
-        f"{plan.rule}+contrast",
-        f"{plan.note}; {contrast.note}",
-        assignments=dict(plan.assignments),
-        intended=tuple(dict.fromkeys(plan.intended + contrast.intended)),
-        lines={**plan.lines, **contrast.lines},
-        graded=plan.graded and contrast.graded,
-        exact=plan.exact,
-    )
+    return _joined(plan, contrast)
 
 
 def _rule_parts(*plans: Plan) -> set[str]:

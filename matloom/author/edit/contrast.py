@@ -14,45 +14,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from matloom.author.edit.lexicon import split_words, stem
+from matloom.author.edit.lexicon import EditWords, split_words, stem
 from matloom.author.edit.plan import Context, Plan
 from matloom.author.edit.targets import define_closure, refs_of
 from matloom.engine.evaluate import evaluate
 from matloom.lang import ast as A
 from matloom.lang.printer import format_expr
 
-#: Words saying the feature should show more (+1) or less (-1), when a degree word comes
-#: before them ("more visible", "less prominent", "too bold"); comparatives need none.
-_SHOW = {
-    "contrast": 1, "contrasty": 1, "prominent": 1, "visible": 1, "pronounced": 1,
-    "bold": 1, "defined": 1, "varied": 1, "variation": 1, "variety": 1,
-    "subtle": -1, "uniform": -1, "even": -1, "consistent": -1,
-}  # fmt: skip
-#: The ``_SHOW`` words that are nouns: a word may come between them and their degree.
-_NOUN_SHOW = frozenset({"contrast", "variation", "variety"})
-#: Comparatives that say it alone ("make the grain subtler").
-_COMPARATIVES = {"bolder": 1, "subtler": -1, "fainter": -1, "evener": -1}
-#: Degree words before a ``_SHOW`` word; the ``_LESS`` ones turn its direction around.
-_DEGREE = frozenset({"more", "less", "much", "too", "so", "very", "barely", "hardly", "higher",
-                     "lower", "stronger", "weaker", "increase", "boost", "reduce", "add", "extra",
-                     "bump", "crank", "some", "decrease", "lessen"})  # fmt: skip
-_LESS = frozenset(
-    {"less", "reduce", "lower", "weaker", "barely", "hardly", "fewer", "decrease", "lessen"}
-)
-#: Negations before the degree word ("not so prominent", "shouldn't be so visible").
-_NOT = frozenset({"not", "t", "never", "no"})
-#: Words between a degree word and its ``_SHOW`` word ("a bit more", "much less").
-_SOFT = frozenset({"bit", "little", "lot", "much", "way", "far", "slightly", "a", "the"})
-#: Words after which the next words name a place, not the feature ("between the tiles").
-_PLACE = frozenset({"between", "among", "across", "around", "under", "behind", "beside"})
-#: Words of the request that are neither the feature nor its direction.
-_NOT_NOUNS = frozenset(
-    {"more", "much", "bit", "little", "lot", "make", "give", "it", "the", "a", "an", "and",
-     "with", "in", "of", "to", "so", "them", "its", "tone", "stand", "out", "look", "looks",
-     "colour", "color", "overall", "slightly", "very", "way", "too", "please"}
-)  # fmt: skip
-#: Define name words that carry a material's tone variation ("less variation in colour").
-_TONE = frozenset({"tone", "shade", "vary", "variation", "var", "mottle", "tint", "hue"})
+# The words (how strongly something shows, degrees, negations, places) are the
+# ``show_*``, ``degree*``, ``negation``, ``feature_place``, ``not_feature``, ``tone_defines``
+# and ``amount_*`` lists of ``words.toml``.
+
 #: The feature's spread at step 1: shown more (x1.8) or less (x0.45); a stronger step
 #: (an escalated edit, "much more") goes further.
 _MORE, _LESS_F = 0.8, 0.55
@@ -61,25 +33,26 @@ _MORE, _LESS_F = 0.8, 0.55
 _PROBE = 192
 
 
-def _direction(words: list[str]) -> tuple[int, int] | None:
-    """(direction, index of the word) of the first ``_SHOW`` word said with a degree ("more
+def _direction(words: list[str], ew: EditWords) -> tuple[int, int] | None:
+    """(direction, index of the word) of the first show word said with a degree ("more
     visible", "less prominent", "too busy" is not one) or comparative ("subtler"), or None.
     "Contrast stitching", "a subtle red" and "for more contrast" (a reason for another
     change) are not requests for contrast."""
+    degree, less = ew["degree"], ew["degree_less"]
     for i, w in enumerate(words):
-        if w in _COMPARATIVES:
-            sign = _COMPARATIVES[w]
-            if i > 0 and words[i - 1] in _LESS:
+        if w in ew["shows_more"] or w in ew["shows_less"]:
+            sign = 1 if w in ew["shows_more"] else -1
+            if i > 0 and words[i - 1] in less:
                 sign = -sign  # "less bold"
             return sign, i
-        if w not in _SHOW:
+        if w not in ew["show_more"] and w not in ew["show_less"]:
             continue
         j = i - 1
-        if w in _NOUN_SHOW and j > 0 and words[j] not in _DEGREE and words[j - 1] in _DEGREE:
+        if w in ew["show_nouns"] and j > 0 and words[j] not in degree and words[j - 1] in degree:
             j -= 1  # "more colour variation", "less grain contrast"
-        while j >= 0 and words[j] in _SOFT:
+        while j >= 0 and words[j] in ew["degree_soft"]:
             j -= 1
-        if j < 0 or words[j] not in _DEGREE:
+        if j < 0 or words[j] not in degree:
             continue  # no degree: an adjective ("contrast stitching", "a subtle red")
         if j > 0 and words[j - 1] == "for":
             continue  # "... for more contrast": the reason for another change
@@ -87,45 +60,46 @@ def _direction(words: list[str]) -> tuple[int, int] | None:
             continue  # "shallower so the hammering is more subtle": the reason
         if w == "even" and words[i + 1 : i + 2] and words[i + 1] not in ("tone", "colour", "color"):
             continue  # "even more grain": no evenness
-        sign = _SHOW[w]
+        sign = 1 if w in ew["show_more"] else -1
         # "less visible"; "too subtle", "too bold": less of what it is, the other way;
         # "not so prominent", "shouldn't be so visible": the other way too
-        if words[j] in _LESS or words[j] == "too":
+        if words[j] in less or words[j] == "too":
             sign = -sign
-        if any(x in _NOT for x in words[max(0, j - 3) : j]):
+        if ew["negation"] & set(words[max(0, j - 3) : j]):
             sign = -sign
         return sign, i
     return None
 
 
-def _feature_words(words: list[str]) -> set[str]:
+def _feature_words(words: list[str], ew: EditWords) -> set[str]:
     """The stemmed words that may name the feature: not degree, direction or filler words,
     and none that follow a place word ("barely visible between the tiles")."""
+    skip = (
+        ew["not_feature"] | ew["degree"] | ew["degree_soft"] | ew["show_more"] | ew["show_less"]
+    ) | (ew["shows_more"] | ew["shows_less"])
     out: set[str] = set()
     place = False
     for w in words:
-        if w in _PLACE:
-            place = True
-        if place or w in _NOT_NOUNS or w in _DEGREE or w in _SOFT:
-            continue
-        if w in _SHOW or w in _COMPARATIVES:
-            continue
-        out.add(stem(w))
+        place = place or w in ew["feature_place"]
+        if not place and w not in skip:
+            out.add(stem(w))
     return out
 
 
-def _candidates(program: A.Program, nouns: set[str], tone: bool) -> list[tuple[int, A.Define]]:
-    """(score, Define) of the field Defines the nouns name (a tone Define scores 2 more when
-    the request speaks of variation or uniformity), best first."""
+def _candidates(
+    program: A.Program, nouns: set[str], tone: frozenset[str]
+) -> list[tuple[int, A.Define]]:
+    """(score, Define) of the field Defines the nouns name (a Define named by a ``tone`` word
+    scores 2 more: the request speaks of variation or uniformity), best first."""
     scored: list[tuple[int, int, A.Define]] = []
     painted = _painted(program)
     for k, d in enumerate(program.defines):
-        if getattr(d, "params", ()) or not any(isinstance(n, A.Call) for n in A.walk(d.expr)):
+        if d.params or not any(isinstance(n, A.Call) for n in A.walk(d.expr)):
             continue  # a constant or a parameterised Define is no feature of the surface
         parts = split_words(d.name)
         if parts & {"r", "g", "b"} and len(parts) <= 2:
             continue  # a colour component
-        hits = len(parts & nouns) + (2 if tone and parts & _TONE else 0)
+        hits = len(parts & nouns) + (2 if parts & tone else 0)
         if hits and painted.get(d.name, set()) & nouns:
             hits += 1  # the coverage of a layer whose colour the noun names ("line_r")
         if hits:
@@ -212,14 +186,13 @@ def _num(v: float) -> str:
 def contrast_rule(c: Context) -> Plan | None:
     """Show a named feature more or less (module docstring); None when the request says
     nothing of how strongly something shows, or names no feature of the program."""
-    found = _direction(c.words)
+    found = _direction(c.words, c.ew)
     if found is None:
         return None
     sign, at = found
     # a condition's amount is the amount rule's ("less visible rust": less rust)
-    nouns = _feature_words(c.words) - {stem(w) for w in c.ew.conditions}
-    tone = c.words[at] in ("variation", "varied", "variety", "uniform", "even", "evener",
-                           "consistent", "contrast")  # fmt: skip
+    nouns = _feature_words(c.words, c.ew) - {stem(w) for w in c.ew.conditions}
+    tone = c.ew["tone_defines"] if c.words[at] in c.ew["show_tone"] else frozenset()
     scored = _candidates(c.program, nouns, tone)
     target, measured = None, None
     while scored and measured is None:
@@ -230,16 +203,12 @@ def contrast_rule(c: Context) -> Plan | None:
     if target is None or measured is None:
         return None
     mean, lo, hi = measured
-    if sign > 0:
-        k = 1 + _MORE * c.k
-        spread = f"(({_num(mean)} + (({format_expr(target.expr)}) - {_num(mean)}) * {_num(k)}))"
-        text = f"Define({target.name}, Clamp(x={spread}, lo={_num(lo)}, hi={_num(hi)}))"
-        how = "shows more"
-    else:
-        k = _LESS_F**c.k
-        spread = f"({_num(mean)} + (({format_expr(target.expr)}) - {_num(mean)}) * {_num(k)})"
-        text = f"Define({target.name}, {spread})"
-        how = "shows less"
+    k = 1 + _MORE * c.k if sign > 0 else _LESS_F**c.k
+    spread = f"({_num(mean)} + (({format_expr(target.expr)}) - {_num(mean)}) * {_num(k)})"
+    if sign > 0:  # spread further, clamped to its range (a mask stays a mask)
+        spread = f"Clamp(x={spread}, lo={_num(lo)}, hi={_num(hi)})"
+    text = f"Define({target.name}, {spread})"
+    how = "shows more" if sign > 0 else "shows less"
     note = f"{target.name} {how} (its spread around {mean:.3g} x{k:.2f})"
     intended = _channels(c.program, target.name)
     return Plan(
@@ -252,31 +221,23 @@ def contrast_rule(c: Context) -> Plan | None:
     )
 
 
-#: "less speckle", "more mottling": an amount word before the feature's noun.
-_AMOUNT = {"less": -1, "reduce": -1, "more": 1, "extra": 1}
-#: Words after "more"/"less" that make it no amount of a feature.
-_NOT_AFTER = frozenset({"of", "like", "than", "as", "to", "and", "or", "in", "on"})
-#: Nouns after "more"/"less" that are no feature's look ("more space between the pipes").
-_NOT_FEATURES = frozenset({"space", "room", "gap", "distance", "spacing", "time", "detail"})
-
-
 def feature_rule(c: Context) -> Plan | None:
     """ "less crystal speckle", "more mottling", "more pucker": a feature of the program (a
     field Define the noun names) shown less or more, when no other rule read the request (it
     comes last). Only a mass noun: "more pebbles", "more creases" ask for a count, which
     showing them more does not give (refused as before)."""
+    ew = c.ew
     for i, w in enumerate(c.words):
-        sign = _AMOUNT.get(w)
-        if sign is None:
+        if w not in ew["amount_more"] and w not in ew["amount_less"]:
             continue
-        if c.words[i + 1 : i + 2] and c.words[i + 1] in _NOT_AFTER:
+        if c.words[i + 1 : i + 2] and c.words[i + 1] in ew["amount_not_after"]:
             continue  # "more like birch ply", "cover more of the wall", "more than"
-        following = [x for x in c.words[i + 1 : i + 4] if x not in _NOT_NOUNS]
-        if not following or following[0] in _NOT_FEATURES:
+        following = [x for x in c.words[i + 1 : i + 4] if x not in ew["not_feature"]]
+        if not following or following[0] in ew["amount_not_feature"]:
             continue
         if any(stem(x) != x for x in following[:2]):
             continue  # a plural: a count
-        word = "visible" if sign > 0 else "subtle"
+        word = "visible" if w in ew["amount_more"] else "subtle"
         sub = Context(
             c.request, ["more", word, *c.words[i + 1 : i + 4]], c.params, c.program, c.vocabulary,
             c.strength, c.ew, c.said,

@@ -233,7 +233,7 @@ def channel_rule(c: Context) -> Plan | None:
         if p.kind == "scalar" and channel in p.affects and set(p.affects) <= {channel}
     ]
     if not params:
-        if d > 0 and not zero and channel in _ADDED and _asks_coat(c, i):
+        if d > 0 and not zero and channel in _ADDED and _asks_coat(c, i, channel):
             return _added_channel(c, channel)  # "give it a clear lacquer": a coat on top
         raise c.refuse(f"no {channel} parameter (no layer writes {channel} as a number)")
     skip = c.ew.channels[channel] | c.ew["more"] | c.ew["flip"] | {channel}
@@ -261,15 +261,14 @@ def channel_rule(c: Context) -> Plan | None:
 #: ("give it a clear varnish": a clear coat of 0.8). Not sheen: "a wet sheen", "a slight
 #: sheen" on stone mean gloss, and a cloth's sheen lobe would be wrong there.
 _ADDED = {"coat": 0.8}
-#: Words that ask for a clear coat ("coat" alone only after "clear": "a bold 1960s coat").
-_COAT_WORDS = frozenset({"clearcoat", "lacquer", "lacquered", "varnish", "varnished"})
 
 
-def _asks_coat(c: Context, i: int) -> bool:
-    """Whether word ``i`` asks for a clear coat, not a part the program names ("lighten the
-    desert varnish") nor a garment ("like a 1960s coat")."""
+def _asks_coat(c: Context, i: int, channel: str) -> bool:
+    """Whether word ``i`` (a word of ``channel`` in ``words.toml``) asks to add it: the bare
+    channel name only after "clear" ("a clear coat", not "a bold 1960s coat"), and no part the
+    program names ("lighten the desert varnish")."""
     w = c.words[i]
-    if w not in _COAT_WORDS and not (w == "coat" and c.words[i - 1 : i] == ["clear"]):
+    if w == channel and c.words[i - 1 : i] != ["clear"]:
         return False
     return not named_in_program(c.program, [w], c.ew)
 
