@@ -131,6 +131,11 @@ class AuthorConfig(BaseModel):
     #: candidates, to reuse or ignore (:mod:`matloom.author.library_refs`); 0: none (the
     #: paper's). Not used with ``start = "library"``, where the library's program is P0.
     library_refs: int = Field(0, ge=0, le=5)
+    #: First drafts the generator writes before revising (``--drafts``): each later draft is
+    #: asked to take a different approach from the earlier ones, every draft is critiqued and
+    #: the revisions continue from the best (the critic's score, or the scorer's); 1: one
+    #: program, as in the paper. Not used with ``start = "library"``.
+    drafts: int = Field(1, ge=1, le=5)
     rounds: int = Field(5, ge=0)
     repair_turns: int = Field(3, ge=0)
     critic_signals: tuple[Literal["render", "stats", "code"], ...] = CRITIC_SIGNALS

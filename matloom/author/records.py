@@ -67,10 +67,11 @@ class AttemptRecord(_Model):
 
 
 class TurnRecord(_Model):
-    """A generation (program 0) or revision (program k > 0) turn with its repair attempts."""
+    """A generation (program 0), another first draft (``drafts``) or revision (program k > 0)
+    turn with its repair attempts."""
 
     program_index: int
-    kind: Literal["initial", "revision"]
+    kind: Literal["initial", "draft", "revision"]
     attempts: list[AttemptRecord] = Field(default_factory=list)
     accepted: bool = False
     seconds: float = 0.0

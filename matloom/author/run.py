@@ -22,6 +22,7 @@ from matloom.author.llm.base import ChatModel, ImageInput
 from matloom.author.prompts.critic import CriticOptions
 from matloom.author.prompts.revision import (
     canonical_assistant_turn,
+    draft_message,
     request_message,
     revision_message,
     warning_lines,
@@ -192,21 +193,26 @@ class Run:
     def refine(self) -> None:
         """Critique P_k and revise into P_{k+1} for k = 0..rounds-1, then critique P_rounds.
 
+        With ``drafts`` D > 1, P_0 .. P_{D-1} are first drafts, each critiqued, and the
+        ``rounds`` revisions follow from the best of them: P_D .. P_{D-1+rounds}.
+
         Loop v3 (off in the paper): a revision with no visible change is not critiqued and
         counts toward stopping; a revision continues from the best program so far; the last
         critique asks for the score only (:mod:`matloom.author.stages.loop`)."""
         cfg = self.config
-        if cfg.rounds == 0 or self.record.stop_reason:
+        if (cfg.rounds == 0 and self.drafts == 1) or self.record.stop_reason:
             return
         if not cfg.effective_signals():
             self.record.stop_reason = "no critic signals available"
             self.store.save()
             return
-        loop = LoopState()
-        for k in range(cfg.rounds + 1):
+        loop = LoopState(drafts=self.drafts)
+        final = loop.drafts - 1 + cfg.rounds
+        for k in range(final + 1):
             if k >= len(self.record.programs):
                 return
-            last = k == cfg.rounds
+            last = k == final
+            drafting = k + 1 < loop.drafts  # the next program is another first draft
             if self._unchanged(k, loop):
                 if len(loop.unchanged) >= cfg.no_change_limit:
                     shown = ", ".join(f"P{j}" for j in loop.unchanged)
@@ -225,11 +231,14 @@ class Run:
                 asked = critique.suggestions or critique.edits
                 if cfg.critic_structural:
                     asked = asked or critique.structural
-                if not last and cfg.stop_when_satisfied and not asked:
+                if not last and not drafting and cfg.stop_when_satisfied and not asked:
                     self.record.stop_reason = f"the critic asked for no changes to P{k}"
                     self.store.save()
                     return
-            if not last:
+            if drafting:
+                if k + 1 >= len(self.record.programs):
+                    self.draft(k + 1, loop.drafts)
+            elif not last:
                 scorer = None if self.scorer is None else lambda j: self._scorer_score(j, loop)
                 base = continue_from(self.record, k, loop, scorer)
                 loop.parents[k + 1] = base
@@ -238,11 +247,34 @@ class Run:
         self.record.stop_reason = f"all {cfg.rounds} revision rounds used"
         self.store.save()
 
+    @property
+    def drafts(self) -> int:
+        """First drafts the generator writes (one when the library writes P0)."""
+        return 1 if self.config.start == "library" else self.config.drafts
+
+    def draft(self, k: int, total: int) -> None:
+        """Ask the generator for P_k, first draft k + 1 of ``total``: a new program for the
+        request, a different approach from the earlier drafts its conversation holds."""
+        assert self.generator is not None
+        cfg = self.config
+        self.notify("generate", f"writing draft {k + 1} of {total} (P{k})", round=k)
+        run_turn(
+            self.generator,
+            self.store,
+            kind="draft",
+            user_text=draft_message(k + 1, total),
+            program_seed=derive_seed(cfg.seed, k),
+            repair_turns=cfg.repair_turns,
+            notify=lambda m: self.notify("generate", m, round=k),
+            max_reply_chars=cfg.max_reply_chars,
+            refused_warnings=frozenset(cfg.refuse_warnings),
+        )
+
     def _unchanged(self, k: int, loop: LoopState) -> bool:
         """True (and noted in ``loop``) when P_k's previews differ from its parent's by less
-        than ``no_change_threshold``."""
+        than ``no_change_threshold`` (never for a first draft)."""
         threshold = self.config.no_change_threshold
-        if threshold is None or k == 0:
+        if threshold is None or loop.is_draft(k):
             return False
         size, parent = self.config.critique_size, loop.parent(k)
         images = [
@@ -270,7 +302,7 @@ class Run:
         return record.text
 
     def _previous_round(self, k: int, sees_render: bool, loop: LoopState) -> PreviousRound | None:
-        if not self.config.critic_history or k == 0:
+        if not self.config.critic_history or loop.is_draft(k):
             return None
         parent = loop.parent(k)
         images = tuple(self.view_inputs(parent)) if sees_render else ()
@@ -333,7 +365,7 @@ class Run:
         if cfg.revision_images and self.generator.accepts_images:
             images = self.view_inputs(base)
         before = None
-        if cfg.critic_history and guiding > 0:
+        if cfg.critic_history and not loop.is_draft(guiding):
             before = self.record.critique_of(loop.parent(guiding))
         text = revision_message(
             critique.match_score or 0,

@@ -37,6 +37,7 @@ _CONFIG_FLAGS: dict[str, str] = {
     "examples": "examples",
     "start": "start",
     "library_refs": "library_refs",
+    "drafts": "drafts",
     "pick": "pick",
     "max_reply_chars": "max_reply_chars",
     "tileable": "tileable",
@@ -404,6 +405,15 @@ def pipeline_options(f: Any) -> Any:
             show_default=True,
             help="Show the generator the library's programs for the request from its N best "
             "candidates, to reuse or ignore (the recommended settings: 2).",
+        ),
+        click.option(
+            "--drafts",
+            type=click.IntRange(1, 5),
+            default=d.drafts,
+            show_default=True,
+            help="First drafts the generator writes, each a different approach; every draft "
+            "is critiqued and the revisions continue from the best (1: the paper's one "
+            "program).",
         ),
         click.option(
             "--tileable/--no-tileable",

@@ -11,7 +11,7 @@ structural changes.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from matloom.author.library_refs import LibraryReference
 from matloom.author.prompts.system import ANSWER_FORMAT
@@ -53,6 +53,20 @@ _REFERENCES_INTRO = (
     "or add what it asks for and they lack, or ignore them. Write your own complete program "
     "for the description."
 )
+
+
+def draft_message(number: int, total: int) -> str:
+    """The turn asking for another first draft (``drafts``): draft ``number`` of ``total``,
+    a different approach from the earlier drafts the conversation holds."""
+    earlier = "draft" if number == 2 else "drafts"
+    return (
+        f"Write draft {number} of {total} for the same description: a new, complete program "
+        f"that takes a different approach from your earlier {earlier} above (another "
+        "structure, other primitives or patterns, or another reading of the description), "
+        "whichever you think could match the description better. Do not repeat an earlier "
+        "draft. Each draft is rendered and reviewed, and the best one is revised further. "
+        f"{ANSWER_FORMAT}"
+    )
 
 
 def missing_program_message() -> str:
@@ -123,23 +137,34 @@ def _views_text(views: Sequence[str]) -> str:
 
 
 def continue_text(
-    base: int, latest: int, standings: dict[int, str | None], program: str | None = None
+    base: int,
+    latest: int,
+    standings: dict[int, str | None],
+    program: str | None = None,
+    names: Mapping[int, str] | None = None,
 ) -> str:
     """Which version a revision continues from and why: the best so far, ``base``, and the
     later rounds (``standings``: round -> its score in words, None for a round with no visible
-    change); ``program`` (the base's own text) when the base is not the last answer."""
+    change); ``program`` (the base's own text) when the base is not the last answer.
+    ``names``: what to call a version other than ``round k`` (the drafts: ``draft 2``)."""
+    name = (names or {}).get
+
+    def called(j: int) -> str:
+        return name(j) or f"round {j}"
+
     if base == latest:
         return (
-            f"Continuing from your last answer, round {base} ({standings[base]}): the best so far."
+            f"Continuing from your last answer, {called(base)} ({standings[base]}): "
+            "the best so far."
         )
     later = "; ".join(
-        f"round {j} made {NO_CHANGE}" if standings.get(j) is None else f"round {j}: {standings[j]}"
+        f"{called(j)} made {NO_CHANGE}" if standings.get(j) is None else f"{called(j)}: {standings[j]}"
         for j in range(base + 1, latest + 1)
     )
-    text = f"Continuing from round {base} ({standings[base]}), the best so far; {later}."
+    text = f"Continuing from {called(base)} ({standings[base]}), the best so far; {later}."
     if program is not None:
         text += (
-            f" Revise round {base}'s program, not your last answer:\n"
+            f" Revise {called(base)}'s program, not your last answer:\n"
             f"<material>\n{program.strip()}\n</material>"
         )
     return text
@@ -149,11 +174,15 @@ def continue_text(
 NO_CHANGE = "no visible change"
 
 
-def no_change_text(round_index: int, difference: float, threshold: float) -> str:
+def no_change_text(
+    round_index: int, difference: float, threshold: float, name: str | None = None
+) -> str:
     """The note for a revision whose previews barely changed (``difference``: the mean absolute
-    difference in levels of 255, under ``threshold``)."""
+    difference in levels of 255, under ``threshold``); ``name``: what to call it other than
+    ``round k`` (``revision 1`` after drafts)."""
+    called = name or f"round {round_index}"
     return (
-        f"Your revision in round {round_index} changed the previews by {difference:.2f} levels "
+        f"Your revision in {called} changed the previews by {difference:.2f} levels "
         f"of 255 on average, under the {threshold:g} that shows: {NO_CHANGE}, so it was not "
         "reviewed. Make changes large enough to see at the render size, or a structural one "
         "(a new layer, a different primitive or pattern) where values alone do not get there."

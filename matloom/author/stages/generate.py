@@ -183,11 +183,13 @@ def run_turn(
 ) -> ProgramRecord:
     """Run one generation/revision turn to an accepted program; record every attempt.
 
-    ``images`` go with the new user message (and its repairs), not with later turns;
+    ``kind``: ``generate``, ``draft`` (another first draft) or ``revise``; ``images`` go with
+    the new user message (and its repairs), not with later turns;
     ``refused_warnings``: checker warnings answered with a repair turn like errors."""
     record = store.record
     index = len(record.programs)
-    turn = TurnRecord(program_index=index, kind="initial" if index == 0 else "revision")
+    turn_kind: Literal["initial", "draft", "revision"] = "initial" if index == 0 else "draft" if kind == "draft" else "revision"
+    turn = TurnRecord(program_index=index, kind=turn_kind)
     record.turns.append(turn)
     store.save()  # the record shows the turn in flight
     user = ChatMessage(role="user", text=user_text, images=tuple(images))

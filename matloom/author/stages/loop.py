@@ -3,6 +3,10 @@
 * **Revise from the best.** A revision continues from the best program so far (the scorer's
   score when a scorer is used, as in selection, else the critic's ``match_score``), not from
   the latest; ties go to the latest (a tie is no regression).
+* **Drafts.** With ``drafts`` > 1, P_0 .. P_{drafts-1} are first drafts, each asked to take a
+  different approach; every draft is critiqued, and the first revision continues from the
+  best of them (the rule above). A draft has no parent: it is never "unchanged", and the
+  critic's history starts with the first revision.
 * **No visible change.** A revision whose previews differ from the program it revised by less
   than ``no_change_threshold`` (:func:`preview_difference`: the mean absolute difference over
   the worst 16 x 16 px block of 512, in levels of 255) is not critiqued, is reported to the
@@ -74,10 +78,23 @@ class LoopState:
     unchanged: dict[int, float] = field(default_factory=dict)
     #: P_k -> the scorer's score (revise-from-best with a scorer), computed once.
     scores: dict[int, float] = field(default_factory=dict)
+    #: P_0 .. P_{drafts-1} are first drafts (``drafts``), not revisions.
+    drafts: int = 1
 
     def parent(self, k: int) -> int:
         """The program P_k was revised from."""
         return self.parents.get(k, k - 1)
+
+    def is_draft(self, k: int) -> bool:
+        """True when P_k is a first draft (P_0 always is): it was revised from nothing."""
+        return k < self.drafts
+
+    def name(self, k: int) -> str | None:
+        """What the generator calls P_k when there are drafts (``draft 2``, ``revision 1``);
+        None: ``round k``, as without drafts."""
+        if self.drafts == 1:
+            return None
+        return f"draft {k + 1}" if k < self.drafts else f"revision {k - self.drafts + 1}"
 
 
 def score_text(critic: int | None, scorer: tuple[str, float] | None = None) -> str:
@@ -120,7 +137,7 @@ def continue_from(
 def guide(record: RunRecord, base: int, loop: LoopState) -> int:
     """The program whose critique guides a revision of ``base``: ``base``, or (a revision with
     no visible change has none) the nearest critiqued program it was revised from."""
-    while base > 0 and record.critique_of(base) is None:
+    while not loop.is_draft(base) and record.critique_of(base) is None:
         base = loop.parent(base)
     return base
 
@@ -144,12 +161,15 @@ def loop_sections(  # noqa: PLR0913 - the loop's view of the run, passed in
             unchanged = j in loop.unchanged
             standings[j] = None if unchanged else score_text(critic_score(record, j), scored)
         program = shown(base) if base != k else None
-        sections["continue_from"] = continue_text(base, k, standings, program)
+        names = {j: n for j in range(k + 1) if (n := loop.name(j)) is not None}
+        sections["continue_from"] = continue_text(base, k, standings, program, names)
         dropped = record.critique_of(k)
-        if base != k and dropped is not None and dropped.ok:
+        if base != k and dropped is not None and dropped.ok and not loop.is_draft(k):
             sections["dropped"] = (k, dropped.differences)
     if k in loop.unchanged and cfg.no_change_threshold is not None:
-        sections["no_change"] = no_change_text(k, loop.unchanged[k], cfg.no_change_threshold)
+        sections["no_change"] = no_change_text(
+            k, loop.unchanged[k], cfg.no_change_threshold, loop.name(k)
+        )
     guiding = record.critique_of(guide(record, base, loop))
     if cfg.critic_structural and guiding is not None:
         sections["structural"] = guiding.structural
