@@ -158,7 +158,9 @@ def continue_text(
             "the best so far."
         )
     later = "; ".join(
-        f"{called(j)} made {NO_CHANGE}" if standings.get(j) is None else f"{called(j)}: {standings[j]}"
+        f"{called(j)} made {NO_CHANGE}"
+        if standings.get(j) is None
+        else f"{called(j)}: {standings[j]}"
         for j in range(base + 1, latest + 1)
     )
     text = f"Continuing from {called(base)} ({standings[base]}), the best so far; {later}."

@@ -188,7 +188,9 @@ def run_turn(
     ``refused_warnings``: checker warnings answered with a repair turn like errors."""
     record = store.record
     index = len(record.programs)
-    turn_kind: Literal["initial", "draft", "revision"] = "initial" if index == 0 else "draft" if kind == "draft" else "revision"
+    turn_kind: Literal["initial", "draft", "revision"] = (
+        "initial" if index == 0 else "draft" if kind == "draft" else "revision"
+    )
     turn = TurnRecord(program_index=index, kind=turn_kind)
     record.turns.append(turn)
     store.save()  # the record shows the turn in flight
