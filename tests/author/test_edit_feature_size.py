@@ -191,3 +191,29 @@ def test_a_colour_and_a_finish_in_two_clauses_are_both_applied() -> None:
     assert "basecolor" in plan["intended"] and "roughness" in plan["intended"]
     colour = [v for v in plan["assignments"].values() if isinstance(v, list)]
     assert colour and delta_e(colour[0], NAMED["olive drab"]) <= _TOLERANCE
+
+
+# ---- a stated factor ----------------------------------------------------------------------------
+def test_a_stated_factor_is_read() -> None:
+    from matloom.author.edit.lexicon import stated_factor, tokens
+
+    said = {
+        "scale it up about 2x": 2.0,
+        "x3 bigger": 3.0,
+        "make the tiles 3 times bigger": 3.0,
+        "three times as big": 3.0,
+        "1.5x larger": 1.5,
+        "a 2 x 3 m wall": None,  # a size, not a factor
+        "20x bigger": None,  # out of range: not read as a factor
+        "twice as big": None,  # the size rule's own word
+    }
+    assert {t: stated_factor(tokens(t)) for t in said} == said
+
+
+def test_a_stated_factor_scales_by_that_factor() -> None:
+    text = _entry("tweed")
+    request_ = "The weave pattern is too small for close-up shots; scale it up about 2x."
+    plan = edit_offline(text, request_, size=32).report.plan
+    assert plan["rule"] == "scale" and plan["note"] == "features x2", plan
+    (freq,) = plan["assignments"].values()
+    assert freq == 24.0  # Weave base_freq 48 -> 24: twice as big

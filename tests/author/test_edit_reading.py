@@ -474,3 +474,34 @@ def test_another_clause_keeps_the_colour_and_the_size_it_asks_for() -> None:
     assert _plan("square-tiles", "add bigger tiles and some rust")["rule"] == "scale"
     assert "(size x0.35)" in _plan("cardboard", "put a small coffee stain on it")["note"]
     assert "(size x2)" in _plan("cardboard", "put a moss stain on it")["note"]
+
+
+@pytest.mark.parametrize(
+    ("entry", "request_", "spots"),
+    [
+        ("stylized-grass", "Add a few dry brown patches scattered through the grass", False),
+        ("stylized-grass", "add brown spots", True),
+        ("polished-metal", "put some white smears on it", False),
+    ],
+)
+def test_marks_of_a_colour_are_added_not_the_material_recoloured(
+    entry: str, request_: str, spots: bool
+) -> None:
+    """ "add a few dry brown patches": marks in that colour on top (the stain overlay), not the
+    whole grass turned brown; spots are small marks."""
+    plan = _plan(entry, request_)
+    assert plan["rule"] == "overlay" and "'stained'" in plan["note"], plan["note"]
+    assert ("as spots" in plan["note"]) == spots
+    look = _look(plan["note"])
+    assert look is not None
+    if "brown" in request_:
+        assert look[0] > look[1] > look[2]  # brown: red over green over blue
+    else:
+        assert min(look) > 150  # white
+
+
+def test_marks_without_an_adding_verb_or_a_colour_are_not_added() -> None:
+    # "more green patches" changes the material's own colour; "add some patches" names none
+    assert _plan("stylized-grass", "more green patches")["rule"] == "colour"
+    with pytest.raises(EditRefused):
+        _plan("stylized-grass", "add some patches")

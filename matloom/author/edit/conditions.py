@@ -26,7 +26,7 @@ from dataclasses import replace
 from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
-from matloom.author.edit.looks import condition_look, one_mark
+from matloom.author.edit.looks import condition_look, names_colour, one_mark
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.places import place_of
 from matloom.author.edit.plan import Context, EditRefused, Plan, Value, affects, assign, clamp
@@ -474,7 +474,21 @@ def _added_word(c: Context, conds: Sequence[str]) -> tuple[str, Sequence[str]] |
     overlay's trigger ("put a big wine stain on it")."""
     if conds:
         return conds[0], c.ew.conditions[conds[0]]
-    return _trigger_word(c)
+    return _trigger_word(c) or _coloured_marks(c)
+
+
+def _coloured_marks(c: Context) -> tuple[str, Sequence[str]] | None:
+    """Marks of a colour added where no condition is named ("add a few dry brown patches",
+    "scatter some white spots"): the stain overlay in that colour, the marks' noun as its
+    word (an adding verb makes them new things, not a part of the program)."""
+    if not set(c.words) & c.ew["adding"]:
+        return None
+    marks = c.ew["spots"] | c.ew["marks"]
+    for i, t in enumerate(c.words):
+        near = c.words[max(0, i - 3) : i]
+        if t in marks and not placed(c.words, i) and any(names_colour(c, w) for w in near):
+            return t, c.ew.conditions["stains"]
+    return None
 
 
 def _sizes_part(c: Context, size_words: set[str] | frozenset[str]) -> bool:

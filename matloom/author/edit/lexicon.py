@@ -119,6 +119,32 @@ def tokens(request: str) -> list[str]:
     return re.findall(r"[a-z0-9]+(?:\.[0-9]+)?", request.lower())
 
 
+#: Number words of a stated factor ("three times bigger").
+_NUMBER_WORDS = {"two": 2.0, "three": 3.0, "four": 4.0, "five": 5.0}
+#: A stated factor is used within these bounds (a larger one is a typo or a unit).
+FACTOR_RANGE = (1.1, 5.0)
+
+
+def stated_factor(words: Sequence[str]) -> float | None:
+    """A factor the request states for a size ("scale it up about 2x", "x3", "3 times
+    bigger", "three times as big"), within :data:`FACTOR_RANGE`; None when it states none
+    ("twice" and "half" are read by the size rule itself). "2 x 3 m" is a size, not a
+    factor."""
+    for i, w in enumerate(words):
+        after = words[i + 1] if i + 1 < len(words) else ""
+        found = None
+        if m := re.fullmatch(r"([0-9]+(?:\.[0-9]+)?)x|x([0-9]+(?:\.[0-9]+)?)", w):
+            found = float(m.group(1) or m.group(2))
+        elif re.fullmatch(r"[0-9]+(?:\.[0-9]+)?", w) and after == "x":
+            following = words[i + 2] if i + 2 < len(words) else ""
+            found = None if re.match(r"[0-9]", following) else float(w)
+        elif after == "times" and (w in _NUMBER_WORDS or re.fullmatch(r"[0-9]+(?:\.[0-9]+)?", w)):
+            found = _NUMBER_WORDS.get(w) or float(w)
+        if found is not None and FACTOR_RANGE[0] <= found <= FACTOR_RANGE[1]:
+            return found
+    return None
+
+
 #: Plurals in -ves whose singular ends in -f ("leaves", not "grooves").
 _F_PLURALS = {"leaves": "leaf", "halves": "half", "shelves": "shelf", "loaves": "loaf"}
 

@@ -75,6 +75,11 @@ _DESCRIBES = RELATIVE | {"like"}
 _NAMED_SHARE, _GREY_SHARE = 0.5, 0.8
 
 
+def names_colour(c: Context, t: str) -> bool:
+    """Whether the word ``t`` names a colour ("brown", "reddish"), not a condition's own."""
+    return _colour_of(c, t) is not None
+
+
 def _colour_of(c: Context, t: str) -> tuple[int, int, int] | None:
     base = c.vocabulary.ish_base(t)
     if base in c.vocabulary.named and base not in c.ew.conditions:

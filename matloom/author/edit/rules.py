@@ -48,6 +48,7 @@ from matloom.author.edit.lexicon import (
     edit_words,
     flipped,
     split_words,
+    stated_factor,
     tokens,
 )
 from matloom.author.edit.measured import measured_layer
@@ -243,8 +244,10 @@ def _scale(c: Context) -> Plan | None:
     else:
         return None
     # "double their size", "twice as wide", "half the width": x2 (else the words' step)
-    step = 2.0 if ws & {"double", "twice", "half", "halve", "doubled"} else ew.f("size")
-    size_f = step ** (c.k if bigger else -c.k)
+    # "scale it up about 2x", "three times as big": that factor, not escalated
+    stated = stated_factor(c.words)
+    step = stated or (2.0 if ws & {"double", "twice", "half", "halve", "doubled"} else ew.f("size"))
+    size_f = step ** ((1 if stated else c.k) * (1 if bigger else -1))
     joint = ("mortar", "grout", "gap", "joint", "feather", "seam", "gutter")
     scalable = [
         p
