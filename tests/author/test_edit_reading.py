@@ -505,3 +505,42 @@ def test_marks_without_an_adding_verb_or_a_colour_are_not_added() -> None:
     assert _plan("stylized-grass", "more green patches")["rule"] == "colour"
     with pytest.raises(EditRefused):
         _plan("stylized-grass", "add some patches")
+
+
+def test_a_compound_colour_before_a_part_names_the_part() -> None:
+    """ "make the blue-grey background a warm terracotta": blue-grey says which part, the
+    terracotta is its new colour (the background turned blue)."""
+    plan = _plan("arabesque-scroll-stucco", "make the blue-grey background a warm terracotta")
+    assert plan["rule"] == "colour"
+    ((address, rgb),) = plan["assignments"].items()
+    assert address == "define:ground"
+    assert rgb[0] > rgb[1] + 60 and rgb[0] > rgb[2] + 100, rgb  # terracotta: red-orange
+
+
+def test_a_sentence_describing_the_material_as_it_is_is_not_the_request() -> None:
+    """ "The rings look like dull grey plastic. Make them shinier": glossier, not rougher."""
+    plan = _plan(
+        "chainmail-rings",
+        "The rings look like dull grey plastic. Make them shinier and more metallic.",
+    )
+    assert plan["rule"].startswith("roughness") and "glossier" in plan["note"], plan["note"]
+    # "too" in it makes it a request: "The bars look too dull" asks for less dull
+    from matloom.author.edit.rules import _without_state
+
+    said = "The bars look too dull. Polish them up."
+    assert _without_state(said) == said
+
+
+def test_a_condition_that_shows_too_strongly_is_never_added() -> None:
+    """ "The rusty blush patches are too strong; make them much more subtle": less of it (here
+    nothing to reduce: refused), not a rust overlay added."""
+    with pytest.raises(EditRefused, match="no rusty in this program to reduce"):
+        _plan(
+            "speckled-stoneware-oatmeal",
+            "The rusty blush patches are too strong; make them much more subtle.",
+        )
+
+
+def test_not_too_strong_is_an_amount_not_less() -> None:
+    plan = _plan("speckled-stoneware-oatmeal", "some yellowish stains, not too strong")
+    assert plan["rule"] == "overlay" and "'stained'" in plan["note"], plan["note"]

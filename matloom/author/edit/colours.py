@@ -152,7 +152,8 @@ def describes_part(c: Context, i: int, n: int = 1) -> bool:
     """Whether the colour or tone words ``i .. i+n`` name a part by its look, as an adjective
     after an article ("more of the dark flecks", "the gold pads bigger", "the fresh tan
     needles"): followed by a noun, not by another colour, tone, comparative or a word that
-    makes the colour the new one ("the red to blue")."""
+    makes the colour the new one ("the red to blue"); a compound colour before a part's name
+    ("the blue-grey background") describes it too."""
     ws = c.words
     before = ws[max(0, i - 2) : i]
     if not before:
@@ -166,8 +167,14 @@ def describes_part(c: Context, i: int, n: int = 1) -> bool:
     )
     if before[-1] not in c.ew["articles"] and not adjective:
         return False
-    after = ws[i + n] if i + n < len(ws) else None
     v = c.vocabulary
+    # "the blue-grey background": a compound colour's first word describes the part too
+    j = i + n
+    while j < min(len(ws), i + n + 2) and (ws[j] in v.named or v.ish_base(ws[j]) in v.named):
+        j += 1
+    if j > i + n and (j >= len(ws) or not _names_part(c, j)):
+        j = i + n  # "the red blue" or a colour run before no part: as before
+    after = ws[j] if j < len(ws) else None
     if after is None or not after.isalpha():
         return False
     return not (

@@ -389,7 +389,7 @@ def amount_rule(c: Context) -> Plan | None:
         # (one the program does not have is added: "lichen, those pale yellow-green patches",
         # "a dusting of snow with green blades poking through")
         return None
-    more = asked if asked is not None else bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
+    more = asked if asked is not None else _more(c)
     if found:
         step = c.ew.f("amount_step") * c.k * (1 if more else -1)
         # an amount that starts at 0 or more stays there (no negative wear)
@@ -467,6 +467,26 @@ def _direction(c: Context, word: str) -> bool | None:
         if t in c.ew["more"] or t in c.vocabulary.amounts:
             return True
     return None
+
+
+def _more(c: Context) -> bool:
+    """More of a condition when no direction word stands before its word: a "more" word and
+    none of "less", nor a wish that it show less ("too strong; make them more subtle")."""
+    ws = set(c.words)
+    if ws & (c.ew["show_less"] | c.ew["shows_less"]) or _too_strong(c.words):
+        return False
+    return bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
+
+
+#: "too strong", "too heavy": the thing named shows too much.
+_TOO_STRONG = frozenset({"strong", "heavy", "much", "intense", "prominent", "obvious", "visible"})
+
+
+def _too_strong(words: Sequence[str]) -> bool:
+    return any(
+        b == "too" and c in _TOO_STRONG and a not in ("not", "t", "never")  # "not too strong"
+        for a, b, c in zip(["", *words], words, words[1:], strict=False)
+    )
 
 
 def _added_word(c: Context, conds: Sequence[str]) -> tuple[str, Sequence[str]] | None:

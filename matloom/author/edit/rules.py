@@ -451,9 +451,29 @@ _PURPOSE_RE = re.compile(
 )
 
 
+#: A sentence describing how the material looks now ("The rings look like dull grey plastic.",
+#: "right now the reflections are distracting"): not what to change, when another sentence
+#: asks for it.
+_STATE_RE = re.compile(
+    r"^\s*(?:(?:right\s+now|currently|at\s+the\s+moment|at\s+present)\b(?:(?!\btoo\b)[^.;!?])*"
+    r"|(?:(?!\btoo\b)[^.;!?])*\b(?:looks?|reads?|seems?)\s+like\b(?:(?!\btoo\b)[^.;!?])*)$",
+    re.IGNORECASE,
+)
+
+
+def _without_state(request: str) -> str:
+    """The request without its sentences that only describe the material as it is, when
+    another sentence is left ("The rings look like dull grey plastic. Make them shinier")."""
+    sentences = [s for s in re.split(r"(?<=[.;!?])\s+", request.strip()) if s.strip()]
+    kept = [s for s in sentences if not _STATE_RE.match(s.rstrip(".;!? "))]
+    return " ".join(kept) if kept and len(kept) < len(sentences) else request
+
+
 def _kept_off(request: str) -> str:
-    """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged")
-    and the clauses that say what it should go with ("so it sits better with the red")."""
+    """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged"),
+    the clauses that say what it should go with ("so it sits better with the red") and the
+    sentences that describe the material as it is ("The rings look like dull plastic.")."""
+    request = _without_state(request)
     asked = _KEEP_RE.sub("", request) or request
     asked = re.sub(r"\s+", " ", _PURPOSE_RE.sub(" ", asked)).strip() or asked
     return _AS_IS_RE.sub("", asked) or asked
