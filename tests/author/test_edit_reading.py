@@ -544,3 +544,16 @@ def test_a_condition_that_shows_too_strongly_is_never_added() -> None:
 def test_not_too_strong_is_an_amount_not_less() -> None:
     plan = _plan("speckled-stoneware-oatmeal", "some yellowish stains, not too strong")
     assert plan["rule"] == "overlay" and "'stained'" in plan["note"], plan["note"]
+
+
+def test_glow_words_move_the_emissive_channel_of_a_glowing_program() -> None:
+    """Where a layer glows, "the glow is too strong, dim the diodes" lowers its emissive
+    strength (a glow overlay was added on top) and "more glow" raises it past 1 (it fell to 1);
+    where nothing glows, "add a faint glow" adds the glow overlay."""
+    strength = "layer:2.emissive.strength"
+    less = _plan("led-panel", "The glow is too strong for a standby screen, dim the diodes a lot.")
+    assert less["rule"] == "channel" and less["assignments"][strength] < 2.5, less
+    more = _plan("led-panel", "more glow")
+    assert more["rule"] == "channel" and more["assignments"][strength] > 2.5, more
+    added = _plan("polished-metal", "add a faint glow")
+    assert added["rule"] == "overlay" and "'glowing'" in added["note"]

@@ -25,7 +25,7 @@ from dataclasses import replace
 
 from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
-from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens
+from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens, too_strong
 from matloom.author.edit.looks import condition_look, names_colour, one_mark
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
 from matloom.author.edit.places import place_of
@@ -371,6 +371,11 @@ def amount_rule(c: Context) -> Plan | None:
     if adds is None:
         return _more_of_layer(c)
     word, stems = adds
+    channel = c.ew.channel_of(word)
+    if channel is not None and any(
+        channel in p.affects and set(p.affects) <= {channel} for p in c.params
+    ):
+        return None  # "the glow is too strong" where a layer glows: its emissive channel
     asked = _direction(c, word)
     found = _labelled(c, stems) or _overlay_covers(c, stems)
     layers = _condition_layers(c, stems)
@@ -473,20 +478,9 @@ def _more(c: Context) -> bool:
     """More of a condition when no direction word stands before its word: a "more" word and
     none of "less", nor a wish that it show less ("too strong; make them more subtle")."""
     ws = set(c.words)
-    if ws & (c.ew["show_less"] | c.ew["shows_less"]) or _too_strong(c.words):
+    if ws & (c.ew["show_less"] | c.ew["shows_less"]) or too_strong(c.words):
         return False
     return bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
-
-
-#: "too strong", "too heavy": the thing named shows too much.
-_TOO_STRONG = frozenset({"strong", "heavy", "much", "intense", "prominent", "obvious", "visible"})
-
-
-def _too_strong(words: Sequence[str]) -> bool:
-    return any(
-        b == "too" and c in _TOO_STRONG and a not in ("not", "t", "never")  # "not too strong"
-        for a, b, c in zip(["", *words], words, words[1:], strict=False)
-    )
 
 
 def _added_word(c: Context, conds: Sequence[str]) -> tuple[str, Sequence[str]] | None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from matloom.author.edit.lexicon import flipped
+from matloom.author.edit.lexicon import flipped, too_strong
 from matloom.author.edit.plan import Context, Plan, Value, assign, clamp
 from matloom.author.edit.targets import matching, named_in_program, param_layers
 from matloom.lang import ast as A
@@ -226,7 +226,9 @@ def channel_rule(c: Context) -> Plan | None:
     assert channel is not None
     before = ws[max(0, i - 2) : i]
     zero = any(w in ("no", "without", "remove") for w in before)
-    d = -1 if flipped(ws, i, c.ew["flip"]) else 1
+    # "less glow", "the glow is too strong", "dim the diodes": less of it
+    weaker = too_strong(ws[i:]) or bool(set(ws) & c.ew["dim"])
+    d = -1 if flipped(ws, i, c.ew["flip"]) or weaker else 1
     params = [
         p
         for p in c.params
@@ -244,7 +246,8 @@ def channel_rule(c: Context) -> Plan | None:
     for p in targets:
         v = float(p.value)  # type: ignore[arg-type]
         lo = p.low if p.low is not None else 0.0
-        hi = min(1.0, p.high) if p.high is not None else 1.0
+        # an open-ended strength over 1 (an emissive 2.5): up to twice it, not down to 1
+        hi = min(1.0, p.high) if p.high is not None else max(1.0, 2 * v)
         if zero:
             new[p] = clamp(p, lo)
         elif d > 0:

@@ -145,6 +145,19 @@ def stated_factor(words: Sequence[str]) -> float | None:
     return None
 
 
+#: "too strong", "too heavy": the thing named shows too much.
+_TOO_STRONG = frozenset({"strong", "heavy", "much", "intense", "prominent", "obvious", "visible"})
+
+
+def too_strong(words: Sequence[str]) -> bool:
+    """Whether the request says something shows too much ("too strong", "too heavy"; not
+    "not too strong")."""
+    return any(
+        b == "too" and c in _TOO_STRONG and a not in ("not", "t", "never")
+        for a, b, c in zip(["", *words], words, words[1:], strict=False)
+    )
+
+
 #: Plurals in -ves whose singular ends in -f ("leaves", not "grooves").
 _F_PLURALS = {"leaves": "leaf", "halves": "half", "shelves": "shelf", "loaves": "loaf"}
 
