@@ -11,7 +11,9 @@ defaults; explicit command-line flags then override it. Two are built in:
   available (``scorer = "auto"``) and is skipped quietly otherwise. Critic loop v3: the critic
   knows the resolution and what each preview shows and may ask for structural changes, a
   revision continues from the best program so far, a revision with no visible change is
-  reported and counts toward stopping, and the last critique asks for the score only.
+  reported and counts toward stopping, and the last critique asks for the score only. The
+  generator writes three first drafts, each a different approach, and the revisions continue
+  from the best (``drafts``); the library's programs for the request go with the first turn.
 
 ``matloom.toml`` can choose one by default and define its own, on top of a built-in one::
 
@@ -53,6 +55,7 @@ BUILTIN_PRESETS: dict[str, dict[str, Any]] = {
         "score_only_last": True,
         "examples": "v3",
         "library_refs": 2,
+        "drafts": 3,
         "revision_warnings": True,
         "refuse_warnings": (Code.SHADOWED_DEFINE.code,),
     },

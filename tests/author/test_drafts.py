@@ -106,3 +106,7 @@ def test_one_draft_is_the_default_and_the_library_writes_one(
 def test_out_of_range_drafts_are_refused(server: ChatServer, tmp_path: Path) -> None:
     result = recommended(server, tmp_path / "run", "--drafts", "9")
     assert result.exit_code != 0 and "--drafts" in result.output
+
+
+def test_recommended_writes_three_drafts() -> None:
+    assert AuthorConfig.model_validate(preset_values("recommended")).drafts == 3

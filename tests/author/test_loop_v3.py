@@ -90,7 +90,9 @@ def test_paper_critic_system_prompt_is_unchanged() -> None:
 
 
 def recommended(server: ChatServer, out: Path, *extra: str) -> Result:
-    return generate(server, out, "--settings", "recommended", *extra)
+    """A recommended run with one first draft (the loop rules on one trajectory; the drafts
+    are tested in test_drafts.py)."""
+    return generate(server, out, "--settings", "recommended", "--drafts", "1", *extra)
 
 
 def requests_of(server: ChatServer, critic: bool) -> list[dict[str, Any]]:

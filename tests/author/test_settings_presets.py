@@ -108,11 +108,16 @@ def test_recommended_profile_end_to_end(server: ChatServer, tmp_path: Path) -> N
     )  # fmt: skip
     assert result.exit_code == 0, result.stderr
     critics = [r for r in server.requests if is_critic(r)]
-    assert [len(image_parts(r["messages"][1])) for r in critics] == [2, 4, 4]
+    # three first drafts (no previous round), then two revisions that see the one they revise
+    assert [len(image_parts(r["messages"][1])) for r in critics] == [2, 2, 2, 4, 4]
     for request in critics:
         assert text_of(request["messages"][1]).count("Visible statistics (computed on the") == 1
         assert "Appearance scalars" not in text_of(request["messages"][1])
     record = validate_record_file(tmp_path / "run" / "record.json")
-    assert record.critiques[1].history.previous_renders == ["renders/p0.png", "renders/p0_lit.png"]
+    assert [t.kind for t in record.turns] == ["initial", "draft", "draft", "revision", "revision"]
+    history = record.critiques[3].history
+    assert history is not None and history.previous_index in (0, 1, 2)
+    k = history.previous_index
+    assert history.previous_renders == [f"renders/p{k}.png", f"renders/p{k}_lit.png"]
     assert "The lit preview (" in record.system_prompt and record.warnings == []
     assert "seed search" not in result.stderr
