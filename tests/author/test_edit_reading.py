@@ -557,3 +557,19 @@ def test_glow_words_move_the_emissive_channel_of_a_glowing_program() -> None:
     assert more["rule"] == "channel" and more["assignments"][strength] > 2.5, more
     added = _plan("polished-metal", "add a faint glow")
     assert added["rule"] == "overlay" and "'glowing'" in added["note"]
+
+
+def test_crackle_and_crazing_are_cracks() -> None:
+    plan = _plan("porcelain-white-glaze", "Add a fine crackle network in the glaze")
+    assert plan["rule"] == "overlay" and "'cracked'" in plan["note"], plan["note"]
+    assert "'cracked'" in _plan("porcelain-white-glaze", "add some crazing")["note"]
+
+
+def test_less_of_an_absent_shine_condition_is_a_rougher_finish() -> None:
+    """ "more matte, less oily" on skin with no oil overlay: rougher (it was refused: "no oily
+    to reduce"); "less rust" where there is none is still refused."""
+    plan = _plan("human-skin-pores-closeup", "more matte, less oily")
+    assert plan["rule"] == "roughness" and "rougher" in plan["note"], plan["note"]
+    assert _plan("human-skin-pores-closeup", "less oily")["note"].startswith("rougher")
+    with pytest.raises(EditRefused, match="no rust in this program"):
+        _plan("polished-metal", "less rust, shinier")

@@ -25,6 +25,7 @@ from dataclasses import replace
 
 from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
+from matloom.author.edit.finish import roughness_rule
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens, too_strong
 from matloom.author.edit.looks import condition_look, names_colour, one_mark
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
@@ -411,6 +412,10 @@ def amount_rule(c: Context) -> Plan | None:
     if layers and not more:
         raise c.refuse(f"no parameter moves the {word} layer's coverage")
     if not more:
+        if word in c.ew["shine_conditions"]:
+            # "more matte, less oily" on skin with no oil: a shine, read as "less glossy"
+            said = [("glossy" if t == word else t) for t in c.words]
+            return roughness_rule(replace(c, words=said))
         raise c.refuse(f"there is no {word} in this program to reduce")
     # more of something absent, or present with nothing to move it: the overlay on top
     plan = _add_overlay(c, word, stems)
