@@ -573,3 +573,31 @@ def test_less_of_an_absent_shine_condition_is_a_rougher_finish() -> None:
     assert _plan("human-skin-pores-closeup", "less oily")["note"].startswith("rougher")
     with pytest.raises(EditRefused, match="no rust in this program"):
         _plan("polished-metal", "less rust, shinier")
+
+
+@pytest.mark.parametrize(
+    ("entry", "request_", "only"),
+    [
+        ("runestone", "thinner rune strokes", "runes"),
+        ("sgraffito-slip-terracotta", "thicker scratched lines", None),
+    ],
+)
+def test_a_width_word_on_drawn_lines_changes_the_stroke_widths(
+    entry: str, request_: str, only: str | None
+) -> None:
+    """ "thinner rune strokes": the strokes' widths, not the whole pattern rescaled (the runes
+    shrank and moved) nor the View zoomed."""
+    plan = _plan(entry, request_)
+    assert plan["rule"] == "scale" and plan["note"].startswith("line widths"), plan["note"]
+    assert not plan.get("view") and plan["assignments"]
+    assert all(a.endswith(".width") and ".Stroke" in a for a in plan["assignments"])
+    if only:
+        assert all(a.startswith(f"define:{only}.") for a in plan["assignments"])
+    thinner = "thinner" in request_
+    before = _values(_entry(entry))
+    for address, value in plan["assignments"].items():
+        assert (value < before[address]) == thinner
+
+
+def test_a_width_word_on_a_part_not_drawn_by_strokes_scales_as_before() -> None:
+    assert not _plan("metal-grid", "thicker bars")["note"].startswith("line widths")

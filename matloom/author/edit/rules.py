@@ -70,6 +70,7 @@ from matloom.author.edit.targets import (
     named_in_program,
     overlaps,
     own_words,
+    stroke_widths,
     wanted,
 )
 from matloom.author.edit.targets import param_words as _param_words
@@ -257,6 +258,11 @@ def _scale(c: Context) -> Plan | None:
     skip = ew["bigger"] | ew["smaller"] | ew["denser"] | ew["sparser"] | ew["width"]
     skip |= {"feature", "features", "pattern", "scale", "size"} | ew["not_parts"]
     nouns = [t for t in _unlike(c.nouns) if t not in skip]
+    # "thinner rune strokes", "thicker scratched lines": the widths of the drawn lines
+    strokes = stroke_widths(scalable, nouns, ew) if ws & ew["width"] else []
+    if strokes:
+        new_widths: dict[Param, Value] = {p: scaled(p, size_f) for p in strokes}
+        return assign(c, "scale", f"line widths x{size_f:.3g}", new_widths, affects(strokes))
     # the noun's own parameters (its words, not its family: "tiles" is no glaze noise), else
     # those that shape its layer's coverage
     targets = [p for p in scalable if overlaps(own_words(p), wanted(nouns, ew, families=False))]

@@ -296,3 +296,19 @@ def material_noun(c: Context, nouns: Sequence[str]) -> bool:
     return any(
         stem(n) in materials or stem(n) in families or n.startswith(_MAIN_PARTS) for n in nouns
     )
+
+
+#: A parameter that is the width of a drawn line (``Stroke(path, width)``).
+_STROKE_WIDTH = re.compile(r"\.Stroke(?:#\d+)?\.width$")
+
+
+def stroke_widths(params: Sequence[Param], nouns: Sequence[str], ew: EditWords) -> list[Param]:
+    """The widths of the drawn lines a request names ("thinner rune strokes": the runes'
+    strokes; "thicker scratched lines": every stroke), when a noun of it is a line word
+    (``line_nouns`` of words.toml); empty when it names none or nothing is drawn by strokes
+    ("thicker bars" of a grid)."""
+    if not set(nouns) & ew["line_nouns"]:
+        return []
+    widths = [p for p in params if _STROKE_WIDTH.search(p.address)]
+    named = [p for p in widths if overlaps(own_words(p), wanted(nouns, ew, families=False))]
+    return named or widths
