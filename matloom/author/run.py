@@ -228,24 +228,31 @@ class Run:
                     self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
                     self.store.save()
                     return
-                asked = critique.suggestions or critique.edits
-                if cfg.critic_structural:
-                    asked = asked or critique.structural
-                if not last and not drafting and cfg.stop_when_satisfied and not asked:
-                    self.record.stop_reason = f"the critic asked for no changes to P{k}"
-                    self.store.save()
-                    return
+                # after the drafts, the best draft's critique says whether to go on
+                ask_of = k
+                if loop.drafts > 1 and k == loop.drafts - 1:
+                    ask_of = continue_from(self.record, k, loop, self._scorer_of(loop))
+                if not last and not drafting and cfg.stop_when_satisfied:
+                    asking = self.record.critique_of(ask_of) or critique
+                    if not _asks(asking, cfg.critic_structural):
+                        self.record.stop_reason = f"the critic asked for no changes to P{ask_of}"
+                        self.store.save()
+                        return
             if drafting:
                 if k + 1 >= len(self.record.programs):
                     self.draft(k + 1, loop.drafts)
             elif not last:
-                scorer = None if self.scorer is None else lambda j: self._scorer_score(j, loop)
-                base = continue_from(self.record, k, loop, scorer)
+                base = continue_from(self.record, k, loop, self._scorer_of(loop))
                 loop.parents[k + 1] = base
                 if k + 1 >= len(self.record.programs):
                     self.revise(k, base, loop)
-        self.record.stop_reason = f"all {cfg.rounds} revision rounds used"
+        done = f"all {cfg.rounds} revision rounds used" if cfg.rounds else "all drafts written"
+        self.record.stop_reason = done
         self.store.save()
+
+    def _scorer_of(self, loop: LoopState) -> Callable[[int], float] | None:
+        """P_j -> the scorer's score, for revising from the best (None without a scorer)."""
+        return None if self.scorer is None else lambda j: self._scorer_score(j, loop)
 
     @property
     def drafts(self) -> int:
@@ -592,3 +599,9 @@ def append_library_program(run: Run) -> ProgramRecord:
         run.record.material_name = material_name(result.entry)
     run.record.durations.generation.append(time.perf_counter() - start)
     return program
+
+
+def _asks(critique: CritiqueRecord, structural: bool) -> bool:
+    """Whether a critique asks for changes (suggestions, edits, or structural changes when
+    the critic may ask for them)."""
+    return bool(critique.suggestions or critique.edits or (structural and critique.structural))

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from author.chat_server import ChatServer
 from author.conftest import Script, image_parts, is_critic, text_of
-from author.test_loop_v3 import answer, brick, critique, recommended, requests_of
+from author.test_loop_v3 import answer, brick, critique, generate, recommended, requests_of
 from matloom.author.config import AuthorConfig
 from matloom.author.prompts.revision import draft_message
 from matloom.author.records import validate_record_file
@@ -58,8 +58,6 @@ def test_drafts_have_no_previous_round(script: Script, server: ChatServer, tmp_p
     critics = requests_of(server, critic=True)
     counts = [len(image_parts(r["messages"][-1])) for r in critics]
     assert counts[0] == counts[1] == counts[2] and counts[3] > counts[2]
-    last = text_of(critics[3]["messages"][-1])
-    assert "70" in last  # the previous round shown is draft 1, the best, with its score
     record = validate_record_file(tmp_path / "run" / "record.json")
     assert [c.history is not None for c in record.critiques] == [False, False, False, True]
     assert record.critiques[3].history.previous_index == 0
@@ -88,6 +86,7 @@ def test_drafts_with_no_revision_rounds_are_critiqued_and_selected(
     record = validate_record_file(tmp_path / "run" / "record.json")
     assert len(record.programs) == 3 and len(record.critiques) == 3
     assert record.selection is not None and record.selection.index == 2
+    assert record.stop_reason == "all drafts written"
 
 
 def test_one_draft_is_the_default_and_the_library_writes_one(
@@ -110,3 +109,35 @@ def test_out_of_range_drafts_are_refused(server: ChatServer, tmp_path: Path) -> 
 
 def test_recommended_writes_three_drafts() -> None:
     assert AuthorConfig.model_validate(preset_values("recommended")).drafts == 3
+
+
+def test_a_satisfied_critique_of_the_best_draft_stops_the_loop(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    """After the drafts, the best draft's critique decides: it asked for nothing, so there is
+    nothing to revise (the last draft's own suggestions are not the best's)."""
+    script.generator.extend([answer(p) for p in DRAFTS])
+    satisfied = json.dumps({"match_score": 90, "differences": [], "suggestions": []})
+    script.critic.extend([satisfied, critique(40), critique(50)])
+    result = recommended(server, tmp_path / "run", "--drafts", "3", "--rounds", "2")
+    assert result.exit_code == 0, result.stderr
+    record = validate_record_file(tmp_path / "run" / "record.json")
+    assert len(record.programs) == 3
+    assert record.stop_reason == "the critic asked for no changes to P0"
+
+
+def test_without_revise_from_best_the_revision_still_starts_from_the_best_draft(
+    script: Script, server: ChatServer, tmp_path: Path
+) -> None:
+    """The paper's loop continues from the last program; after drafts it takes the best one
+    all the same, and the revision turn shows it."""
+    script.generator.extend([answer(p) for p in DRAFTS])
+    script.critic.extend([critique(90), critique(40), critique(30), critique(60)])
+    args = ["--settings", "paper", "--drafts", "3", "--rounds", "1"]
+    result = generate(server, tmp_path / "run", *args)
+    assert result.exit_code == 0, result.stderr
+    revision = text_of(requests_of(server, critic=False)[3]["messages"][-1])
+    assert "Continuing from draft 1 (score 90/100), the best so far" in revision
+    assert f"<material>\n{DRAFTS[0]}\n</material>" in revision
+    record = validate_record_file(tmp_path / "run" / "record.json")
+    assert record.stop_reason == "all 1 revision rounds used"

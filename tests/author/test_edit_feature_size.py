@@ -195,7 +195,7 @@ def test_a_colour_and_a_finish_in_two_clauses_are_both_applied() -> None:
 
 # ---- a stated factor ----------------------------------------------------------------------------
 def test_a_stated_factor_is_read() -> None:
-    from matloom.author.edit.lexicon import stated_factor, tokens
+    from matloom.author.edit.lexicon import edit_words, stated_factor, tokens
 
     said = {
         "scale it up about 2x": 2.0,
@@ -207,7 +207,7 @@ def test_a_stated_factor_is_read() -> None:
         "20x bigger": None,  # out of range: not read as a factor
         "twice as big": None,  # the size rule's own word
     }
-    assert {t: stated_factor(tokens(t)) for t in said} == said
+    assert {t: stated_factor(tokens(t), edit_words()) for t in said} == said
 
 
 def test_a_stated_factor_scales_by_that_factor() -> None:

@@ -525,10 +525,13 @@ def test_a_sentence_describing_the_material_as_it_is_is_not_the_request() -> Non
     )
     assert plan["rule"].startswith("roughness") and "glossier" in plan["note"], plan["note"]
     # "too" in it makes it a request: "The bars look too dull" asks for less dull
-    from matloom.author.edit.rules import _without_state
+    from matloom.author.edit.clauses import without_state
 
     said = "The bars look too dull. Polish them up."
-    assert _without_state(said) == said
+    assert without_state(said) == said
+    # an imperative is never a description ("make it look like polished brass")
+    said = "Make it shinier. Make it look like polished brass."
+    assert without_state(said) == said
 
 
 def test_a_condition_that_shows_too_strongly_is_never_added() -> None:
@@ -601,3 +604,19 @@ def test_a_width_word_on_drawn_lines_changes_the_stroke_widths(
 
 def test_a_width_word_on_a_part_not_drawn_by_strokes_scales_as_before() -> None:
     assert not _plan("metal-grid", "thicker bars")["note"].startswith("line widths")
+
+
+
+def test_dim_words_say_less_only_as_a_verb_or_comparative() -> None:
+    strength = "layer:2.emissive.strength"
+    for request_ in ("the glow is too dim, brighten it", "the diodes are dim, make them glow more"):
+        plan = _plan("led-panel", request_)
+        assert plan["assignments"][strength] > 2.5, (request_, plan["note"])
+
+
+def test_less_of_a_shine_condition_keeps_the_other_wishes() -> None:
+    plan = _plan("human-skin-pores-closeup", "less oily and redder")
+    assert plan["rule"] == "roughness+colour", plan["note"]
+    # where the oil is a condition with an amount, "fewer oil stains" is less of it
+    oil = _plan("industrial-concrete-floor-oil-stains", "fewer oil stains")
+    assert oil["rule"] == "amount", oil["note"]

@@ -19,7 +19,13 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.families import by_colour, colour_value, hue_family, the_colour
+from matloom.author.edit.families import (
+    by_colour,
+    colour_value,
+    explicit_colours,
+    hue_family,
+    the_colour,
+)
 from matloom.author.edit.lab import Lab, delta_e, from_lab, mix, tinted, to_lab
 from matloom.author.edit.lexicon import flipped, split_words
 from matloom.author.edit.plan import Context, Plan, Value, assign
@@ -79,7 +85,7 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
     w = c.vocabulary
     named, phrases = _tables(c)
     ws = c.words
-    exact = _explicit(c)
+    exact = explicit_colours(c)
     if exact:  # "around RGB 150, 60, 40", "#D8E0CF": the value given, not the words near it
         return exact
     out: list[tuple[int, int, RGB, bool]] = []
@@ -103,22 +109,6 @@ def _named_at(c: Context) -> list[tuple[int, int, RGB, bool]]:
         if word in named and word not in c.ew.conditions and word not in _NOT_COLOURS:
             out.append((i, 1, named[word], word != t))
     return sorted(out)
-
-
-def _explicit(c: Context) -> list[tuple[int, int, RGB, bool]]:
-    """Colours given as values: ``#d8e0cf`` (a hex word the request writes after ``#``) and
-    ``RGB 150, 60, 40`` / ``rgb(150, 60, 40)`` (three numbers 0-255 after "rgb")."""
-    ws = c.words
-    raw = c.request.lower()
-    out: list[tuple[int, int, RGB, bool]] = []
-    for i, t in enumerate(ws):
-        if len(t) == 6 and all(ch in "0123456789abcdef" for ch in t) and f"#{t}" in raw:
-            out.append((i, 1, (int(t[0:2], 16), int(t[2:4], 16), int(t[4:6], 16)), False))
-        elif t == "rgb" and i + 3 < len(ws) and all(x.isdigit() for x in ws[i + 1 : i + 4]):
-            r, g, b = (int(x) for x in ws[i + 1 : i + 4])
-            if max(r, g, b) <= 255:
-                out.append((i, 4, (r, g, b), False))
-    return out
 
 
 #: Words that apply a tone comparative to every colour of the material.
@@ -168,12 +158,9 @@ def describes_part(c: Context, i: int, n: int = 1) -> bool:
     if before[-1] not in c.ew["articles"] and not adjective:
         return False
     v = c.vocabulary
-    # "the blue-grey background": a compound colour's first word describes the part too
-    j = i + n
-    while j < min(len(ws), i + n + 2) and (ws[j] in v.named or v.ish_base(ws[j]) in v.named):
-        j += 1
-    if j > i + n and (j >= len(ws) or not _names_part(c, j)):
-        j = i + n  # "the red blue" or a colour run before no part: as before
+    # "the blue-grey background": a compound colour's first word describes the part too (not
+    # "the red blue", a colour run before no part)
+    j = i + n + next((k for k in (2, 1) if _colour_run(c, i + n, k)), 0)
     after = ws[j] if j < len(ws) else None
     if after is None or not after.isalpha():
         return False
@@ -188,6 +175,13 @@ def describes_part(c: Context, i: int, n: int = 1) -> bool:
         or after in ("instead", "rather", "and", "or", "but", "than", "please", "like", "as")
         or v.ish_base(after) in v.named
     )
+
+
+def _colour_run(c: Context, j: int, k: int) -> bool:
+    """Whether words ``j .. j+k-1`` are colours followed by a part's name."""
+    v, ws = c.vocabulary, c.words[j : j + k]
+    named = len(ws) == k and all(w in v.named or v.ish_base(w) in v.named for w in ws)
+    return named and _names_part(c, j + k)
 
 
 def _as_verb(c: Context, word: str) -> bool:
@@ -305,7 +299,9 @@ def _colour_in(
                 partial = ish or _as_verb(c, ws[i])
     tone: str | None = None
     comparative_word: str | None = None
-    exact = bool(_explicit(c))  # "a pale sage green, #D8E0CF": the value, not its words' tone
+    exact = bool(
+        explicit_colours(c)
+    )  # "a pale sage green, #D8E0CF": the value, not its words' tone
     for i, t in enumerate(ws):
         if i in used or exact:
             continue

@@ -25,7 +25,6 @@ from dataclasses import replace
 
 from matloom.author.edit.apply import add_lines, all_params
 from matloom.author.edit.colours import describes_part
-from matloom.author.edit.finish import roughness_rule
 from matloom.author.edit.lexicon import edit_words, split_words, stem, tokens, too_strong
 from matloom.author.edit.looks import condition_look, names_colour, one_mark
 from matloom.author.edit.measured import mask_coverage, measured_coverage, measured_layer
@@ -95,6 +94,12 @@ def _condition_layers(c: Context, stems: Sequence[str]) -> list[int]:
         if any(_named(n, stems) for n in mask_names(layer.alpha)):
             out.append(i)
     return out
+
+
+def present(c: Context, stems: Sequence[str]) -> bool:
+    """Whether the program has a condition of these stems to reduce (an amount, a cover, a
+    layer of it)."""
+    return bool(_labelled(c, stems) or _overlay_covers(c, stems) or _condition_layers(c, stems))
 
 
 # ---- overlays ----------------------------------------------------------------------------------
@@ -412,10 +417,6 @@ def amount_rule(c: Context) -> Plan | None:
     if layers and not more:
         raise c.refuse(f"no parameter moves the {word} layer's coverage")
     if not more:
-        if word in c.ew["shine_conditions"]:
-            # "more matte, less oily" on skin with no oil: a shine, read as "less glossy"
-            said = [("glossy" if t == word else t) for t in c.words]
-            return roughness_rule(replace(c, words=said))
         raise c.refuse(f"there is no {word} in this program to reduce")
     # more of something absent, or present with nothing to move it: the overlay on top
     plan = _add_overlay(c, word, stems)
@@ -483,7 +484,7 @@ def _more(c: Context) -> bool:
     """More of a condition when no direction word stands before its word: a "more" word and
     none of "less", nor a wish that it show less ("too strong; make them more subtle")."""
     ws = set(c.words)
-    if ws & (c.ew["show_less"] | c.ew["shows_less"]) or too_strong(c.words):
+    if ws & (c.ew["show_less"] | c.ew["shows_less"]) or too_strong(c.words, c.ew):
         return False
     return bool(ws & c.ew["more"]) or not (ws & c.ew["less"])
 

@@ -1,6 +1,6 @@
 """Which colour parameters a colour names: the part that is that colour now ("swap the yellow
 for orange", "just the red panes") and every colour of its family ("switch the teal for a deep
-burgundy", "the blues and greens")."""
+burgundy", "the blues and greens"); colours given as values ("#D8E0CF", "RGB 150, 60, 40")."""
 
 from __future__ import annotations
 
@@ -86,3 +86,19 @@ def the_colour(c: Context) -> bool:
         a in ("the", "those", "these", "its") and c.vocabulary.ish_base(b) in c.vocabulary.named
         for a, b in zip(ws, ws[1:], strict=False)
     )
+
+
+def explicit_colours(c: Context) -> list[tuple[int, int, RGB, bool]]:
+    """Colours given as values: ``#d8e0cf`` (a hex word the request writes after ``#``) and
+    ``RGB 150, 60, 40`` / ``rgb(150, 60, 40)`` (three numbers 0-255 after "rgb")."""
+    ws = c.words
+    raw = c.request.lower()
+    out: list[tuple[int, int, RGB, bool]] = []
+    for i, t in enumerate(ws):
+        if len(t) == 6 and all(ch in "0123456789abcdef" for ch in t) and f"#{t}" in raw:
+            out.append((i, 1, (int(t[0:2], 16), int(t[2:4], 16), int(t[4:6], 16)), False))
+        elif t == "rgb" and i + 3 < len(ws) and all(x.isdigit() for x in ws[i + 1 : i + 4]):
+            r, g, b = (int(x) for x in ws[i + 1 : i + 4])
+            if max(r, g, b) <= 255:
+                out.append((i, 4, (r, g, b), False))
+    return out

@@ -11,9 +11,10 @@ relief moves with it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 
-from matloom.author.edit.lexicon import flipped, too_strong
+from matloom.author.edit.lexicon import EditWords, flipped, too_strong
 from matloom.author.edit.plan import Context, Plan, Value, assign, clamp
 from matloom.author.edit.targets import matching, named_in_program, param_layers
 from matloom.lang import ast as A
@@ -217,6 +218,15 @@ def _coats(c: Context, targets: list[Param], d: int) -> dict[Param, Value]:
 
 
 # ---- single channels ---------------------------------------------------------------------------
+def _dims(words: Sequence[str], ew: EditWords) -> bool:
+    """Whether a dim word asks for less ("dim the diodes", "dimmer"), not says it is too weak
+    ("the glow is too dim", "the diodes are dim")."""
+    return any(
+        w in ew["dim"] and (i == 0 or words[i - 1] not in ew["dim_said"])
+        for i, w in enumerate(words)
+    )
+
+
 def channel_rule(c: Context) -> Plan | None:
     ws = c.words
     hit = next(((i, c.ew.channel_of(t)) for i, t in enumerate(ws) if c.ew.channel_of(t)), None)
@@ -227,7 +237,7 @@ def channel_rule(c: Context) -> Plan | None:
     before = ws[max(0, i - 2) : i]
     zero = any(w in ("no", "without", "remove") for w in before)
     # "less glow", "the glow is too strong", "dim the diodes": less of it
-    weaker = too_strong(ws[i:]) or bool(set(ws) & c.ew["dim"])
+    weaker = too_strong(ws[i:], c.ew) or _dims(ws, c.ew)
     d = -1 if flipped(ws, i, c.ew["flip"]) or weaker else 1
     params = [
         p

@@ -44,6 +44,8 @@ class EditWords:
     unlooks: dict[str, str] = dataclasses.field(default_factory=dict)
     #: intensity words of edits beside the library's ("a slight tint", "heavily worn")
     intensity: dict[str, float] = dataclasses.field(default_factory=dict)
+    #: number words of a stated factor ("three times bigger")
+    counting: dict[str, float] = dataclasses.field(default_factory=dict)
 
     def __getitem__(self, key: str) -> frozenset[str]:
         return self.words[key]
@@ -98,6 +100,7 @@ def edit_words() -> EditWords:
             k: (float(v[0]), float(v[1]), float(v[2])) for k, v in raw.get("colours", {}).items()
         },
         intensity={k: float(v) for k, v in raw.get("intensity", {}).items()},
+        counting={k: float(v) for k, v in raw.get("counting", {}).items()},
         too={k: str(v) for k, v in raw.get("too", {}).items()},
         colour_verbs={k: str(v) for k, v in raw.get("colour_verbs", {}).items()},
         looks={w: str(look["as"]) for look in raw.get("looks", {}).values() for w in look["words"]},
@@ -119,41 +122,37 @@ def tokens(request: str) -> list[str]:
     return re.findall(r"[a-z0-9]+(?:\.[0-9]+)?", request.lower())
 
 
-#: Number words of a stated factor ("three times bigger").
-_NUMBER_WORDS = {"two": 2.0, "three": 3.0, "four": 4.0, "five": 5.0}
 #: A stated factor is used within these bounds (a larger one is a typo or a unit).
 FACTOR_RANGE = (1.1, 5.0)
+_NUMBER = r"[0-9]+(?:\.[0-9]+)?"
 
 
-def stated_factor(words: Sequence[str]) -> float | None:
+def stated_factor(words: Sequence[str], ew: EditWords) -> float | None:
     """A factor the request states for a size ("scale it up about 2x", "x3", "3 times
-    bigger", "three times as big"), within :data:`FACTOR_RANGE`; None when it states none
-    ("twice" and "half" are read by the size rule itself). "2 x 3 m" is a size, not a
-    factor."""
+    bigger", "three times as big": the ``[counting]`` words), within
+    :data:`FACTOR_RANGE`; None when it states none ("twice" and "half" are read by the size
+    rule itself). "2 x 3 m" is a size, not a factor."""
+    counting = ew.counting
     for i, w in enumerate(words):
         after = words[i + 1] if i + 1 < len(words) else ""
+        following = words[i + 2] if i + 2 < len(words) else ""
         found = None
-        if m := re.fullmatch(r"([0-9]+(?:\.[0-9]+)?)x|x([0-9]+(?:\.[0-9]+)?)", w):
+        if m := re.fullmatch(rf"({_NUMBER})x|x({_NUMBER})", w):
             found = float(m.group(1) or m.group(2))
-        elif re.fullmatch(r"[0-9]+(?:\.[0-9]+)?", w) and after == "x":
-            following = words[i + 2] if i + 2 < len(words) else ""
-            found = None if re.match(r"[0-9]", following) else float(w)
-        elif after == "times" and (w in _NUMBER_WORDS or re.fullmatch(r"[0-9]+(?:\.[0-9]+)?", w)):
-            found = _NUMBER_WORDS.get(w) or float(w)
+        elif re.fullmatch(_NUMBER, w) and after == "x" and not re.match(r"[0-9]", following):
+            found = float(w)
+        elif after == "times" and (w in counting or re.fullmatch(_NUMBER, w)):
+            found = counting.get(w) or float(w)
         if found is not None and FACTOR_RANGE[0] <= found <= FACTOR_RANGE[1]:
             return found
     return None
 
 
-#: "too strong", "too heavy": the thing named shows too much.
-_TOO_STRONG = frozenset({"strong", "heavy", "much", "intense", "prominent", "obvious", "visible"})
-
-
-def too_strong(words: Sequence[str]) -> bool:
-    """Whether the request says something shows too much ("too strong", "too heavy"; not
-    "not too strong")."""
+def too_strong(words: Sequence[str], ew: EditWords) -> bool:
+    """Whether the request says something shows too much ("too strong", "too heavy": the
+    ``too_strong`` words; not after a negation, "not too strong")."""
     return any(
-        b == "too" and c in _TOO_STRONG and a not in ("not", "t", "never")
+        b == "too" and c in ew["too_strong"] and a not in ew["negation"]
         for a, b, c in zip(["", *words], words, words[1:], strict=False)
     )
 

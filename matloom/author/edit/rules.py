@@ -38,7 +38,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from matloom.author.edit.apply import apply_edit, parse_program, set_view
-from matloom.author.edit.clauses import AND_VERB, join_clauses, with_contrast
+from matloom.author.edit.clauses import AND_VERB, join_clauses, with_contrast, without_state
 from matloom.author.edit.colours import colour_rule
 from matloom.author.edit.conditions import amount_rule
 from matloom.author.edit.contrast import contrast_rule, feature_rule
@@ -64,6 +64,7 @@ from matloom.author.edit.plan import (
     clamp,
     scaled,
 )
+from matloom.author.edit.shine import shine_as_finish
 from matloom.author.edit.targets import (
     coverage_params,
     material_noun,
@@ -246,7 +247,7 @@ def _scale(c: Context) -> Plan | None:
         return None
     # "double their size", "twice as wide", "half the width": x2 (else the words' step)
     # "scale it up about 2x", "three times as big": that factor, not escalated
-    stated = stated_factor(c.words)
+    stated = stated_factor(c.words, ew)
     step = stated or (2.0 if ws & {"double", "twice", "half", "halve", "doubled"} else ew.f("size"))
     size_f = step ** ((1 if stated else c.k) * (1 if bigger else -1))
     joint = ("mortar", "grout", "gap", "joint", "feather", "seam", "gutter")
@@ -457,29 +458,11 @@ _PURPOSE_RE = re.compile(
 )
 
 
-#: A sentence describing how the material looks now ("The rings look like dull grey plastic.",
-#: "right now the reflections are distracting"): not what to change, when another sentence
-#: asks for it.
-_STATE_RE = re.compile(
-    r"^\s*(?:(?:right\s+now|currently|at\s+the\s+moment|at\s+present)\b(?:(?!\btoo\b)[^.;!?])*"
-    r"|(?:(?!\btoo\b)[^.;!?])*\b(?:looks?|reads?|seems?)\s+like\b(?:(?!\btoo\b)[^.;!?])*)$",
-    re.IGNORECASE,
-)
-
-
-def _without_state(request: str) -> str:
-    """The request without its sentences that only describe the material as it is, when
-    another sentence is left ("The rings look like dull grey plastic. Make them shinier")."""
-    sentences = [s for s in re.split(r"(?<=[.;!?])\s+", request.strip()) if s.strip()]
-    kept = [s for s in sentences if not _STATE_RE.match(s.rstrip(".;!? "))]
-    return " ".join(kept) if kept and len(kept) < len(sentences) else request
-
-
 def _kept_off(request: str) -> str:
     """The request with what it keeps cut off ("but keep the tiles white", "chips unchanged"),
     the clauses that say what it should go with ("so it sits better with the red") and the
     sentences that describe the material as it is ("The rings look like dull plastic.")."""
-    request = _without_state(request)
+    request = without_state(request)
     asked = _KEEP_RE.sub("", request) or request
     asked = re.sub(r"\s+", " ", _PURPOSE_RE.sub(" ", asked)).strip() or asked
     return _AS_IS_RE.sub("", asked) or asked
@@ -573,13 +556,19 @@ def plan_edit(
     """The offline plan for ``request`` on ``program`` (its parameter list ``params``), its
     steps times ``strength``. Raises :class:`EditRefused` when no rule maps the request."""
     # "charcoal grout but keep the tiles white": what is to be kept is not what is to change
-    asked = normalise(request)
-    # "make the tiles blue and make the grout white": the first part leads, the next joins
-    lead = re.split(AND_VERB, asked)[0]
+    ew = ew or edit_words()
     said = tuple(tokens(_kept_off(request)))
-    c = Context(
-        request, tokens(lead), list(params), program, words(), strength, ew or edit_words(), said
-    )
+
+    def context(asked: str) -> Context:
+        # "make the tiles blue and make the grout white": the first part leads, the next joins
+        lead = re.split(AND_VERB, asked)[0]
+        return Context(request, tokens(lead), list(params), program, words(), strength, ew, said)
+
+    asked = normalise(request)
+    c = context(asked)
+    shined = shine_as_finish(c, asked)  # "more matte, less oily" on skin: less glossy
+    if shined != asked:
+        asked, c = shined, context(shined)
     for rule in RULES:
         plan = rule(c)
         if plan is not None:

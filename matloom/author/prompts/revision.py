@@ -202,7 +202,7 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
     previous_score: int | None = None,
     continue_from: str | None = None,
     no_change: str | None = None,
-    dropped: tuple[int, Sequence[str]] | None = None,
+    dropped: tuple[str, Sequence[str]] | None = None,
     structural: Sequence[str] = (),
     warnings: Sequence[str] = (),
 ) -> str:
@@ -212,7 +212,7 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
 
     Loop v3 sections, first: which version it continues from (``continue_from``), a revision
     with no visible change (``no_change``), what the critic said of a dropped round
-    (``dropped``: its index and differences); and the critic's ``structural`` changes.
+    (``dropped``: its name, ``round 2``, and differences); and the critic's ``structural`` changes.
     ``warnings``: the checker's warnings of the program being revised (``revision_warnings``),
     e.g. a Define a built-in shadows, which the render silently ignores."""
     sections = []
@@ -221,11 +221,11 @@ def revision_message(  # noqa: PLR0913 - one keyword per optional section
     if no_change:
         sections.append(("No visible change", no_change))
     if dropped is not None:
-        index, said = dropped
+        name, said = dropped
         sections.append(
             (
                 "Dropped attempt",
-                f"What the critic said of round {index}, which is not continued:\n"
+                f"What the critic said of {name}, which is not continued:\n"
                 + _bullets(said, "none noted"),
             )
         )

@@ -118,8 +118,10 @@ def continue_from(
 ) -> int:
     """The program the revision after P_k starts from: P_k, or with ``revise_from_best`` the
     best so far (``scorer(j)``'s score when there is a scorer, as in selection, else the
-    critic's); a revision with no visible change is never it."""
-    if not record.settings.revise_from_best:
+    critic's); a revision with no visible change is never it. The first revision after
+    several drafts always starts from the best draft, with or without ``revise_from_best``."""
+    after_drafts = loop.drafts > 1 and k == loop.drafts - 1
+    if not record.settings.revise_from_best and not after_drafts:
         return k
     values: list[float | None] = []
     for j in range(k + 1):
@@ -154,7 +156,7 @@ def loop_sections(  # noqa: PLR0913 - the loop's view of the run, passed in
     for the revision after P_k that continues from ``base`` (``shown(j)``: P_j as its author
     wrote it); empty in the paper."""
     cfg, sections = record.settings, {}
-    if cfg.revise_from_best:
+    if cfg.revise_from_best or base != k:  # base != k without it: the best of the drafts
         standings: dict[int, str | None] = {}
         for j in range(k + 1):
             scored = (scorer_name, loop.scores[j]) if scorer_name and j in loop.scores else None
@@ -165,7 +167,7 @@ def loop_sections(  # noqa: PLR0913 - the loop's view of the run, passed in
         sections["continue_from"] = continue_text(base, k, standings, program, names)
         dropped = record.critique_of(k)
         if base != k and dropped is not None and dropped.ok and not loop.is_draft(k):
-            sections["dropped"] = (k, dropped.differences)
+            sections["dropped"] = (loop.name(k) or f"round {k}", dropped.differences)
     if k in loop.unchanged and cfg.no_change_threshold is not None:
         sections["no_change"] = no_change_text(
             k, loop.unchanged[k], cfg.no_change_threshold, loop.name(k)
