@@ -606,7 +606,6 @@ def test_a_width_word_on_a_part_not_drawn_by_strokes_scales_as_before() -> None:
     assert not _plan("metal-grid", "thicker bars")["note"].startswith("line widths")
 
 
-
 def test_dim_words_say_less_only_as_a_verb_or_comparative() -> None:
     strength = "layer:2.emissive.strength"
     for request_ in ("the glow is too dim, brighten it", "the diodes are dim, make them glow more"):
