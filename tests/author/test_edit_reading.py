@@ -619,3 +619,12 @@ def test_less_of_a_shine_condition_keeps_the_other_wishes() -> None:
     # where the oil is a condition with an amount, "fewer oil stains" is less of it
     oil = _plan("industrial-concrete-floor-oil-stains", "fewer oil stains")
     assert oil["rule"] == "amount", oil["note"]
+
+
+def test_a_texture_asked_to_show_more_is_deeper_relief() -> None:
+    """ "make the hammered texture more pronounced": the relief deeper (it was refused); "the
+    weave texture is too visible" stays the contrast rule's."""
+    plan = _plan("hammered-glass-dimpled", "make the hammered texture more pronounced")
+    assert plan["rule"] == "relief" and "deeper" in plan["note"], plan["note"]
+    flatter = _plan("hammered-glass-dimpled", "make the texture less visible")
+    assert flatter["rule"] == "relief" and "flatter" in flatter["note"]

@@ -331,6 +331,12 @@ def _relief_direction(c: Context) -> int | None:
                 return -1
             if any(x in c.ew["more"] | c.ew["higher"] | {"stronger", "deeper"} for x in near):
                 return 1
+            # "make the hammered texture more pronounced", "the texture less visible" (not "too
+            # visible", which the contrast rule reads)
+            after = ws[i + 1 : i + 4]
+            for j in range(1, len(after)):
+                if after[j] in c.ew["show_more"] and after[j - 1] in ("more", "less"):
+                    return -1 if after[j - 1] == "less" else 1
     return None
 
 
