@@ -628,3 +628,14 @@ def test_a_texture_asked_to_show_more_is_deeper_relief() -> None:
     assert plan["rule"] == "relief" and "deeper" in plan["note"], plan["note"]
     flatter = _plan("hammered-glass-dimpled", "make the texture less visible")
     assert flatter["rule"] == "relief" and "flatter" in flatter["note"]
+
+
+def test_an_arrow_reads_as_to_and_too_saturated_as_muted() -> None:
+    """ "red centres -> mustard yellow": the red parts become mustard (the background turned
+    red); "the duckweed is too saturated": a muted duckweed (it was refused)."""
+    plan = _plan("diamond-print", "red centres -> mustard yellow")
+    assert plan["rule"] == "colour" and "define:base" not in plan["assignments"], plan["note"]
+    for rgb in plan["assignments"].values():
+        assert rgb[0] > rgb[2] + 100 and rgb[1] > rgb[2] + 80  # mustard: yellow-orange
+    muted = _plan("swamp-duckweed-water", "the duckweed is too saturated")
+    assert muted["rule"] == "colour" and "define:duckweed" in muted["assignments"]

@@ -369,6 +369,8 @@ _KEEP_RE = re.compile(
 _DOWN_VERBS = r"(?:knock|tone|turn|bring|dial|take)"
 _GLOSS_WORDS = r"gloss|shine|shininess|glossiness|reflections?|sheen"
 _PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...] = (
+    # "red centres -> mustard yellow": an arrow is "to"
+    (re.compile(r"\s*(?:->|=>|\u2192)\s*"), " to "),
     (re.compile(r"\b(?:pull|cut|dial|roll|hold|push)\s+((?:the\s+)?\w+)\s+back\b"), r"less \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})up\b"), r"bigger \1"),
     (re.compile(r"\bscale\s+((?:the\s+)?(?:\w+\s+){0,2})down\b"), r"smaller \1"),
