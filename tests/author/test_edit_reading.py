@@ -639,3 +639,11 @@ def test_an_arrow_reads_as_to_and_too_saturated_as_muted() -> None:
         assert rgb[0] > rgb[2] + 100 and rgb[1] > rgb[2] + 80  # mustard: yellow-orange
     muted = _plan("swamp-duckweed-water", "the duckweed is too saturated")
     assert muted["rule"] == "colour" and "define:duckweed" in muted["assignments"]
+
+
+def test_any_adding_verb_adds_a_condition() -> None:
+    """ "put moss ... on the lower stones": added ("lower" read as less refused it)."""
+    plan = _plan(
+        "random-rubble-wall", "put moss and green algae in the mortar and on the lower stones"
+    )
+    assert plan["rule"].startswith("overlay") and "'mossy'" in plan["note"], plan["note"]

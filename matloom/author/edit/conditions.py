@@ -468,7 +468,7 @@ def _direction(c: Context, word: str) -> bool | None:
     near = ws[max(0, i - 3) : i]
     if "too" in near[-2:]:  # "it's too uniformly rusty": less of it
         return False
-    if "add" in ws[:i]:  # "add some brownish grease stains": the colour describes what is added
+    if set(ws[:i]) & c.ew["adding"]:  # "add some brownish grease stains", "put moss in ..."
         return True
     for t in reversed(near):
         if _is_property(c, t):
