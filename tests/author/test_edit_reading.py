@@ -647,3 +647,12 @@ def test_any_adding_verb_adds_a_condition() -> None:
         "random-rubble-wall", "put moss and green algae in the mortar and on the lower stones"
     )
     assert plan["rule"].startswith("overlay") and "'mossy'" in plan["note"], plan["note"]
+
+
+def test_fallen_leaves_are_added_where_the_program_has_no_leaves() -> None:
+    """ "add some scattered fallen leaves" to a lawn: the leaf litter overlay (it was refused);
+    "more floating dead leaves" on a pond that has some: more of its own."""
+    plan = _plan("grass", "add some scattered fallen leaves")
+    assert plan["rule"] == "overlay" and "'leafy'" in plan["note"], plan["note"]
+    own = _plan("swamp-duckweed-water", "more floating dead leaves")
+    assert own["rule"] == "amount" and "leaf" in own["note"], own["note"]

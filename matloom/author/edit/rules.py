@@ -64,7 +64,7 @@ from matloom.author.edit.plan import (
     clamp,
     scaled,
 )
-from matloom.author.edit.shine import shine_as_finish
+from matloom.author.edit.reread import reread
 from matloom.author.edit.targets import (
     coverage_params,
     material_noun,
@@ -568,7 +568,7 @@ def plan_edit(
 
     asked = normalise(request)
     c = context(asked)
-    shined = shine_as_finish(c, asked)  # "more matte, less oily" on skin: less glossy
+    shined = reread(c, asked)  # "more matte, less oily" on skin: less glossy
     if shined != asked:
         asked, c = shined, context(shined)
     for rule in RULES:
