@@ -213,6 +213,7 @@ class Run:
                 return
             last = k == final
             drafting = k + 1 < loop.drafts  # the next program is another first draft
+            critique = None
             if self._unchanged(k, loop):
                 if len(loop.unchanged) >= cfg.no_change_limit:
                     shown = ", ".join(f"P{j}" for j in loop.unchanged)
@@ -228,24 +229,23 @@ class Run:
                     self.record.stop_reason = f"critique of P{k} failed: {critique.error}"
                     self.store.save()
                     return
-                # after the drafts, the best draft's critique says whether to go on
-                ask_of = k
-                if loop.drafts > 1 and k == loop.drafts - 1:
-                    ask_of = continue_from(self.record, k, loop, self._scorer_of(loop))
-                if not last and not drafting and cfg.stop_when_satisfied:
-                    asking = self.record.critique_of(ask_of) or critique
-                    if not _asks(asking, cfg.critic_structural):
-                        self.record.stop_reason = f"the critic asked for no changes to P{ask_of}"
-                        self.store.save()
-                        return
             if drafting:
                 if k + 1 >= len(self.record.programs):
                     self.draft(k + 1, loop.drafts)
-            elif not last:
-                base = continue_from(self.record, k, loop, self._scorer_of(loop))
-                loop.parents[k + 1] = base
-                if k + 1 >= len(self.record.programs):
-                    self.revise(k, base, loop)
+                continue
+            if last:
+                break
+            base = continue_from(self.record, k, loop, self._scorer_of(loop))
+            if critique is not None and cfg.stop_when_satisfied:
+                # after the drafts, the best draft's critique says whether to go on
+                ask_of = base if loop.is_draft(k) else k
+                if not _asks(self.record.critique_of(ask_of) or critique, cfg.critic_structural):
+                    self.record.stop_reason = f"the critic asked for no changes to P{ask_of}"
+                    self.store.save()
+                    return
+            loop.parents[k + 1] = base
+            if k + 1 >= len(self.record.programs):
+                self.revise(k, base, loop)
         done = f"all {cfg.rounds} revision rounds used" if cfg.rounds else "all drafts written"
         self.record.stop_reason = done
         self.store.save()

@@ -194,18 +194,18 @@ def _describes(c: Context, words: list[str], comparatives: bool = True) -> bool:
 
 #: A sentence describing how the material looks now ("The rings look like dull grey plastic.",
 #: "right now the reflections are distracting"): not what to change, when another sentence
-#: asks for it.
+#: asks for it; one that says "too" is a request ("the bars look too dull").
 _STATE_RE = re.compile(
-    r"^\s*(?:(?:right\s+now|currently|at\s+the\s+moment|at\s+present)\b(?:(?!\btoo\b)[^.;!?])*"
-    r"|(?:the|this|these|that|those|it|they|its|their)\b(?:(?!\btoo\b)[^.;!?])*"
-    r"\b(?:looks?|reads?|seems?)\s+like\b(?:(?!\btoo\b)[^.;!?])*)$",
+    r"\s*(?:(?:right\s+now|currently|at\s+the\s+moment|at\s+present)\b"
+    r"|(?:the|this|these|that|those|it|they|its|their)\b.*\b(?:looks?|reads?|seems?)\s+like\b)",
     re.IGNORECASE,
 )
+_TOO_RE = re.compile(r"\btoo\b", re.IGNORECASE)
 
 
 def without_state(request: str) -> str:
     """The request without its sentences that only describe the material as it is, when
     another sentence is left ("The rings look like dull grey plastic. Make them shinier")."""
     sentences = [s for s in re.split(r"(?<=[.;!?])\s+", request.strip()) if s.strip()]
-    kept = [s for s in sentences if not _STATE_RE.match(s.rstrip(".;!? "))]
+    kept = [s for s in sentences if not _STATE_RE.match(s) or _TOO_RE.search(s)]
     return " ".join(kept) if kept and len(kept) < len(sentences) else request
